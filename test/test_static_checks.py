@@ -1,0 +1,31 @@
+"""ruff and mypy as tests, so the single pytest run also fails on lint or type errors."""
+
+from __future__ import annotations
+
+import os
+import sys
+
+from conftest import REPO_ROOT, run_command_bounded
+
+VENV_BIN = REPO_ROOT / ".venv" / "bin"
+
+
+def test_ruff_clean() -> None:
+    outcome = run_command_bounded([str(VENV_BIN / "ruff"), "check", "--no-cache", "."], env=_env(), timeout_s=300)
+    assert outcome.returncode == 0, f"ruff found problems:\n{outcome.output[-8000:]}"
+
+
+def test_mypy_clean() -> None:
+    outcome = run_command_bounded(
+        [sys.executable, "-m", "mypy", "-p", "flex_nav", "-p", "flex_nav_states", "-p", "flex_nav_sim"],
+        env=_env(),
+        timeout_s=600,
+    )
+    assert outcome.returncode == 0, f"mypy found problems:\n{outcome.output[-8000:]}"
+    assert "Success" in outcome.output
+
+
+def _env() -> dict[str, str]:
+    env = dict(os.environ)
+    env["MYPYPATH"] = str(REPO_ROOT / "src")
+    return env

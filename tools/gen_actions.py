@@ -1,0 +1,99 @@
+#!/usr/bin/env python3
+"""Generate flex_nav's Python action/message classes without catkin.
+
+Reads ``action/*.action``, expands each into its eight messages with actionlib_msgs' genaction
+(into ``build/msg``), and generates Python modules into ``src/flex_nav/msg`` with genpy, one file
+at a time (``genpy.generator.reset_var()`` before each, so the output matches catkin's byte for
+byte). Skips all work when the inputs and genpy are unchanged since the last run (a stamp file
+holds their hash). Exit status 0 on success, 2 with a message on failure.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parent.parent
+ACTION_DIR = REPO / "action"
+BUILD_DIR = REPO / "build" / "msg"
+OUT_DIR = REPO / "src" / "flex_nav" / "msg"
+STAMP = OUT_DIR / ".inputs.sha256"
+PACKAGE = "flex_nav"
+GENACTION = Path("/usr/lib/actionlib_msgs/genaction.py")
+SEARCH_PATH = {
+    PACKAGE: [str(BUILD_DIR)],
+    "std_msgs": ["/usr/share/std_msgs/msg"],
+    "geometry_msgs": ["/usr/share/geometry_msgs/msg"],
+    "nav_msgs": ["/usr/share/nav_msgs/msg"],
+    "actionlib_msgs": ["/usr/share/actionlib_msgs/msg"],
+}
+
+
+def fail(message: str) -> int:
+    print(f"[flex_nav gen_actions] ERROR: {message}", file=sys.stderr)
+    return 2
+
+
+def inputs_hash(actions: list[Path]) -> str:
+    import genpy
+
+    digest = hashlib.sha256()
+    digest.update(str(getattr(genpy, "__file__", "")).encode())
+    for path in [*actions, Path(__file__)]:
+        digest.update(path.name.encode())
+        digest.update(path.read_bytes())
+    return digest.hexdigest()
+
+
+def main() -> int:
+    actions = sorted(ACTION_DIR.glob("*.action"))
+    if not actions:
+        return fail(f"no .action files in {ACTION_DIR}")
+    try:
+        import genpy.generate_initpy
+        import genpy.generator
+    except ImportError as err:
+        return fail(f"genpy is not importable ({err}); install Debian's python3-genpy (tools/install.sh does)")
+    if not GENACTION.is_file():
+        return fail(f"{GENACTION} is missing; install Debian's libactionlib-msgs-dev (tools/install.sh does)")
+
+    want = inputs_hash(actions)
+    if STAMP.is_file() and STAMP.read_text().strip() == want and (OUT_DIR / "__init__.py").is_file():
+        print(f"[flex_nav gen_actions] action classes up to date ({len(actions)} actions)")
+        return 0
+
+    BUILD_DIR.mkdir(parents=True, exist_ok=True)
+    for old in BUILD_DIR.glob("*.msg"):
+        old.unlink()
+    for action in actions:
+        proc = subprocess.run(
+            [sys.executable, str(GENACTION), str(action), "-o", str(BUILD_DIR)],
+            capture_output=True, text=True, timeout=60, check=False,
+        )
+        if proc.returncode != 0:
+            return fail(f"genaction failed on {action.name}: {proc.stderr.strip() or proc.stdout.strip()}")
+
+    OUT_DIR.mkdir(parents=True, exist_ok=True)
+    for old in OUT_DIR.glob("_[A-Z]*.py"):
+        old.unlink()
+    generator = genpy.generator.MsgGenerator()
+    for msg_file in sorted(BUILD_DIR.glob("*.msg")):
+        genpy.generator.reset_var()
+        status = generator.generate_messages(PACKAGE, [str(msg_file)], str(OUT_DIR), SEARCH_PATH)
+        if status:
+            return fail(f"genpy failed on {msg_file.name} (status {status})")
+    status = genpy.generate_initpy.write_modules(str(OUT_DIR))
+    if status:
+        return fail(f"writing {OUT_DIR}/__init__.py failed (status {status})")
+    STAMP.write_text(want + "\n")
+    count = len(list(OUT_DIR.glob("_[A-Z]*.py")))
+    print(f"[flex_nav gen_actions] generated {count} message modules from {len(actions)} actions into "
+          f"{os.path.relpath(OUT_DIR, REPO)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
