@@ -1,0 +1,5 @@
+"""Pure navigation algorithms (no rospy): maps, costmaps, global planning, path following.
+
+- ``grid_map``      :class:`GridMap`, an occupancy grid in OccupancyGrid conventions, world <-> cell
+- ``map_io``        map_server-format YAML + PGM/PNG load and save
+"""
