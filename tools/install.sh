@@ -5,7 +5,7 @@
 set -euo pipefail
 
 REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-VENV="$REPO/.venv"
+VENV="${FLEX_NAV_VENV:-$REPO/.venv}"   # override only for tests of the installer itself
 APT_LOCK_TIMEOUT_S="${FLEX_NAV_APT_LOCK_TIMEOUT:-600}"   # [s] wait for another apt to release its lock
 
 APT_PACKAGES=(
@@ -25,7 +25,7 @@ die() {
 }
 
 check_platform() {
-  [ -x /usr/bin/apt-get ] && [ -x /usr/bin/dpkg-query ] ||
+  command -v apt-get >/dev/null 2>&1 && command -v dpkg-query >/dev/null 2>&1 ||
     die "this installer needs a Debian-based system with apt (ROS Noetic comes from Debian 12 'bookworm')." \
         "On another system install ROS Noetic yourself, then run: FLEX_NAV_SKIP_APT=1 $0"
 }
