@@ -2,24 +2,17 @@
 
 Fixtures:
   ros_master  a fresh ``roscore -p <free port>`` with its own ROS_HOME, stopped by PID after the test.
-Helpers:
-  run_rostest(master, test_file, timeout_s)  runs ``rostest --reuse-master flex_nav <file>`` against it.
+Helpers for commands and rostests are in ``harness.py`` (``run_command_bounded``, ``run_rostest``).
 """
 
 from __future__ import annotations
 
-import os
-import subprocess
 from collections.abc import Iterator
-from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
 
 from flex_nav.private_master import PrivateMaster
-
-REPO_ROOT = Path(__file__).resolve().parent.parent
-ROSTEST_DIR = REPO_ROOT / "test" / "rostest"
 
 
 @pytest.fixture
@@ -29,35 +22,3 @@ def ros_master(tmp_path: Path) -> Iterator[PrivateMaster]:
         yield master
     finally:
         master.stop()
-
-
-@dataclass
-class RostestOutcome:
-    returncode: int
-    output: str
-
-    @property
-    def passed(self) -> bool:
-        return self.returncode == 0 and "RESULT: SUCCESS" in self.output
-
-
-def run_command_bounded(
-    argv: list[str], env: dict[str, str], timeout_s: float, cwd: Path = REPO_ROOT
-) -> RostestOutcome:
-    """Run ``argv`` in its own process group; on timeout kill the whole group and fail with its output."""
-    with subprocess.Popen(
-        argv, env=env, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, start_new_session=True
-    ) as proc:
-        try:
-            output, _ = proc.communicate(timeout=timeout_s)
-        except subprocess.TimeoutExpired:
-            os.killpg(proc.pid, 9)
-            output, _ = proc.communicate(timeout=5.0)
-            pytest.fail(f"{' '.join(argv)} did not finish within {timeout_s} s; output:\n{output[-4000:]}")
-    return RostestOutcome(proc.returncode, output)
-
-
-def run_rostest(master: PrivateMaster, test_file: str, timeout_s: float = 180.0) -> RostestOutcome:
-    return run_command_bounded(
-        ["rostest", "--reuse-master", "flex_nav", test_file], env=master.env, timeout_s=timeout_s
-    )

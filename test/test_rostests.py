@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import pytest
-from conftest import ROSTEST_DIR, run_rostest
+from harness import ROSTEST_DIR, run_rostest
 
 from flex_nav.private_master import PrivateMaster
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import os
 import sys
 
-from conftest import REPO_ROOT, run_command_bounded
+from harness import REPO_ROOT, run_command_bounded
 
 VENV_BIN = REPO_ROOT / ".venv" / "bin"
 
