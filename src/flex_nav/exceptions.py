@@ -35,3 +35,90 @@ def choices_message(what: str, bad: object, valid: Iterable[object]) -> str:
     """Format ``"<what> 'bad' is not valid (valid: a, b, c)"`` with the choices sorted as given."""
     listed = ", ".join(repr(v) if not isinstance(v, str) else v for v in valid)
     return f"{what} {bad!r} is not valid (valid: {listed or 'none'})"
+
+
+# --- behavior engine (flex_nav.behavior) --------------------------------------------------------
+
+
+class BehaviorError(FlexNavError):
+    """Base class of the behavior engine's errors (construction, loading, userdata, runtime, commands)."""
+
+
+class BehaviorConstructionError(BehaviorError, ConfigError):
+    """A behavior is built wrong; found when a state is added or when the machine is validated.
+
+    ``container`` is the path of the container at fault (``"/"`` for the root), ``label`` the state
+    label inside it (or None), ``item`` the bad outcome/target/key (or None) and ``field`` what the item
+    is (``"transition"``, ``"autonomy"``, ``"remapping"``, ``"initial"``, ``"condition"``, ``"key"``,
+    ``"label"``, ``"state"``) so that a loader can point at the line that defines it.
+    """
+
+    def __init__(
+        self, message: str, container: str = "", label: str | None = None, item: object = None, field: str = ""
+    ) -> None:
+        super().__init__(message)
+        self.container = container
+        self.label = label
+        self.item = item
+        self.field = field
+
+
+class UnknownTargetError(BehaviorConstructionError):
+    """A transition goes to a label that is neither a state of the container nor one of its outcomes."""
+
+
+class UnregisteredOutcomeError(BehaviorConstructionError):
+    """A transition, autonomy level or condition names an outcome the state does not register."""
+
+
+class MissingTransitionError(BehaviorConstructionError):
+    """A registered outcome of a state has no transition."""
+
+
+class UnreachableStateError(BehaviorConstructionError):
+    """A state cannot be reached from the initial state."""
+
+
+class LabelClashError(BehaviorConstructionError):
+    """A state label is used twice, is malformed, or equals an outcome of its container."""
+
+
+class MissingInitialStateError(BehaviorConstructionError):
+    """A state machine has no states, or its initial state is not one of them."""
+
+
+class UndeclaredKeyError(BehaviorConstructionError):
+    """A userdata key is used (remapping, input, output) that nobody declares or provides."""
+
+
+class BehaviorLoadError(BehaviorConstructionError):
+    """A behavior definition file is wrong; the message reads ``file:line: what is wrong (valid: ...)``."""
+
+    def __init__(self, message: str, file: str = "", line: int = 0) -> None:
+        super().__init__(f"{file}:{line}: {message}" if file else message, field="file")
+        self.file = file
+        self.line = line
+        self.reason = message
+
+
+class UserDataError(BehaviorError):
+    """A state used userdata against its declaration while running."""
+
+
+class UserDataKeyError(UserDataError, KeyError, AttributeError):
+    """Read or write of an undeclared userdata key, or read of a key that has no value yet."""
+
+    def __str__(self) -> str:  # KeyError would repr() the message
+        return str(self.args[0]) if self.args else ""
+
+
+class ReadOnlyUserDataError(UserDataError, TypeError):
+    """Write to an input-only userdata key, or mutation through a read-only view of its value."""
+
+
+class BehaviorRuntimeError(BehaviorError):
+    """A running behavior broke its contract (e.g. a state returned an unregistered outcome)."""
+
+
+class BehaviorCommandError(BehaviorError, ValueError):
+    """An operator command cannot be applied (unknown path, outcome not registered, nothing requested)."""
