@@ -1,0 +1,67 @@
+"""Reading private parameters with their type, range and choices checked when the node starts.
+
+A bad value raises ConfigError naming the parameter, the value and what is valid, so a node dies at
+start with a clear message instead of misbehaving later.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import rospy
+
+from flex_nav.exceptions import ConfigError, choices_message
+
+_MISSING = object()
+
+
+def _resolved(name: str) -> str:
+    return rospy.resolve_name(name) if name.startswith("~") else name
+
+
+def param_float(
+    name: str, default: float | None = None, minimum: float = -math.inf, maximum: float = math.inf
+) -> float:
+    """A finite float parameter within [minimum, maximum]; ``default`` None means required."""
+    raw = _get(name, default)
+    try:
+        value = float(raw)
+    except (TypeError, ValueError):
+        raise ConfigError(f"parameter {_resolved(name)} = {raw!r} is not a number") from None
+    if not math.isfinite(value) or not minimum <= value <= maximum:
+        raise ConfigError(f"parameter {_resolved(name)} = {raw!r} is outside [{minimum}, {maximum}]")
+    return value
+
+
+def param_int(name: str, default: int | None = None, minimum: int | None = None, maximum: int | None = None) -> int:
+    raw = _get(name, default)
+    if isinstance(raw, bool) or not isinstance(raw, int):
+        raise ConfigError(f"parameter {_resolved(name)} = {raw!r} is not an integer")
+    if (minimum is not None and raw < minimum) or (maximum is not None and raw > maximum):
+        raise ConfigError(f"parameter {_resolved(name)} = {raw!r} is outside [{minimum}, {maximum}]")
+    return raw
+
+
+def param_bool(name: str, default: bool | None = None) -> bool:
+    raw = _get(name, default)
+    if not isinstance(raw, bool):
+        raise ConfigError(f"parameter {_resolved(name)} = {raw!r} is not true/false")
+    return raw
+
+
+def param_str(name: str, default: str | None = None, choices: Sequence[str] | None = None) -> str:
+    raw = _get(name, default)
+    if not isinstance(raw, str):
+        raise ConfigError(f"parameter {_resolved(name)} = {raw!r} is not a string")
+    if choices is not None and raw not in choices:
+        raise ConfigError(choices_message(f"parameter {_resolved(name)}", raw, choices))
+    return raw
+
+
+def _get(name: str, default: Any) -> Any:
+    value = rospy.get_param(name, _MISSING if default is None else default)
+    if value is _MISSING:
+        raise ConfigError(f"required parameter {_resolved(name)} is not set")
+    return value

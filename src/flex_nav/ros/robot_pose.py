@@ -1,0 +1,53 @@
+"""The robot's pose in a global frame from tf, with a bounded wait and a reason when it is not there."""
+
+from __future__ import annotations
+
+import math
+
+import rospy
+import tf2_ros
+
+from flex_nav.exceptions import NotReadyError
+from flex_nav.nav.pose_checks import yaw_of_quaternion
+
+
+class RobotPoseSource:
+    """Looks up ``robot_base_frame`` in ``global_frame``; fails with NotReadyError when tf is missing or stale.
+
+    ``transform_tolerance_s`` [s]: how old the newest transform may be (as move_base's parameter of that name).
+    """
+
+    def __init__(
+        self,
+        buffer: tf2_ros.Buffer,
+        global_frame: str,
+        robot_base_frame: str,
+        transform_tolerance_s: float = 0.5,
+    ) -> None:
+        self.buffer = buffer
+        self.global_frame = global_frame
+        self.robot_base_frame = robot_base_frame
+        self.transform_tolerance_s = transform_tolerance_s
+
+    def pose(self, timeout_s: float = 0.2) -> tuple[float, float, float]:
+        """(x [m], y [m], yaw [rad]) of the robot base in the global frame; waits at most ``timeout_s`` [s]."""
+        try:
+            stamped = self.buffer.lookup_transform(
+                self.global_frame, self.robot_base_frame, rospy.Time(0), rospy.Duration(timeout_s)
+            )
+        except (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.ExtrapolationException) as err:
+            raise NotReadyError(
+                f"no transform {self.global_frame} -> {self.robot_base_frame} within {timeout_s:.2f} s: {err}"
+            ) from err
+        age_s = (rospy.Time.now() - stamped.header.stamp).to_sec()
+        if stamped.header.stamp != rospy.Time(0) and age_s > self.transform_tolerance_s:
+            raise NotReadyError(
+                f"transform {self.global_frame} -> {self.robot_base_frame} is {age_s:.2f} s old "
+                f"(tolerance {self.transform_tolerance_s:.2f} s)"
+            )
+        t = stamped.transform.translation
+        q = stamped.transform.rotation
+        yaw = yaw_of_quaternion(q.x, q.y, q.z, q.w)
+        if not all(math.isfinite(v) for v in (t.x, t.y, yaw)):
+            raise NotReadyError(f"transform {self.global_frame} -> {self.robot_base_frame} is not finite")
+        return (t.x, t.y, yaw)
