@@ -118,7 +118,10 @@ pip_install() {
   log="$(mktemp)"
   if ! "$VENV/bin/python" -m pip install --disable-pip-version-check -q -r "$req" >"$log" 2>&1; then
     tail -n 15 "$log" >&2
-    if grep -qiE 'No matching distribution|Could not find a version|connection|resolve|Network' "$log"; then
+    if grep -qiE 'CERTIFICATE_VERIFY_FAILED|SSLError' "$log"; then
+      die "pip could not verify the package index's TLS certificate (a proxy with its own certificate authority?)." \
+          "Point pip at the right CA bundle (PIP_CERT=/path/to/ca.pem or 'cert' in /etc/pip.conf) and run this command again."
+    elif grep -qiE 'No matching distribution|Could not find a version|connection|resolve|Network' "$log"; then
       die "pip could not download the pinned packages (no network, or no access to the package index?)." \
           "Connect to PyPI (or set PIP_INDEX_URL to a mirror) and run this command again."
     fi
