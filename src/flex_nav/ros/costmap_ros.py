@@ -1,0 +1,239 @@
+"""A costmap owned by a node: parameters, sensor subscriptions, periodic update/publish, and clear_costmap.
+
+Parameters (private, under ``~<name>/``; units in brackets):
+
+- ``global_frame`` (str, "map"), ``robot_base_frame`` (str, "base_footprint")
+- ``rolling_window`` (bool, false), ``width``/``height`` [m] (rolling window size, 4.0), ``resolution`` [m/cell]
+  (0.05; a static costmap takes the map's)
+- ``static_map`` (bool, true): static layer from ``map_topic`` (str, "map", latched OccupancyGrid)
+- ``scan_topic`` (str, "scan"; "" for none), ``obstacle_range`` [m] (2.5), ``raytrace_range`` [m] (3.0)
+- ``bumper_topic`` (str, "bumper_hits"; geometry_msgs/PointStamped contact points; "" for none)
+- ``robot_radius`` [m] (inscribed radius, 0.18), ``inflation_radius`` [m] (0.5), ``cost_scaling_factor`` [1/m] (5.0)
+- ``track_unknown_space`` (bool, false), ``update_frequency`` [Hz] (5.0), ``publish_frequency`` [Hz] (1.0)
+- ``transform_tolerance`` [s] (0.5)
+
+Publishes the costmap as OccupancyGrid on ``~<name>/costmap``. The node serves ClearCostmap on
+``<node>/clear_costmap`` (see :meth:`CostmapROS.serve_clear_costmap`). All access to the costmap goes through
+:attr:`lock`.
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+from typing import Optional
+
+import actionlib
+import numpy as np
+import rospy
+import tf2_ros
+from geometry_msgs.msg import PointStamped
+from nav_msgs.msg import OccupancyGrid
+from sensor_msgs.msg import LaserScan as LaserScanMsg
+
+from flex_nav.exceptions import ConfigError, NotReadyError
+from flex_nav.msg import ClearCostmapAction, ClearCostmapResult
+from flex_nav.nav.costmap import Costmap
+from flex_nav.nav.costmap_grid import CostmapGeometry
+from flex_nav.nav.grid_map import GridMap
+from flex_nav.nav.inflation import InflationParams
+from flex_nav.nav.obstacle_layer import LaserScan, ObstacleLayerParams
+from flex_nav.nav.pose_checks import yaw_of_quaternion
+from flex_nav.ros.conversions import grid_map_of, occupancy_grid_msg
+from flex_nav.ros.params import param_bool, param_float, param_str
+from flex_nav.ros.robot_pose import RobotPoseSource
+
+MAP_WAIT_S = 30.0  # [s] default bound on waiting for the first map
+
+
+class CostmapROS:
+    """One costmap with its ROS inputs and outputs; ``name`` is its parameter namespace (e.g. "global_costmap")."""
+
+    def __init__(self, name: str, tf_buffer: tf2_ros.Buffer) -> None:
+        ns = f"~{name}/"
+        self.name = name
+        self.lock = threading.RLock()
+        self.tf_buffer = tf_buffer
+        self.global_frame = param_str(ns + "global_frame", "map")
+        self.robot_base_frame = param_str(ns + "robot_base_frame", "base_footprint")
+        self.rolling_window = param_bool(ns + "rolling_window", False)
+        self.use_static_map = param_bool(ns + "static_map", not self.rolling_window)
+        self.map_topic = param_str(ns + "map_topic", "map")
+        self.width_m = param_float(ns + "width", 4.0, 0.1, 1000.0)
+        self.height_m = param_float(ns + "height", 4.0, 0.1, 1000.0)
+        self.resolution = param_float(ns + "resolution", 0.05, 0.001, 10.0)
+        scan_topic = param_str(ns + "scan_topic", "scan")
+        bumper_topic = param_str(ns + "bumper_topic", "bumper_hits")
+        self.obstacles = ObstacleLayerParams(
+            obstacle_range=param_float(ns + "obstacle_range", 2.5, 0.0, 100.0),
+            raytrace_range=param_float(ns + "raytrace_range", 3.0, 0.0, 100.0),
+            track_unknown_space=param_bool(ns + "track_unknown_space", False),
+        )
+        self.inflation = InflationParams(
+            inscribed_radius=param_float(ns + "robot_radius", 0.18, 0.0, 10.0),
+            inflation_radius=param_float(ns + "inflation_radius", 0.5, 0.0, 10.0),
+            cost_scaling_factor=param_float(ns + "cost_scaling_factor", 5.0, 0.0, 1000.0),
+        )
+        self.track_unknown_space = param_bool(ns + "track_unknown_space", False)
+        update_hz = param_float(ns + "update_frequency", 5.0, 0.1, 100.0)
+        publish_hz = param_float(ns + "publish_frequency", 1.0, 0.0, 100.0)
+        self.robot_pose = RobotPoseSource(
+            tf_buffer, self.global_frame, self.robot_base_frame, param_float(ns + "transform_tolerance", 0.5, 0.0, 10.0)
+        )
+        if not self.use_static_map and not self.rolling_window:
+            raise ConfigError(f"{rospy.resolve_name(ns)}: a costmap needs static_map: true or rolling_window: true")
+
+        self.costmap: Optional[Costmap] = None
+        self.last_scan_time: Optional[rospy.Time] = None
+        self._map_received = threading.Event()
+        if self.rolling_window:
+            self.costmap = Costmap.rolling(
+                self.width_m, self.height_m, self.resolution, obstacles=self.obstacles, inflation=self.inflation,
+                track_unknown_space=self.track_unknown_space,
+            )
+        self.publisher = rospy.Publisher(f"~{name}/costmap", OccupancyGrid, queue_size=1, latch=True)
+        self._subscribers = []
+        if self.use_static_map:
+            self._subscribers.append(rospy.Subscriber(self.map_topic, OccupancyGrid, self._on_map, queue_size=1))
+        if scan_topic:
+            self._subscribers.append(rospy.Subscriber(scan_topic, LaserScanMsg, self._on_scan, queue_size=1))
+        if bumper_topic:
+            self._subscribers.append(rospy.Subscriber(bumper_topic, PointStamped, self._on_bumper_hit, queue_size=10))
+        self._update_timer = rospy.Timer(rospy.Duration(1.0 / update_hz), self._on_update_timer)
+        self._publish_timer = (
+            rospy.Timer(rospy.Duration(1.0 / publish_hz), lambda _e: self.publish()) if publish_hz > 0 else None
+        )
+        self._clear_server: Optional[actionlib.SimpleActionServer] = None
+
+    # ------------------------------------------------------------------ inputs
+    def _on_map(self, msg: OccupancyGrid) -> None:
+        try:
+            grid = grid_map_of(msg)
+        except ConfigError as err:
+            rospy.logerr("%s: ignoring map: %s", self.name, err)
+            return
+        if msg.header.frame_id.lstrip("/") != self.global_frame.lstrip("/") and not self.rolling_window:
+            rospy.logerr("%s: map frame '%s' is not global_frame '%s'; ignoring it",
+                         self.name, msg.header.frame_id, self.global_frame)
+            return
+        with self.lock:
+            if self.rolling_window:
+                assert self.costmap is not None
+                self.costmap.set_static_map(grid)
+            else:
+                self.costmap = self._static_costmap(grid)
+        self._map_received.set()
+        self.publish()
+
+    def _static_costmap(self, grid: GridMap) -> Costmap:
+        if grid.origin[2] != 0.0:
+            raise ConfigError(f"{self.name}: map origin yaw must be 0, got {grid.origin[2]}")
+        return Costmap(
+            CostmapGeometry(grid.width, grid.height, grid.resolution, grid.origin[0], grid.origin[1]),
+            static_map=grid,
+            obstacles=self.obstacles,
+            inflation=self.inflation,
+            track_unknown_space=self.track_unknown_space,
+        )
+
+    def _sensor_pose(self, frame_id: str, stamp: rospy.Time) -> tuple[float, float, float]:
+        try:
+            tf = self.tf_buffer.lookup_transform(self.global_frame, frame_id, stamp, rospy.Duration(0.1))
+        except (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.ExtrapolationException) as err:
+            raise NotReadyError(f"no transform {self.global_frame} -> {frame_id}: {err}") from err
+        t, q = tf.transform.translation, tf.transform.rotation
+        return (t.x, t.y, yaw_of_quaternion(q.x, q.y, q.z, q.w))
+
+    def _on_scan(self, msg: LaserScanMsg) -> None:
+        try:
+            x, y, yaw = self._sensor_pose(msg.header.frame_id, msg.header.stamp)
+            scan = LaserScan(
+                ranges=np.asarray(msg.ranges, dtype=np.float64), angle_min=msg.angle_min,
+                angle_increment=msg.angle_increment, range_min=msg.range_min, range_max=msg.range_max,
+                sensor_x=x, sensor_y=y, sensor_yaw=yaw,
+            )
+            scan.validate()
+        except (NotReadyError, ConfigError) as err:
+            rospy.logwarn_throttle(5.0, f"{self.name}: scan ignored: {err}")
+            return
+        with self.lock:
+            self.last_scan_time = msg.header.stamp
+            if self.costmap is not None:
+                if self.rolling_window:
+                    self.costmap.recentre(x, y)
+                self.costmap.add_scan(scan)
+
+    def _on_bumper_hit(self, msg: PointStamped) -> None:
+        try:
+            tf = self.tf_buffer.lookup_transform(self.global_frame, msg.header.frame_id, msg.header.stamp,
+                                                 rospy.Duration(0.1))
+        except (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.ExtrapolationException) as err:
+            rospy.logwarn(f"{self.name}: bumper hit ignored, no transform: {err}")
+            return
+        t, q = tf.transform.translation, tf.transform.rotation
+        yaw = yaw_of_quaternion(q.x, q.y, q.z, q.w)
+        px, py = msg.point.x, msg.point.y
+        x = t.x + math.cos(yaw) * px - math.sin(yaw) * py
+        y = t.y + math.sin(yaw) * px + math.cos(yaw) * py
+        with self.lock:
+            if self.costmap is not None:
+                self.costmap.add_bumper_hits(np.array([x]), np.array([y]))
+                self.costmap.update()
+        rospy.loginfo(f"{self.name}: bumper hit marked at ({x:.2f}, {y:.2f}) in {self.global_frame}")
+
+    # ------------------------------------------------------------------ upkeep
+    def _on_update_timer(self, _event: rospy.timer.TimerEvent) -> None:
+        with self.lock:
+            if self.costmap is None:
+                return
+            if self.rolling_window:
+                try:
+                    x, y, _yaw = self.robot_pose.pose(timeout_s=0.05)
+                except NotReadyError:
+                    return
+                self.costmap.recentre(x, y)
+            self.costmap.update()
+
+    def publish(self) -> None:
+        with self.lock:
+            if self.costmap is None:
+                return
+            self.costmap.update()
+            geo = self.costmap.geometry
+            msg = occupancy_grid_msg(
+                self.costmap.to_occupancy(), geo.resolution, geo.origin_x, geo.origin_y,
+                frame_id=self.global_frame, stamp=rospy.Time.now(),
+            )
+        self.publisher.publish(msg)
+
+    def wait_for_map(self, timeout_s: float = MAP_WAIT_S) -> bool:
+        """True once a static costmap has a map (immediately for a rolling window without a static layer)."""
+        if not self.use_static_map:
+            return True
+        return self._map_received.wait(timeout_s)
+
+    def clear(self) -> None:
+        """Forget every observation (the static map stays)."""
+        with self.lock:
+            if self.costmap is not None:
+                self.costmap.reset()
+        self.publish()
+
+    def serve_clear_costmap(self, action_name: str) -> None:
+        """Serve ClearCostmap on ``action_name`` (a node's ``<node>/clear_costmap``)."""
+        server = actionlib.SimpleActionServer(action_name, ClearCostmapAction, auto_start=False)
+
+        def on_goal() -> None:
+            server.accept_new_goal()
+            result = ClearCostmapResult()
+            if self.costmap is None:
+                result.code, result.message = ClearCostmapResult.FAILURE, f"{self.name} has no map yet"
+                server.set_aborted(result, result.message)
+                return
+            self.clear()
+            result.code, result.message = ClearCostmapResult.SUCCESS, f"{self.name} cleared"
+            server.set_succeeded(result, result.message)
+
+        server.register_goal_callback(on_goal)
+        server.start()
+        self._clear_server = server
