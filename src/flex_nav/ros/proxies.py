@@ -1,0 +1,267 @@
+"""ROS connections for one behavior: publishers, cached subscribers, action clients and service callers.
+
+A :class:`RosProxies` instance belongs to ONE running behavior (FlexBE keeps these in class-level dicts, so two
+behaviors in one process share and trample them; here each behavior owns its hub and shuts it down when it
+ends). Within a behavior, states that ask for the same topic or action share one connection. Every wait is
+bounded and fails with a typed error (:class:`NotReadyError`, :class:`TimedOutError`, :class:`ConfigError`).
+Nothing received is eval'd or unpickled: messages are genpy objects handed over as they are.
+"""
+
+from __future__ import annotations
+
+import collections
+import threading
+import time
+from typing import Any, Deque, Dict, Generic, Optional, Tuple, TypeVar
+
+import actionlib
+import rospy
+from actionlib_msgs.msg import GoalStatus
+
+from flex_nav.exceptions import ConfigError, NotReadyError, TimedOutError
+
+MsgT = TypeVar("MsgT")
+
+DEFAULT_BUFFER_SIZE = 10  # messages kept by a buffered subscription
+
+
+class Subscription(Generic[MsgT]):
+    """The newest message of a topic (and optionally a bounded buffer of recent ones), filled by a callback."""
+
+    def __init__(self, topic: str, msg_type: type, buffer_size: int = 0) -> None:
+        self.topic = topic
+        self.msg_type = msg_type
+        self._lock = threading.Lock()
+        self._last: Optional[MsgT] = None
+        self._last_wall_s = 0.0  # [s] time.monotonic() when the newest message arrived
+        self._buffer: Deque[MsgT] = collections.deque(maxlen=max(1, buffer_size))
+        self._buffered = buffer_size > 0
+        self._subscriber = rospy.Subscriber(topic, msg_type, self._callback, queue_size=max(1, buffer_size))
+
+    def _callback(self, msg: MsgT) -> None:
+        with self._lock:
+            self._last = msg
+            self._last_wall_s = time.monotonic()
+            if self._buffered:
+                self._buffer.append(msg)
+
+    def enable_buffer(self, size: int = DEFAULT_BUFFER_SIZE) -> None:
+        with self._lock:
+            if not self._buffered:
+                self._buffer = collections.deque(maxlen=max(1, size))
+                self._buffered = True
+
+    def has_msg(self) -> bool:
+        with self._lock:
+            return self._last is not None
+
+    def last(self) -> Optional[MsgT]:
+        """The newest message, or None if none arrived (or it was removed)."""
+        with self._lock:
+            return self._last
+
+    def age_s(self) -> float:
+        """[s] wall time since the newest message arrived (inf if none)."""
+        with self._lock:
+            return time.monotonic() - self._last_wall_s if self._last is not None else float("inf")
+
+    def remove_last(self) -> None:
+        """Forget the newest message, so that :meth:`has_msg` waits for a new one."""
+        with self._lock:
+            self._last = None
+
+    def has_buffered(self) -> bool:
+        with self._lock:
+            return bool(self._buffer)
+
+    def pop_buffered(self) -> Optional[MsgT]:
+        """The oldest buffered message not yet taken, or None."""
+        with self._lock:
+            return self._buffer.popleft() if self._buffer else None
+
+    def wait_for_message(self, timeout_s: float) -> MsgT:
+        """The newest message, waiting at most ``timeout_s`` [s] for one; TimedOutError otherwise."""
+        deadline = time.monotonic() + timeout_s
+        while True:
+            msg = self.last()
+            if msg is not None:
+                return msg
+            if time.monotonic() >= deadline:
+                raise TimedOutError(f"no message on {self.topic} within {timeout_s:.1f} s")
+            time.sleep(0.01)
+
+    def unregister(self) -> None:
+        self._subscriber.unregister()
+
+
+class ActionClientProxy:
+    """A non-blocking action client: send, poll state/result/feedback, cancel. One goal at a time."""
+
+    def __init__(self, name: str, action_type: type) -> None:
+        self.name = name
+        self.action_type = action_type
+        self._client = actionlib.SimpleActionClient(name, action_type)
+        self._lock = threading.Lock()
+        self._result: Any = None
+        self._feedback: Any = None
+        self._state: int = GoalStatus.LOST
+        self._done = False
+        self._active = False
+
+    def is_available(self, timeout_s: float = 0.0) -> bool:
+        """True when the server is connected (waits at most ``timeout_s`` [s])."""
+        return bool(self._client.wait_for_server(rospy.Duration(max(timeout_s, 1e-3))))
+
+    def wait_for_server(self, timeout_s: float) -> None:
+        if not self.is_available(timeout_s):
+            raise NotReadyError(
+                f"action server {rospy.resolve_name(self.name)} is not available after {timeout_s:.1f} s"
+            )
+
+    def send_goal(self, goal: Any, server_timeout_s: float = 5.0) -> None:
+        """Send ``goal`` (replacing any active one); NotReadyError if the server is not there within the bound."""
+        self.wait_for_server(server_timeout_s)
+        with self._lock:
+            self._result, self._feedback, self._done, self._active = None, None, False, True
+            self._state = GoalStatus.PENDING
+        self._client.send_goal(goal, done_cb=self._on_done, active_cb=self._on_active, feedback_cb=self._on_feedback)
+
+    def _on_done(self, state: int, result: Any) -> None:
+        with self._lock:
+            self._state, self._result, self._done, self._active = state, result, True, False
+
+    def _on_active(self) -> None:
+        with self._lock:
+            self._state = GoalStatus.ACTIVE
+
+    def _on_feedback(self, feedback: Any) -> None:
+        with self._lock:
+            self._feedback = feedback
+
+    def has_result(self) -> bool:
+        with self._lock:
+            return self._done
+
+    def result(self) -> Any:
+        """The result of the last goal (None until it is done, or if the server sent none)."""
+        with self._lock:
+            return self._result
+
+    def state(self) -> int:
+        """actionlib_msgs/GoalStatus value of the last goal."""
+        with self._lock:
+            return self._state
+
+    def feedback(self) -> Any:
+        with self._lock:
+            return self._feedback
+
+    def is_active(self) -> bool:
+        with self._lock:
+            return self._active
+
+    def cancel(self) -> None:
+        """Cancel the active goal (no-op when none is active)."""
+        with self._lock:
+            active = self._active
+        if active:
+            self._client.cancel_goal()
+
+
+class ServiceCallerProxy:
+    """A service caller with a bounded wait for the service and a typed failure."""
+
+    def __init__(self, name: str, srv_type: type) -> None:
+        self.name = name
+        self.srv_type = srv_type
+        self._proxy = rospy.ServiceProxy(name, srv_type)
+
+    def is_available(self, timeout_s: float = 0.0) -> bool:
+        try:
+            rospy.wait_for_service(self.name, timeout=max(timeout_s, 1e-3))
+        except rospy.ROSException:
+            return False
+        return True
+
+    def call(self, request: Any, timeout_s: float = 5.0) -> Any:
+        if not self.is_available(timeout_s):
+            raise NotReadyError(f"service {rospy.resolve_name(self.name)} is not available after {timeout_s:.1f} s")
+        try:
+            return self._proxy.call(request)
+        except rospy.ServiceException as err:
+            raise NotReadyError(f"service {rospy.resolve_name(self.name)} failed: {err}") from err
+
+
+class RosProxies:
+    """The connections of one behavior, shared among its states by name; :meth:`shutdown` releases them all."""
+
+    def __init__(self) -> None:
+        self._lock = threading.Lock()
+        self._publishers: Dict[str, Tuple[type, rospy.Publisher]] = {}
+        self._subscriptions: Dict[str, Subscription[Any]] = {}
+        self._action_clients: Dict[str, ActionClientProxy] = {}
+        self._services: Dict[str, ServiceCallerProxy] = {}
+
+    def publisher(self, topic: str, msg_type: type, latch: bool = False, queue_size: int = 10) -> rospy.Publisher:
+        with self._lock:
+            known = self._publishers.get(topic)
+            if known is not None:
+                _check_type("topic", topic, known[0], msg_type)
+                return known[1]
+            pub = rospy.Publisher(topic, msg_type, latch=latch, queue_size=queue_size)
+            self._publishers[topic] = (msg_type, pub)
+            return pub
+
+    def subscription(self, topic: str, msg_type: type, buffer_size: int = 0) -> Subscription[Any]:
+        with self._lock:
+            known = self._subscriptions.get(topic)
+            if known is not None:
+                _check_type("topic", topic, known.msg_type, msg_type)
+                if buffer_size > 0:
+                    known.enable_buffer(buffer_size)
+                return known
+            sub: Subscription[Any] = Subscription(topic, msg_type, buffer_size)
+            self._subscriptions[topic] = sub
+            return sub
+
+    def action_client(self, name: str, action_type: type) -> ActionClientProxy:
+        with self._lock:
+            known = self._action_clients.get(name)
+            if known is not None:
+                _check_type("action", name, known.action_type, action_type)
+                return known
+            client = ActionClientProxy(name, action_type)
+            self._action_clients[name] = client
+            return client
+
+    def service_caller(self, name: str, srv_type: type) -> ServiceCallerProxy:
+        with self._lock:
+            known = self._services.get(name)
+            if known is not None:
+                _check_type("service", name, known.srv_type, srv_type)
+                return known
+            caller = ServiceCallerProxy(name, srv_type)
+            self._services[name] = caller
+            return caller
+
+    def shutdown(self) -> None:
+        """Cancel active goals and unregister every connection of this behavior."""
+        with self._lock:
+            for client in self._action_clients.values():
+                client.cancel()
+            for sub in self._subscriptions.values():
+                sub.unregister()
+            for _msg_type, pub in self._publishers.values():
+                pub.unregister()
+            self._publishers.clear()
+            self._subscriptions.clear()
+            self._action_clients.clear()
+            self._services.clear()
+
+
+def _check_type(kind: str, name: str, known: type, wanted: type) -> None:
+    if known is not wanted:
+        raise ConfigError(
+            f"{kind} {name} is already used with type {known.__name__} in this behavior; cannot use it as "
+            f"{wanted.__name__}"
+        )

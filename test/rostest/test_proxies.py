@@ -1,0 +1,108 @@
+#!/usr/bin/env python3
+"""rostest node: the per-behavior ROS proxies against a real master and scripted action servers."""
+
+import sys
+import time
+import unittest
+
+import rostest
+from actionlib_msgs.msg import GoalStatus
+from std_msgs.msg import Int32, String
+from std_srvs.srv import Trigger, TriggerRequest
+
+from flex_nav.exceptions import ConfigError, NotReadyError, TimedOutError
+from flex_nav.msg import FollowPathAction, FollowPathGoal, GetPathAction, GetPathGoal, GetPathResult
+from flex_nav.ros.node import init_node
+from flex_nav.ros.proxies import RosProxies
+
+WAIT_S = 10.0  # [s]
+
+
+def wait_for(predicate, timeout_s=WAIT_S):
+    deadline = time.monotonic() + timeout_s
+    while not predicate():
+        if time.monotonic() > deadline:
+            return False
+        time.sleep(0.01)
+    return True
+
+
+class TestProxies(unittest.TestCase):
+    def test_publish_and_cached_subscription_with_buffer(self):
+        proxies = RosProxies()
+        sub = proxies.subscription("chatter", Int32, buffer_size=5)
+        pub = proxies.publisher("chatter", Int32)
+        self.assertTrue(wait_for(lambda: pub.get_num_connections() > 0))
+        for value in range(3):
+            pub.publish(Int32(value))
+        self.assertTrue(wait_for(lambda: sub.has_msg() and sub.last().data == 2))
+        self.assertEqual([sub.pop_buffered().data for _ in range(3)], [0, 1, 2])
+        self.assertFalse(sub.has_buffered())
+        sub.remove_last()
+        self.assertFalse(sub.has_msg())
+        self.assertEqual(sub.age_s(), float("inf"))
+        proxies.shutdown()
+
+    def test_same_topic_is_shared_and_type_clash_is_refused(self):
+        proxies = RosProxies()
+        first = proxies.subscription("shared", String)
+        self.assertIs(proxies.subscription("shared", String), first)
+        with self.assertRaisesRegex(ConfigError, "already used with type String"):
+            proxies.subscription("shared", Int32)
+        proxies.shutdown()
+
+    def test_wait_for_message_is_bounded(self):
+        proxies = RosProxies()
+        sub = proxies.subscription("silence", String)
+        started = time.monotonic()
+        with self.assertRaises(TimedOutError):
+            sub.wait_for_message(0.3)
+        self.assertLess(time.monotonic() - started, 5.0)
+        proxies.shutdown()
+
+    def test_action_client_result_and_reason(self):
+        proxies = RosProxies()
+        client = proxies.action_client("failing_get_path", GetPathAction)
+        client.send_goal(GetPathGoal(), server_timeout_s=WAIT_S)
+        self.assertTrue(wait_for(client.has_result))
+        self.assertEqual(client.state(), GoalStatus.ABORTED)
+        self.assertEqual(client.result().code, GetPathResult.EMPTY)
+        self.assertEqual(client.result().message, "no path to the goal")
+        proxies.shutdown()
+
+    def test_cancel_and_shutdown_cancels_active_goal(self):
+        proxies = RosProxies()
+        client = proxies.action_client("slow_follow", FollowPathAction)
+        client.send_goal(FollowPathGoal(), server_timeout_s=WAIT_S)
+        self.assertTrue(wait_for(lambda: client.state() == GoalStatus.ACTIVE))
+        self.assertTrue(client.is_active())
+        proxies.shutdown()
+        self.assertTrue(wait_for(client.has_result))
+        self.assertEqual(client.state(), GoalStatus.PREEMPTED)
+
+    def test_two_behaviors_do_not_share_connections(self):
+        first, second = RosProxies(), RosProxies()
+        a = first.action_client("slow_follow", FollowPathAction)
+        b = second.action_client("slow_follow", FollowPathAction)
+        self.assertIsNot(a, b)
+        a.send_goal(FollowPathGoal(), server_timeout_s=WAIT_S)
+        self.assertTrue(wait_for(lambda: a.state() == GoalStatus.ACTIVE))
+        second.shutdown()  # must not cancel the first behavior's goal
+        time.sleep(0.3)
+        self.assertTrue(a.is_active())
+        first.shutdown()
+
+    def test_missing_server_and_service_fail_within_bound(self):
+        proxies = RosProxies()
+        started = time.monotonic()
+        with self.assertRaisesRegex(NotReadyError, "no_such_server is not available after 0.5 s"):
+            proxies.action_client("no_such_server", GetPathAction).send_goal(GetPathGoal(), server_timeout_s=0.5)
+        with self.assertRaisesRegex(NotReadyError, "no_such_service is not available"):
+            proxies.service_caller("no_such_service", Trigger).call(TriggerRequest(), timeout_s=0.5)
+        self.assertLess(time.monotonic() - started, 10.0)
+        proxies.shutdown()
+
+
+if __name__ == "__main__":
+    init_node("test_proxies", master_timeout_s=WAIT_S)
+    rostest.rosrun("flex_nav", "test_proxies", TestProxies, sys.argv)
