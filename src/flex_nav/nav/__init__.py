@@ -8,4 +8,6 @@
 - ``raytrace``        compiled Bresenham ray tracing
 - ``inflation``       costmap_2d inflation on an exact distance transform
 - ``costmap``         the layered costmap (global or rolling window), bounded updates, reset
+- ``astar``           compiled A* kernel (4-ary heap + equal-f stack), line-of-sight shortcuts
+- ``planner``         :class:`GridPlanner`: optimal cost-aware planning with typed results
 """
