@@ -10,4 +10,6 @@
 - ``costmap``         the layered costmap (global or rolling window), bounded updates, reset
 - ``astar``           compiled A* kernel (4-ary heap + equal-f stack), line-of-sight shortcuts
 - ``planner``         :class:`GridPlanner`: optimal cost-aware planning with typed results
+- ``path``            path length, closest point, lookahead point, pruning (distances in metres)
+- ``pure_pursuit``    :class:`RegulatedPurePursuit`: regulated pure pursuit with a forward collision check
 """

@@ -1,0 +1,89 @@
+"""Path utilities: validation, length, closest point, arc-length points, lookahead circle, pruning."""
+
+import math
+
+import numpy as np
+import pytest
+
+from flex_nav.exceptions import ConfigError
+from flex_nav.nav.path import (
+    as_path,
+    closest_point,
+    cumulative_lengths,
+    lookahead_point,
+    path_length,
+    point_at_arc,
+    prune_passed,
+)
+
+L_PATH = np.array([[0.0, 0.0], [3.0, 0.0], [3.0, 4.0]])
+
+
+@pytest.mark.parametrize(
+    ("poses", "needle"),
+    [
+        ([], "shape|empty"),
+        (np.zeros((0, 2)), "empty"),
+        ([[1.0, 2.0, 3.0, 4.0]], "shape"),
+        ([[0.0, 0.0], [float("nan"), 1.0]], "non-finite value at pose 1"),
+        ([["a", "b"]], "numbers"),
+    ],
+)
+def test_as_path_rejects_bad_input(poses, needle):
+    with pytest.raises(ConfigError, match=needle):
+        as_path(poses)
+
+
+def test_lengths():
+    assert path_length(L_PATH) == 7.0
+    assert cumulative_lengths(L_PATH).tolist() == [0.0, 3.0, 7.0]
+    assert path_length(np.array([[1.0, 1.0]])) == 0.0
+
+
+def test_closest_point_projects_on_segments():
+    p = closest_point(L_PATH, 1.2, -0.5)
+    assert (p.index, p.x, p.y, p.s) == (0, 1.2, 0.0, 1.2) and p.distance == pytest.approx(0.5)
+    q = closest_point(L_PATH, 4.0, 2.0)
+    assert q.index == 1 and (q.x, q.y) == (3.0, 2.0) and q.s == pytest.approx(5.0)
+    # the search starts at start_index: earlier segments are ignored
+    r = closest_point(L_PATH, 1.0, 0.1, start_index=1)
+    assert r.index == 1 and (r.x, r.y) == (3.0, 0.1)
+    # a bounded window does not see far segments
+    long = np.column_stack([np.linspace(0, 10, 101), np.zeros(101)])
+    w = closest_point(long, 9.0, 0.0, max_arc=1.0)
+    assert w.x == pytest.approx(1.0)
+    single = closest_point(np.array([[1.0, 1.0]]), 1.0, 2.0)
+    assert single.distance == 1.0
+
+
+def test_point_at_arc():
+    assert point_at_arc(L_PATH, -1.0).s == 0.0
+    mid = point_at_arc(L_PATH, 5.0)
+    assert (mid.x, mid.y, mid.index) == (3.0, 2.0, 1)
+    end = point_at_arc(L_PATH, 99.0)
+    assert (end.x, end.y, end.index) == (3.0, 4.0, 2)
+
+
+def test_lookahead_on_circle():
+    start = closest_point(L_PATH, 1.0, 0.0)
+    carrot = lookahead_point(L_PATH, 1.0, 0.0, 1.5, start=start)
+    assert (carrot.x, carrot.y) == pytest.approx((2.5, 0.0))
+    # around the corner: distance from the robot is exactly the lookahead
+    carrot = lookahead_point(L_PATH, 2.0, 0.0, 2.0, start=closest_point(L_PATH, 2.0, 0.0))
+    assert math.hypot(carrot.x - 2.0, carrot.y) == pytest.approx(2.0)
+    assert carrot.x == pytest.approx(3.0) and carrot.index == 1
+    assert carrot.s == pytest.approx(3.0 + carrot.y)
+    # everything left is inside the circle: the end
+    end = lookahead_point(L_PATH, 3.0, 3.0, 5.0, start=closest_point(L_PATH, 3.0, 3.0))
+    assert (end.x, end.y) == (3.0, 4.0)
+    # robot off the path: carrot still on the path at the lookahead distance
+    off = lookahead_point(L_PATH, 1.0, 0.5, 1.0, start=closest_point(L_PATH, 1.0, 0.5))
+    assert off.y == 0.0 and math.hypot(off.x - 1.0, 0.5) == pytest.approx(1.0)
+
+
+def test_prune_passed():
+    rest, index = prune_passed(L_PATH, 3.2, 1.0)
+    assert index == 1
+    assert rest.tolist() == [[3.0, 1.0], [3.0, 4.0]]
+    last, index = prune_passed(L_PATH, 3.0, 5.0)
+    assert last.tolist() == [[3.0, 4.0]] and index == 1

@@ -1,0 +1,209 @@
+"""Regulated pure pursuit: regulations, rotate-to-heading, goal handling, collision check, bad input, closed loop."""
+
+import math
+
+import numpy as np
+import pytest
+
+from flex_nav.exceptions import ConfigError
+from flex_nav.nav.costmap_grid import INSCRIBED, LETHAL, NO_INFORMATION, CostmapGeometry
+from flex_nav.nav.pure_pursuit import PurePursuitParams, PursuitStatus, RegulatedPurePursuit
+
+DT = 0.05  # [s]
+
+
+def straight(length=5.0, n=101, yaw=0.0):
+    s = np.linspace(0.0, length, n)
+    return np.column_stack([s, np.zeros(n), np.full(n, yaw)])
+
+
+def controller(path=None, **kwargs):
+    ctl = RegulatedPurePursuit(PurePursuitParams(**kwargs))
+    ctl.set_path(straight() if path is None else path)
+    return ctl
+
+
+def free_costmap(width=80, height=80, res=0.05, ox=-2.0, oy=-2.0):
+    return np.zeros((height, width), dtype=np.uint8), CostmapGeometry(width, height, res, ox, oy)
+
+
+def test_straight_path_accelerates_within_limits():
+    ctl = controller()
+    cmd = ctl.step((0.0, 0.0, 0.0), (0.0, 0.0), DT)
+    assert cmd.status is PursuitStatus.FOLLOWING and cmd.status.moving
+    assert cmd.v == pytest.approx(2.5 * DT) and cmd.w == pytest.approx(0.0)
+    assert cmd.carrot == pytest.approx((0.6, 0.0)) and cmd.lookahead == 0.6
+    for _ in range(20):
+        cmd = ctl.step((0.0, 0.0, 0.0), (cmd.v, cmd.w), DT)
+    assert cmd.v == pytest.approx(0.5)  # desired speed, never above
+
+
+def test_path_behind_rotates_in_place_towards_it():
+    ctl = controller()
+    cmd = ctl.step((1.0, 0.0, math.pi * 0.75), (0.0, 0.0), DT)  # facing back-left, path ahead along +x
+    assert cmd.status is PursuitStatus.ROTATING_TO_PATH and cmd.v == 0.0
+    assert cmd.w == pytest.approx(-3.2 * DT)  # clockwise, limited by max_angular_accel
+    cmd = ctl.step((1.0, 0.0, -math.pi * 0.75), (0.0, 0.5), DT)
+    assert cmd.w == pytest.approx(0.5 + 3.2 * DT)
+    no_rotate = controller(use_rotate_to_heading=False).step((1.0, 0.0, math.pi * 0.75), (0.3, 0.0), DT)
+    assert no_rotate.status is PursuitStatus.FOLLOWING
+
+
+def test_goal_rotation_then_reached():
+    path = straight(yaw=1.0)
+    ctl = controller(path, yaw_goal_tolerance=0.01)
+    cmd = ctl.step((5.0, 0.05, 0.0), (0.0, 0.0), DT)
+    assert cmd.status is PursuitStatus.ROTATING_TO_GOAL and cmd.v == 0.0 and cmd.w > 0.0
+    cmd = ctl.step((5.0, 0.05, 0.97), (0.0, 1.0), DT)
+    assert cmd.status is PursuitStatus.ROTATING_TO_GOAL and cmd.w == pytest.approx(0.03 / DT)
+    cmd = ctl.step((5.0, 0.05, 0.995), (0.0, 0.0), DT)
+    assert cmd.status is PursuitStatus.GOAL_REACHED and (cmd.v, cmd.w) == (0.0, 0.0)
+    # without a final heading: reached as soon as the position is
+    plain = controller(np.array([[0.0, 0.0], [2.0, 0.0]])).step((1.9, 0.1, 2.0), (0.0, 0.0), DT)
+    assert plain.status is PursuitStatus.GOAL_REACHED
+
+
+def test_goal_not_reached_when_near_end_point_but_far_along_path():
+    # a loop whose end is next to its start: being at the start is not being at the goal
+    path = np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0], [0.0, 0.1]])
+    cmd = controller(path).step((0.0, 0.0, 0.0), (0.0, 0.0), DT)
+    assert cmd.status is PursuitStatus.FOLLOWING
+
+
+def test_curvature_regulation_slows_on_tight_turns():
+    arc = np.array([[0.3 * math.sin(a), 0.3 * (1 - math.cos(a)), a] for a in np.linspace(0, math.pi, 60)])
+    arc = np.vstack([arc, [[-2.0, 0.6, math.pi]]])
+    tight = controller(arc, lookahead_dist=0.4).step((0.0, 0.0, 0.35), (0.5, 0.0), 1.0)
+    loose = controller(lookahead_dist=0.4).step((0.0, 0.0, 0.0), (0.5, 0.0), 1.0)
+    assert tight.status is PursuitStatus.FOLLOWING and loose.v == pytest.approx(0.5)
+    assert tight.v < 0.5 and tight.v >= 0.25  # floored at regulated_linear_scaling_min_speed
+    off = controller(arc, lookahead_dist=0.4, use_regulated_linear_velocity_scaling=False)
+    assert off.step((0.0, 0.0, 0.35), (0.5, 0.0), 1.0).v > tight.v
+
+
+def test_cost_regulation_slows_near_obstacles():
+    costs, geo = free_costmap()
+    cell = geo.world_to_cell(1.0, 0.0)
+    costs[cell] = 200  # about 0.28 m from an obstacle with k=3, r=0.2
+    near = controller(regulated_linear_scaling_min_speed=0.0).step((1.0, 0.0, 0.0), (0.5, 0.0), 1.0, costs, geo)
+    expected_d = -math.log(200 / 252) / 3.0 + 0.2
+    assert near.v == pytest.approx(0.5 * expected_d / 0.6)
+    far = controller().step((1.0, 0.0, 0.0), (0.5, 0.0), 1.0, *free_costmap())
+    assert far.v == pytest.approx(0.5)
+
+
+def test_approach_scaling_near_goal():
+    ctl = controller()
+    cmd = ctl.step((4.7, 0.0, 0.0), (0.5, 0.0), 1.0)
+    assert cmd.v == pytest.approx(0.5 * 0.3 / 0.6)
+    cmd = controller().step((4.74, 0.0, 0.0), (0.5, 0.0), 1.0)
+    assert cmd.v == pytest.approx(max(0.5 * 0.26 / 0.6, 0.05))
+
+
+def test_velocity_scaled_lookahead_is_clamped():
+    ctl = controller(use_velocity_scaled_lookahead_dist=True)
+    assert ctl.step((0.0, 0.0, 0.0), (0.0, 0.0), DT).lookahead == 0.3
+    assert ctl.step((0.0, 0.0, 0.0), (0.4, 0.0), DT).lookahead == pytest.approx(0.6)
+    assert ctl.step((0.0, 0.0, 0.0), (5.0, 0.0), DT).lookahead == 0.9
+
+
+def test_collision_ahead_stops_the_robot():
+    costs, geo = free_costmap()
+    costs[geo.world_to_cell(0.45, 0.0)] = LETHAL
+    cmd = controller().step((0.0, 0.0, 0.0), (0.5, 0.0), 1.0, costs, geo)
+    assert cmd.status is PursuitStatus.COLLISION_AHEAD and (cmd.v, cmd.w) == (0.0, 0.0)
+    assert "collision" in cmd.reason and not cmd.status.moving
+    # inscribed counts as collision for a circular robot; beyond the carrot it is not checked
+    costs[...] = 0
+    costs[geo.world_to_cell(0.3, 0.0)] = INSCRIBED
+    assert controller().step((0.0, 0.0, 0.0), (0.5, 0.0), 1.0, costs, geo).status is PursuitStatus.COLLISION_AHEAD
+    costs[...] = 0
+    costs[geo.world_to_cell(1.5, 0.0)] = LETHAL
+    assert controller().step((0.0, 0.0, 0.0), (0.5, 0.0), 1.0, costs, geo).status is PursuitStatus.FOLLOWING
+    off = controller(use_collision_detection=False)
+    costs[geo.world_to_cell(0.3, 0.0)] = LETHAL
+    assert off.step((0.0, 0.0, 0.0), (0.5, 0.0), 1.0, costs, geo).status is PursuitStatus.FOLLOWING
+
+
+def test_unknown_ahead_is_a_collision_unless_allowed():
+    costs, geo = free_costmap()
+    costs[:, geo.world_to_cell(0.3, 0.0).col :] = NO_INFORMATION
+    assert controller().step((0.0, 0.0, 0.0), (0.5, 0.0), 1.0, costs, geo).status is PursuitStatus.COLLISION_AHEAD
+    allowed = controller(allow_unknown=True).step((0.0, 0.0, 0.0), (0.5, 0.0), 1.0, costs, geo)
+    assert allowed.status is PursuitStatus.FOLLOWING
+
+
+@pytest.mark.parametrize(
+    ("pose", "velocity", "dt", "needle"),
+    [
+        ((float("nan"), 0.0, 0.0), (0.0, 0.0), DT, "pose"),
+        ((0.0, 0.0, float("inf")), (0.0, 0.0), DT, "pose"),
+        ((0.0, 0.0, 0.0), (float("nan"), 0.0), DT, "velocity"),
+        ((0.0, 0.0, 0.0), (0.0, 0.0), 0.0, "time step"),
+        ((0.0, 0.0, 0.0), (0.0, 0.0), float("nan"), "time step"),
+    ],
+)
+def test_invalid_input_gives_zero_command(pose, velocity, dt, needle):
+    cmd = controller().step(pose, velocity, dt)
+    assert cmd.status is PursuitStatus.INVALID_INPUT and (cmd.v, cmd.w) == (0.0, 0.0) and needle in cmd.reason
+
+
+def test_no_path_and_half_costmap_are_invalid():
+    ctl = RegulatedPurePursuit()
+    assert ctl.step((0.0, 0.0, 0.0), (0.0, 0.0), DT).status is PursuitStatus.INVALID_INPUT
+    costs, _ = free_costmap()
+    assert controller().step((0, 0, 0), (0, 0), DT, costs, None).status is PursuitStatus.INVALID_INPUT
+    with pytest.raises(ConfigError, match="empty"):
+        ctl.set_path(np.zeros((0, 3)))
+    with pytest.raises(ConfigError, match="non-finite"):
+        ctl.set_path([[0.0, 0.0], [float("nan"), 0.0]])
+    ctl.set_path(straight())
+    ctl.clear()
+    assert ctl.path is None and ctl.step((0.0, 0.0, 0.0), (0.0, 0.0), DT).status is PursuitStatus.INVALID_INPUT
+
+
+def test_params_validation_and_from_mapping():
+    params = PurePursuitParams.from_mapping({"desired_linear_vel": 1, "use_rotate_to_heading": False})
+    assert params.desired_linear_vel == 1.0 and params.use_rotate_to_heading is False
+    with pytest.raises(ConfigError, match=r"'desired_vel' is not valid \(valid: desired_linear_vel"):
+        PurePursuitParams.from_mapping({"desired_vel": 1.0})
+    for bad in (
+        {"desired_linear_vel": 0.0},
+        {"max_linear_accel": -1.0},
+        {"lookahead_dist": float("nan")},
+        {"use_rotate_to_heading": 1},
+        {"min_lookahead_dist": 1.0, "max_lookahead_dist": 0.5},
+        {"cost_scaling_gain": 1.5},
+        {"goal_dist_tol": "0.2"},
+    ):
+        with pytest.raises(ConfigError):
+            PurePursuitParams(**bad)
+
+
+def test_closed_loop_follows_an_l_path_within_limits():
+    path = np.array([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [2.0, 2.0, math.pi / 2]])
+    dense = np.vstack([np.linspace(path[i], path[i + 1], 40, endpoint=False) for i in range(2)] + [path[-1:]])
+    dense[40:80, 2] = math.pi / 2
+    params = PurePursuitParams()
+    ctl = RegulatedPurePursuit(params)
+    ctl.set_path(dense)
+    x, y, yaw, v, w = 0.0, -0.1, 0.2, 0.0, 0.0
+    worst_track = 0.0
+    for _ in range(2000):
+        cmd = ctl.step((x, y, yaw), (v, w), DT, *free_costmap(200, 200, 0.05, -3.0, -3.0))
+        assert abs(cmd.v) <= params.desired_linear_vel + 1e-12 and abs(cmd.w) <= params.max_angular_vel + 1e-12
+        assert cmd.v - v <= params.max_linear_accel * DT + 1e-9
+        assert v - cmd.v <= params.max_linear_decel * DT + 1e-9 or cmd.status is not PursuitStatus.FOLLOWING
+        if cmd.status is PursuitStatus.GOAL_REACHED:
+            break
+        assert cmd.status.moving, cmd.reason
+        v, w = cmd.v, cmd.w
+        yaw += w * DT
+        x += v * math.cos(yaw) * DT
+        y += v * math.sin(yaw) * DT
+        worst_track = max(worst_track, cmd.cross_track)
+    else:
+        pytest.fail("goal not reached")
+    assert math.hypot(x - 2.0, y - 2.0) <= params.goal_dist_tol
+    assert abs(math.atan2(math.sin(yaw - math.pi / 2), math.cos(yaw - math.pi / 2))) <= params.yaw_goal_tolerance
+    assert worst_track < 0.4
