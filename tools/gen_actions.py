@@ -2,22 +2,25 @@
 """Generate flex_nav's Python action/message classes without catkin.
 
 Reads ``action/*.action``, expands each into its eight messages with actionlib_msgs' genaction
-(into ``build/msg``), and generates Python modules into ``src/flex_nav/msg`` with genpy, one file
-at a time (``genpy.generator.reset_var()`` before each, so the output matches catkin's byte for
-byte). Skips all work when the inputs and genpy are unchanged since the last run (a stamp file
-holds their hash). Exit status 0 on success, 2 with a message on failure.
+(into ``build/msg``), copies the plain messages ``msg/*.msg`` beside them, and generates Python
+modules into ``src/flex_nav/msg`` with genpy, one file at a time (``genpy.generator.reset_var()``
+before each, so the output matches catkin's byte for byte). Skips all work when the inputs and
+genpy are unchanged since the last run (a stamp file holds their hash). Exit status 0 on success,
+2 with a message on failure.
 """
 
 from __future__ import annotations
 
 import hashlib
 import os
+import shutil
 import subprocess
 import sys
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parent.parent
 ACTION_DIR = REPO / "action"
+MSG_DIR = REPO / "msg"  # plain messages (e.g. the simulator's bumper and event messages)
 BUILD_DIR = REPO / "build" / "msg"
 OUT_DIR = REPO / "src" / "flex_nav" / "msg"
 STAMP = OUT_DIR / ".inputs.sha256"
@@ -42,7 +45,7 @@ def inputs_hash(actions: list[Path]) -> str:
 
     digest = hashlib.sha256()
     digest.update(str(getattr(genpy, "__file__", "")).encode())
-    for path in [*actions, Path(__file__)]:
+    for path in [*actions, *sorted(MSG_DIR.glob("*.msg")), Path(__file__)]:
         digest.update(path.name.encode())
         digest.update(path.read_bytes())
     return digest.hexdigest()
@@ -76,6 +79,8 @@ def main() -> int:
         if proc.returncode != 0:
             return fail(f"genaction failed on {action.name}: {proc.stderr.strip() or proc.stdout.strip()}")
 
+    for msg in sorted(MSG_DIR.glob("*.msg")):
+        shutil.copyfile(msg, BUILD_DIR / msg.name)
     OUT_DIR.mkdir(parents=True, exist_ok=True)
     for old in OUT_DIR.glob("_[A-Z]*.py"):
         old.unlink()
