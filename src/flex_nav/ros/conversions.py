@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import io
 import math
+import struct
+from typing import Any
 
 import numpy as np
 import rospy
@@ -31,11 +34,32 @@ def grid_map_of(msg: OccupancyGrid) -> GridMap:
     )
 
 
+class NumpyOccupancyGrid(OccupancyGrid):
+    """An OccupancyGrid whose ``data`` may be an int8 numpy array, serialized in one copy.
+
+    genpy packs ``int8[]`` element by element (0.3 s for a 2000² grid as an array, 80 ms as a list); this
+    writes the same bytes with ``tobytes()``. It is an OccupancyGrid (same type and md5sum) for publishers.
+    """
+
+    __slots__ = ()
+
+    def serialize(self, buff: Any) -> None:
+        data = self.data
+        if not isinstance(data, np.ndarray):
+            super().serialize(buff)
+            return
+        head = io.BytesIO()
+        OccupancyGrid(header=self.header, info=self.info, data=[]).serialize(head)
+        buff.write(head.getvalue()[:-4])  # everything but the zero length of the empty data
+        buff.write(struct.pack("<I", data.size))
+        buff.write(np.ascontiguousarray(data, dtype=np.int8).tobytes())
+
+
 def occupancy_grid_msg(
     occupancy: np.ndarray, resolution: float, origin_x: float, origin_y: float, *, frame_id: str, stamp: rospy.Time
 ) -> OccupancyGrid:
     """An OccupancyGrid of int8 values (H, W), row 0 at the origin, axis-aligned with ``frame_id``."""
-    msg = OccupancyGrid()
+    msg = NumpyOccupancyGrid()
     msg.header.frame_id = frame_id
     msg.header.stamp = stamp
     msg.info.map_load_time = stamp
@@ -44,7 +68,15 @@ def occupancy_grid_msg(
     msg.info.origin.position.x = origin_x
     msg.info.origin.position.y = origin_y
     msg.info.origin.orientation.w = 1.0
-    msg.data = np.ascontiguousarray(occupancy, dtype=np.int8).tobytes()
+    msg.data = np.ascontiguousarray(occupancy, dtype=np.int8).ravel()
+    return msg
+
+
+def map_msg(grid: GridMap, *, frame_id: str, stamp: rospy.Time) -> OccupancyGrid:
+    """The OccupancyGrid of a GridMap as map_server publishes it (origin yaw in the origin quaternion)."""
+    msg = occupancy_grid_msg(grid.occupancy, grid.resolution, grid.origin[0], grid.origin[1],
+                             frame_id=frame_id, stamp=stamp)
+    msg.info.origin.orientation = pose_of_xy_yaw(0.0, 0.0, grid.origin[2]).orientation
     return msg
 
 

@@ -2,7 +2,8 @@
 
 Parameters (private, under ``~<name>/``; units in brackets):
 
-- ``global_frame`` (str, "map"), ``robot_base_frame`` (str, "base_footprint")
+- ``global_frame`` (str), ``robot_base_frame`` (str): default to the node's ``~global_frame`` ("map") and
+  ``~robot_base_frame`` ("base_footprint"), so one pair of node parameters sets the frames of all its parts
 - ``rolling_window`` (bool, false), ``width``/``height`` [m] (rolling window size, 4.0), ``resolution`` [m/cell]
   (0.05; a static costmap takes the map's)
 - ``static_map`` (bool, true): static layer from ``map_topic`` (str, "map", latched OccupancyGrid)
@@ -54,8 +55,8 @@ class CostmapROS:
         self.name = name
         self.lock = threading.RLock()
         self.tf_buffer = tf_buffer
-        self.global_frame = param_str(ns + "global_frame", "map")
-        self.robot_base_frame = param_str(ns + "robot_base_frame", "base_footprint")
+        self.global_frame = param_str(ns + "global_frame", param_str("~global_frame", "map"))
+        self.robot_base_frame = param_str(ns + "robot_base_frame", param_str("~robot_base_frame", "base_footprint"))
         self.rolling_window = param_bool(ns + "rolling_window", False)
         self.use_static_map = param_bool(ns + "static_map", not self.rolling_window)
         self.map_topic = param_str(ns + "map_topic", "map")

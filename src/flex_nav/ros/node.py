@@ -5,10 +5,11 @@ from __future__ import annotations
 import os
 import sys
 import time
+from typing import Callable
 
 import rospy
 
-from flex_nav.exceptions import NotReadyError
+from flex_nav.exceptions import ConfigError, NotReadyError
 from flex_nav.private_master import master_is_up
 
 MASTER_WAIT_S = 10.0  # [s] default bound on waiting for the master before a node gives up
@@ -38,3 +39,21 @@ def init_node(name: str, master_timeout_s: float = MASTER_WAIT_S, anonymous: boo
         print(f"[{name}] ERROR: {err}", file=sys.stderr)
         sys.exit(2)
     rospy.init_node(name, anonymous=anonymous)
+
+
+def run_node(name: str, factory: Callable[[], object]) -> int:
+    """Start node ``name``, build its object with ``factory()``, spin; exit status 2 on a configuration error.
+
+    A bad parameter (:class:`ConfigError`) is reported once with its reason and the node exits instead of
+    running half-configured.
+    """
+    init_node(name)
+    try:
+        keep = factory()
+    except ConfigError as err:
+        rospy.logfatal(f"{rospy.get_name()}: {err}")
+        print(f"[{rospy.get_name()}] configuration error: {err}", file=sys.stderr)
+        return 2
+    rospy.spin()
+    del keep
+    return 0

@@ -1,0 +1,67 @@
+"""Poses and paths from messages into a node's frame via tf, with a bounded wait and a reason on failure."""
+
+from __future__ import annotations
+
+import numpy as np
+import rospy
+import tf2_ros
+from geometry_msgs.msg import PoseStamped, Quaternion
+from nav_msgs.msg import Path
+
+from flex_nav.exceptions import ConfigError, NotReadyError
+from flex_nav.follow.planar import heading_along, transform_poses
+from flex_nav.nav.pose_checks import pose_problem, yaw_of_quaternion
+
+
+def frame_pose(buffer: tf2_ros.Buffer, target_frame: str, source_frame: str, timeout_s: float) -> tuple:
+    """(x [m], y [m], yaw [rad]) of ``source_frame`` in ``target_frame`` (newest transform)."""
+    if not source_frame:
+        raise ConfigError(f"frame_id is empty (expected '{target_frame}' or a frame tf can transform into it)")
+    if source_frame.lstrip("/") == target_frame.lstrip("/"):
+        return (0.0, 0.0, 0.0)
+    try:
+        tf = buffer.lookup_transform(target_frame.lstrip("/"), source_frame.lstrip("/"), rospy.Time(0),
+                                     rospy.Duration(timeout_s))
+    except (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.ExtrapolationException) as err:
+        raise NotReadyError(f"frame '{source_frame}' cannot be transformed into '{target_frame}' "
+                            f"within {timeout_s:.2f} s: {err}") from err
+    t, q = tf.transform.translation, tf.transform.rotation
+    return (t.x, t.y, yaw_of_quaternion(q.x, q.y, q.z, q.w))
+
+
+def goal_in_frame(buffer: tf2_ros.Buffer, goal: PoseStamped, target_frame: str, timeout_s: float) -> np.ndarray:
+    """The goal as [x, y, yaw] in ``target_frame``; ConfigError for a bad pose, NotReadyError for a bad frame."""
+    p, q = goal.pose.position, goal.pose.orientation
+    problem = pose_problem((p.x, p.y, p.z), (q.x, q.y, q.z, q.w))
+    if problem is not None:
+        raise ConfigError(f"goal {problem}")
+    pose = np.array([[p.x, p.y, yaw_of_quaternion(q.x, q.y, q.z, q.w)]])
+    tx, ty, tyaw = frame_pose(buffer, target_frame, goal.header.frame_id, timeout_s)
+    return transform_poses(pose, tx, ty, tyaw)[0]
+
+
+def path_in_frame(buffer: tf2_ros.Buffer, path: Path, target_frame: str, timeout_s: float) -> np.ndarray:
+    """The path's poses as (N, 3) [x, y, yaw] in ``target_frame``.
+
+    ConfigError for an empty path or a bad pose (NaN/inf, unnormalised quaternion; the index is named),
+    NotReadyError when the path's frame cannot be transformed. Each pose's own header is ignored: the
+    path's header frame is used, as nav_msgs/Path users expect. An all-zero quaternion means "no
+    orientation given" (common in generated paths): that pose faces along the path.
+    """
+    if not path.poses:
+        raise ConfigError("the path is empty (no poses)")
+    poses = np.empty((len(path.poses), 3))
+    unoriented = np.zeros(len(path.poses), dtype=bool)
+    for index, stamped in enumerate(path.poses):
+        p, q = stamped.pose.position, stamped.pose.orientation
+        if (q.x, q.y, q.z, q.w) == (0.0, 0.0, 0.0, 0.0):
+            unoriented[index] = True
+            q = Quaternion(w=1.0)
+        problem = pose_problem((p.x, p.y, p.z), (q.x, q.y, q.z, q.w))
+        if problem is not None:
+            raise ConfigError(f"path pose {index}: {problem}")
+        poses[index] = (p.x, p.y, yaw_of_quaternion(q.x, q.y, q.z, q.w))
+    if unoriented.any():
+        poses[unoriented, 2] = heading_along(poses[:, :2])[unoriented]
+    tx, ty, tyaw = frame_pose(buffer, target_frame, path.header.frame_id, timeout_s)
+    return transform_poses(poses, tx, ty, tyaw)

@@ -1,0 +1,171 @@
+"""An action server whose goals run one at a time on a worker thread, never inside actionlib's callbacks.
+
+actionlib's SimpleActionServer is used in the goal-callback form (``execute_cb`` stalls ~100 ms on
+back-to-back goals). Its callbacks run with the server's locks held, so they only hand the goal over:
+
+- a new goal is accepted at once and given a :class:`GoalTicket`; the worker thread runs ``run(ticket)``;
+- a cancel ends the goal at once as preempted (result code PREEMPT where the action has one, else FAILURE)
+  and calls ``on_cancel(ticket, replaced=False)`` (e.g. publish a zero twist) before returning;
+- a newer goal replaces the running one: the old goal is preempted with the reason "replaced by a newer
+  goal" and ``on_cancel(ticket, replaced=True)``; the worker moves on to the new goal when ``run`` returns;
+- ``ticket.cancelled`` is set in both cases, so ``run`` stops at its next check.
+
+Results go through :meth:`GoalServer.finish`, which ends the goal only while it is still the current one
+(checked under actionlib's locks, taken in actionlib's order), so a worker can never end a goal that has
+replaced its own. Any exception escaping ``run`` aborts the goal with the error as the reason after
+``on_error(ticket, error)`` (e.g. publish a zero twist).
+"""
+
+from __future__ import annotations
+
+import threading
+import traceback
+from typing import Any, Callable, Optional
+
+import actionlib
+import rospy
+
+from flex_nav.action_types import ActionType
+
+RESULT_SUCCEEDED = "succeeded"
+RESULT_ABORTED = "aborted"
+
+
+class GoalTicket:
+    """One accepted goal: the goal message, its sequence number, and whether it was cancelled or replaced."""
+
+    def __init__(self, goal: Any, number: int) -> None:
+        self.goal = goal
+        self.number = number
+        self.cancelled = threading.Event()
+
+    def __repr__(self) -> str:
+        return f"GoalTicket(#{self.number}{', cancelled' if self.cancelled.is_set() else ''})"
+
+
+class GoalServer:
+    """Serves ``spec`` on ``name``; see the module docstring for the contract of the three callables."""
+
+    def __init__(
+        self,
+        name: str,
+        spec: ActionType,
+        run: Callable[[GoalTicket], None],
+        on_cancel: Optional[Callable[[GoalTicket, bool], None]] = None,
+        on_error: Optional[Callable[[GoalTicket, BaseException], None]] = None,
+    ) -> None:
+        self.name = name
+        self.spec = spec
+        self._run = run
+        self._on_cancel = on_cancel
+        self._on_error = on_error
+        self._codes = spec.result_codes
+        self._cond = threading.Condition()
+        self._current: Optional[GoalTicket] = None
+        self._pending: Optional[GoalTicket] = None
+        self._count = 0
+        self._stopping = False
+        self.server = actionlib.SimpleActionServer(name, spec.action, auto_start=False)
+        self.server.register_goal_callback(self._on_goal)
+        self.server.register_preempt_callback(self._on_preempt)
+        self._worker = threading.Thread(target=self._work, name=f"goals:{name}", daemon=True)
+
+    def start(self) -> None:
+        self._worker.start()
+        self.server.start()
+
+    def shutdown(self) -> None:
+        with self._cond:
+            self._stopping = True
+            self._cond.notify_all()
+
+    # ------------------------------------------------------------------ for the worker
+    def result(self, code_name: str, message: str, **fields: Any) -> Any:
+        """A Result message with ``code`` set from its name (e.g. "FAILURE"), ``message`` and other fields."""
+        result = self.spec.result()
+        result.code = self._codes[code_name]
+        result.message = message
+        for key, value in fields.items():
+            setattr(result, key, value)
+        return result
+
+    def finish(self, ticket: GoalTicket, outcome: str, result: Any) -> bool:
+        """End ``ticket``'s goal as ``"succeeded"`` or ``"aborted"``; False if it is no longer the current goal."""
+        with self.server.action_server.lock, self.server.lock:  # actionlib's own order
+            if ticket is not self._current or ticket.cancelled.is_set() or not self.server.is_active():
+                return False
+            if outcome == RESULT_SUCCEEDED:
+                self.server.set_succeeded(result, result.message)
+            elif outcome == RESULT_ABORTED:
+                self.server.set_aborted(result, result.message)
+            else:
+                raise ValueError(f"outcome {outcome!r} is not valid (valid: {RESULT_SUCCEEDED}, {RESULT_ABORTED})")
+            self._current = None
+            return True
+
+    def feedback(self, ticket: GoalTicket, feedback: Any) -> None:
+        """Publish feedback for ``ticket``'s goal if it is still the current one."""
+        with self.server.action_server.lock, self.server.lock:
+            if ticket is self._current and not ticket.cancelled.is_set() and self.server.is_active():
+                self.server.publish_feedback(feedback)
+
+    def is_current(self, ticket: GoalTicket) -> bool:
+        return ticket is self._current and not ticket.cancelled.is_set()
+
+    # ------------------------------------------------------------------ actionlib callbacks (its locks held)
+    def _on_goal(self) -> None:
+        goal = self.server.accept_new_goal()
+        if goal is None:
+            return
+        with self._cond:
+            self._count += 1
+            ticket = GoalTicket(goal, self._count)
+            self._current = ticket
+            if self.server.is_preempt_requested():  # cancelled between arrival and acceptance
+                self._preempt(ticket, replaced=False)
+                return
+            self._pending = ticket
+            self._cond.notify_all()
+
+    def _on_preempt(self) -> None:
+        ticket = self._current
+        if ticket is None or not self.server.is_active():
+            return
+        self._preempt(ticket, replaced=self.server.is_new_goal_available())
+
+    def _preempt(self, ticket: GoalTicket, replaced: bool) -> None:
+        ticket.cancelled.set()
+        reason = "replaced by a newer goal" if replaced else "preempted"
+        if self._on_cancel is not None:
+            try:
+                self._on_cancel(ticket, replaced)
+            except Exception as err:  # the goal must still end
+                rospy.logerr(f"{self.name}: error while stopping goal #{ticket.number}: {err}")
+        code = "PREEMPT" if "PREEMPT" in self._codes else "FAILURE"
+        if self.server.is_active():
+            self.server.set_preempted(self.result(code, reason), reason)
+        if self._current is ticket:
+            self._current = None
+
+    # ------------------------------------------------------------------ worker thread
+    def _work(self) -> None:
+        while True:
+            with self._cond:
+                while self._pending is None and not self._stopping and not rospy.is_shutdown():
+                    self._cond.wait(0.5)
+                if self._stopping or rospy.is_shutdown():
+                    return
+                ticket, self._pending = self._pending, None
+            assert ticket is not None
+            try:
+                self._run(ticket)
+            except Exception as err:
+                rospy.logerr(f"{self.name}: goal #{ticket.number} failed: {err}\n{traceback.format_exc()}")
+                if self._on_error is not None:
+                    try:
+                        self._on_error(ticket, err)
+                    except Exception as inner:
+                        rospy.logerr(f"{self.name}: error handler failed too: {inner}")
+                self.finish(ticket, RESULT_ABORTED, self.result("FAILURE", f"internal error: {err!r}"))
+            if self.finish(ticket, RESULT_ABORTED, self.result("FAILURE", "the server ended without a result")):
+                rospy.logerr(f"{self.name}: goal #{ticket.number} ended without a result (a bug); aborted it")

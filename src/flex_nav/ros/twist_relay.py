@@ -1,0 +1,52 @@
+"""``twist_relay``: geometry_msgs/TwistStamped on ``cmd_vel_stamped`` -> geometry_msgs/Twist on ``cmd_vel``.
+
+Flexible Navigation's controllers publish stamped commands (for logging); ordinary base drivers take a
+Twist. A non-finite command is never forwarded: it is logged and a zero Twist goes out instead (a broken
+controller stops the robot). Parameter ``~timeout`` [s] (0 = off, default 0.5): when no command arrived for
+this long after the last one, one zero Twist is published, so a crashed controller cannot leave the base
+driving on its last command.
+"""
+
+from __future__ import annotations
+
+import threading
+
+import rospy
+from geometry_msgs.msg import Twist, TwistStamped
+
+from flex_nav.follow.safety import CommandTimeout, twist_problem
+from flex_nav.ros.params import param_float
+
+CHECK_PERIOD_MIN_S = 0.01  # [s] fastest timeout check
+
+
+class TwistRelay:
+    def __init__(self) -> None:
+        timeout_s = param_float("~timeout", 0.5, 0.0, 3600.0)
+        self._timeout = CommandTimeout(timeout_s)
+        self._lock = threading.Lock()
+        self.publisher = rospy.Publisher("cmd_vel", Twist, queue_size=1)
+        self.subscriber = rospy.Subscriber("cmd_vel_stamped", TwistStamped, self._on_command, queue_size=1,
+                                           tcp_nodelay=True)
+        self._timer = None
+        if timeout_s > 0.0:
+            period_s = max(CHECK_PERIOD_MIN_S, timeout_s / 5.0)
+            self._timer = rospy.Timer(rospy.Duration(period_s), self._on_check)
+
+    def _on_command(self, msg: TwistStamped) -> None:
+        lin, ang = msg.twist.linear, msg.twist.angular
+        problem = twist_problem((lin.x, lin.y, lin.z), (ang.x, ang.y, ang.z))
+        with self._lock:
+            if problem is not None:
+                rospy.logerr_throttle(1.0, f"twist_relay: {problem}; dropped, publishing a zero Twist instead")
+                self._timeout.stopped()
+                self.publisher.publish(Twist())
+                return
+            self._timeout.command(rospy.get_time())
+            self.publisher.publish(msg.twist)
+
+    def _on_check(self, _event: rospy.timer.TimerEvent) -> None:
+        with self._lock:
+            if self._timeout.due(rospy.get_time()):
+                rospy.logwarn(f"twist_relay: no command for {self._timeout.timeout_s:.2f} s; publishing a zero Twist")
+                self.publisher.publish(Twist())

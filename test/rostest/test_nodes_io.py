@@ -1,0 +1,213 @@
+#!/usr/bin/env python3
+"""rostest node: map_server / map_saver, twist_relay, and a node's costmap (CostmapROS) fed by scans,
+bumper hits and clear_costmap (nodes_io.test)."""
+
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import threading
+import unittest
+
+import actionlib
+import numpy as np
+import rospkg
+import rospy
+import rostest
+import tf2_ros
+from geometry_msgs.msg import PointStamped, TransformStamped, Twist, TwistStamped
+from nav_msgs.msg import MapMetaData, OccupancyGrid
+from nav_msgs.srv import GetMap
+from sensor_msgs.msg import LaserScan
+
+from flex_nav.msg import ClearCostmapAction, ClearCostmapGoal, ClearCostmapResult
+from flex_nav.nav.map_io import load_map
+from flex_nav.ros.conversions import grid_map_of
+from flex_nav.ros.node import init_node
+
+WAIT_S = 20.0  # [s] bound on anything appearing
+MAP_YAML = os.path.join(rospkg.RosPack().get_path("flex_nav"), "test", "data", "maps", "test_rooms.yaml")
+ROBOT = (1.0, 1.0)  # where the test puts io_base in the map
+OBSTACLE = (2.0, 1.0)  # free on the map; the fake scan sees something there
+
+
+class Latest:
+    """Newest message of a topic, with a way to wait for one that satisfies a condition."""
+
+    def __init__(self, topic, msg_type):
+        self.cond = threading.Condition()
+        self.msgs = []
+        self.sub = rospy.Subscriber(topic, msg_type, self.on_msg, queue_size=10)
+
+    def on_msg(self, msg):
+        with self.cond:
+            self.msgs.append(msg)
+            self.cond.notify_all()
+
+    def wait_for(self, condition, timeout_s=WAIT_S, after=0):
+        deadline = rospy.get_time() + timeout_s
+        with self.cond:
+            while True:
+                for msg in self.msgs[after:]:
+                    if condition(msg):
+                        return msg
+                left = deadline - rospy.get_time()
+                if left <= 0:
+                    return None
+                self.cond.wait(min(left, 0.1))
+
+    def count(self):
+        with self.cond:
+            return len(self.msgs)
+
+
+def cell_value(msg, x, y):
+    grid = grid_map_of(msg)
+    return int(grid.occupancy[grid.world_to_cell(x, y)])
+
+
+class TestNodesIO(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.expected = load_map(MAP_YAML)
+        cls.tf = tf2_ros.TransformBroadcaster()
+        cls.stop = threading.Event()
+        cls.tf_thread = threading.Thread(target=cls.publish_tf, daemon=True)
+        cls.tf_thread.start()
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.stop.set()
+
+    @classmethod
+    def publish_tf(cls):
+        while not cls.stop.is_set() and not rospy.is_shutdown():
+            tf = TransformStamped()
+            tf.header.stamp = rospy.Time.now()
+            tf.header.frame_id, tf.child_frame_id = "map", "io_base"
+            tf.transform.translation.x, tf.transform.translation.y = ROBOT
+            tf.transform.rotation.w = 1.0
+            cls.tf.sendTransform(tf)
+            rospy.sleep(0.05)
+
+    # ------------------------------------------------------------------ map_server / map_saver
+    def test_map_is_latched_with_metadata_and_service(self):
+        grid_msg = Latest("map", OccupancyGrid).wait_for(lambda m: True)
+        self.assertIsNotNone(grid_msg, "no map")
+        self.assertEqual(grid_msg.header.frame_id, "map")
+        np.testing.assert_array_equal(grid_map_of(grid_msg).occupancy, self.expected.occupancy)
+        meta = Latest("map_metadata", MapMetaData).wait_for(lambda m: True)
+        self.assertEqual((meta.width, meta.height), (160, 100))
+        self.assertAlmostEqual(meta.resolution, 0.05, places=6)
+        rospy.wait_for_service("static_map", WAIT_S)
+        served = rospy.ServiceProxy("static_map", GetMap)().map
+        self.assertEqual(list(served.data), list(grid_msg.data))
+
+    def run_saver(self, *args):
+        return subprocess.run(["rosrun", "flex_nav", "map_saver", *args], capture_output=True, text=True,
+                              timeout=WAIT_S + 10, check=False)
+
+    def test_map_saver_round_trip(self):
+        with tempfile.TemporaryDirectory() as folder:
+            name = os.path.join(folder, "saved")
+            done = self.run_saver("-f", name, "--timeout", "10")
+            self.assertEqual(done.returncode, 0, done.stderr)
+            saved = load_map(name + ".yaml")
+            np.testing.assert_array_equal(saved.occupancy, self.expected.occupancy)
+            self.assertEqual(saved.origin, self.expected.origin)
+            self.assertAlmostEqual(saved.resolution, self.expected.resolution)
+
+    def test_map_saver_without_map_fails_with_reason(self):
+        with tempfile.TemporaryDirectory() as folder:
+            done = self.run_saver("-f", os.path.join(folder, "none"), "--timeout", "0.5", "map:=/no_map_here")
+            self.assertEqual(done.returncode, 1)
+            self.assertIn("no map arrived on /no_map_here within 0.5 s", done.stderr)
+            self.assertFalse(os.path.exists(os.path.join(folder, "none.yaml")))
+
+    # ------------------------------------------------------------------ twist_relay
+    def test_twist_relay_forwards_drops_non_finite_and_times_out(self):
+        out = Latest("cmd_vel", Twist)
+        pub = rospy.Publisher("cmd_vel_stamped", TwistStamped, queue_size=1)
+        deadline = rospy.get_time() + WAIT_S
+        while pub.get_num_connections() == 0 and rospy.get_time() < deadline:
+            rospy.sleep(0.05)
+        cmd = TwistStamped()
+        cmd.twist.linear.x, cmd.twist.angular.z = 0.25, -0.5
+        before = out.count()
+        pub.publish(cmd)
+        got = out.wait_for(lambda m: m.linear.x == 0.25, after=before)
+        self.assertIsNotNone(got, "command not forwarded")
+        self.assertEqual(got.angular.z, -0.5)
+        # silence: exactly one zero Twist after the 0.3 s timeout
+        zero = out.wait_for(lambda m: m.linear.x == 0.0 and m.angular.z == 0.0, after=out.count() - 1)
+        self.assertIsNotNone(zero, "no zero Twist after the timeout")
+        rospy.sleep(0.8)
+        zeros_after = [m for m in out.msgs[before:] if m.linear.x == 0.0 and m.angular.z == 0.0]
+        self.assertEqual(len(zeros_after), 1, "the timeout zero must be sent once")
+        # a NaN command is not forwarded; a zero goes out instead
+        cmd.twist.linear.x = 0.3
+        pub.publish(cmd)
+        self.assertIsNotNone(out.wait_for(lambda m: m.linear.x == 0.3, after=out.count()))
+        mark = out.count()
+        bad = TwistStamped()
+        bad.twist.linear.x, bad.twist.angular.z = float("nan"), 0.1
+        pub.publish(bad)
+        stop = out.wait_for(lambda m: True, after=mark)
+        self.assertIsNotNone(stop)
+        self.assertEqual((stop.linear.x, stop.angular.z), (0.0, 0.0))
+        self.assertFalse(any(math.isnan(m.linear.x) for m in out.msgs))
+
+    # ------------------------------------------------------------------ CostmapROS
+    def test_costmap_marks_scan_and_bumper_and_clears(self):
+        costmap = Latest("get_path_server/global_costmap/costmap", OccupancyGrid)
+        first = costmap.wait_for(lambda m: True)
+        self.assertIsNotNone(first, "no costmap published")
+        self.assertEqual(first.header.frame_id, "map")
+        self.assertEqual(cell_value(first, *OBSTACLE), 0)
+        scans = rospy.Publisher("io_scan", LaserScan, queue_size=1)
+        scan = LaserScan()
+        scan.header.frame_id = "io_base"
+        scan.angle_min, scan.angle_increment, scan.angle_max = -0.1, 0.01, 0.1
+        scan.range_min, scan.range_max = 0.05, 3.0
+        scan.ranges = [OBSTACLE[0] - ROBOT[0]] * 21
+        deadline = rospy.get_time() + WAIT_S
+        marked = None
+        while marked is None and rospy.get_time() < deadline:
+            scan.header.stamp = rospy.Time.now() - rospy.Duration(0.1)
+            scans.publish(scan)
+            marked = costmap.wait_for(lambda m: cell_value(m, *OBSTACLE) == 100, timeout_s=0.3,
+                                      after=costmap.count())
+        self.assertIsNotNone(marked, "the scan did not mark the obstacle")
+        self.assertEqual(cell_value(marked, OBSTACLE[0] + 0.15, OBSTACLE[1] + 0.5), 0)
+        self.assertGreater(cell_value(marked, OBSTACLE[0] - 0.1, OBSTACLE[1]), 0)  # inflated around it
+        scans.unregister()
+
+        clear = actionlib.SimpleActionClient("get_path_server/clear_costmap", ClearCostmapAction)
+        self.assertTrue(clear.wait_for_server(rospy.Duration(WAIT_S)))
+        mark = costmap.count()
+        clear.send_goal(ClearCostmapGoal())
+        self.assertTrue(clear.wait_for_result(rospy.Duration(5.0)))
+        self.assertEqual(clear.get_result().code, ClearCostmapResult.SUCCESS)
+        cleared = costmap.wait_for(lambda m: cell_value(m, *OBSTACLE) == 0, after=mark)
+        self.assertIsNotNone(cleared, "clear_costmap did not clear the scan mark")
+        # the static map survives a clear
+        self.assertEqual(cell_value(cleared, 4.05, 1.0), 100)
+
+        bumps = rospy.Publisher("io_bumper", PointStamped, queue_size=1)
+        hit = PointStamped()
+        hit.header.frame_id = "io_base"
+        hit.point.x = 0.2  # in front of the robot
+        marked = None
+        deadline = rospy.get_time() + WAIT_S
+        while marked is None and rospy.get_time() < deadline:
+            hit.header.stamp = rospy.Time.now() - rospy.Duration(0.1)
+            bumps.publish(hit)
+            marked = costmap.wait_for(lambda m: cell_value(m, ROBOT[0] + 0.2, ROBOT[1]) == 100, timeout_s=0.3,
+                                      after=costmap.count())
+        self.assertIsNotNone(marked, "the bumper hit was not marked")
+
+
+if __name__ == "__main__":
+    init_node("test_nodes_io", master_timeout_s=WAIT_S)
+    rostest.rosrun("flex_nav", "test_nodes_io", TestNodesIO, sys.argv)

@@ -1,0 +1,79 @@
+"""Safety rules of the motion nodes: finite commands, stop after silence, stale sensors."""
+
+import math
+
+import pytest
+
+from flex_nav.exceptions import ConfigError
+from flex_nav.follow.safety import CommandTimeout, SensorWatchdog, twist_problem
+
+
+def test_finite_twist_is_fine():
+    assert twist_problem((0.2, 0.0, 0.0), (0.0, 0.0, -1.0)) is None
+
+
+@pytest.mark.parametrize("bad", [math.nan, math.inf, -math.inf])
+@pytest.mark.parametrize("slot", range(6))
+def test_any_non_finite_component_is_named(bad, slot):
+    values = [0.1] * 6
+    values[slot] = bad
+    problem = twist_problem(values[:3], values[3:])
+    assert problem is not None
+    assert "non-finite" in problem and str(bad) in problem
+
+
+def test_timeout_fires_once_after_silence():
+    timeout = CommandTimeout(0.5)
+    assert not timeout.due(100.0)  # nothing was ever sent: nothing to stop
+    timeout.command(10.0)
+    assert not timeout.due(10.49)
+    assert timeout.due(10.5)
+    assert not timeout.due(11.0)  # only once
+    timeout.command(12.0)
+    assert timeout.due(13.0)  # re-armed by the next command
+
+
+def test_timeout_not_due_after_a_stop_and_disabled_with_zero():
+    timeout = CommandTimeout(0.5)
+    timeout.command(1.0)
+    timeout.stopped()
+    assert not timeout.due(5.0)
+    off = CommandTimeout(0.0)
+    off.command(1.0)
+    assert not off.due(1000.0)
+
+
+@pytest.mark.parametrize("bad", [-0.1, math.nan, math.inf])
+def test_timeout_rejects_bad_values(bad):
+    with pytest.raises(ConfigError, match="command timeout"):
+        CommandTimeout(bad)
+
+
+def test_watchdog_grace_at_start_then_stale_never_seen():
+    dog = SensorWatchdog(["odom", "scan"], 0.5, start_s=100.0)
+    assert dog.problem(100.4) is None
+    problem = dog.problem(100.6)
+    assert problem is not None and "since start" in problem and "sensor_timeout 0.50" in problem
+
+
+def test_watchdog_names_the_stalest_sensor():
+    dog = SensorWatchdog(["odom", "scan"], 0.5, start_s=0.0)
+    dog.saw("odom", 1.0)
+    dog.saw("scan", 1.2)
+    assert dog.problem(1.45) is None
+    problem = dog.problem(1.6)
+    assert problem is not None and problem.startswith("stale odom") and "0.60 s" in problem
+    dog.saw("odom", 1.6)
+    assert dog.problem(1.6) is None
+    assert dog.problem(1.75).startswith("stale scan")
+    assert dog.age("scan", 2.0) == pytest.approx(0.8)
+
+
+def test_watchdog_rejects_unknown_sensor_and_bad_timeout():
+    dog = SensorWatchdog(["odom"], 1.0, start_s=0.0)
+    with pytest.raises(ConfigError, match="'imu' is not watched"):
+        dog.saw("imu", 0.0)
+    with pytest.raises(ConfigError, match="sensor timeout"):
+        SensorWatchdog(["odom"], 0.0, start_s=0.0)
+    with pytest.raises(ConfigError, match="at least one"):
+        SensorWatchdog([], 1.0, start_s=0.0)
