@@ -34,7 +34,7 @@ from flex_nav.behavior.events import (
     RequestEvent,
     TransitionEvent,
 )
-from flex_nav.exceptions import NotReadyError
+from flex_nav.exceptions import BehaviorRuntimeError, NotReadyError
 
 if TYPE_CHECKING:
     from flex_nav.behavior.container import Container
@@ -70,6 +70,11 @@ def using_context(context: BehaviorContext) -> Iterator[BehaviorContext]:
         yield context
     finally:
         _CURRENT.reset(token)
+
+
+def _hook_error(kind: str, hook: object, err: Exception) -> BehaviorRuntimeError:
+    name = getattr(hook, "__qualname__", None) or repr(hook)
+    return BehaviorRuntimeError(f"{kind} hook {name} raised {type(err).__name__}: {err}")
 
 
 class BehaviorContext:
@@ -135,7 +140,10 @@ class BehaviorContext:
         if self.hooks.log:
             event = LogEvent(self.clock.now(), LogLevel(level), message, path)
             for hook in self.hooks.log:
-                hook(event)
+                try:
+                    hook(event)
+                except Exception as err:
+                    raise _hook_error("log", hook, err) from err
 
     # --- engine side (called by containers and the executor, in the executor's thread) ----------
     def _emit_transition(  # noqa: PLR0917  (internal, hot path: no kwargs packing)
@@ -143,7 +151,10 @@ class BehaviorContext:
     ) -> None:
         event = TransitionEvent(now, path, outcome, target, target_path, Autonomy(required), forced)
         for hook in self.hooks.transition:
-            hook(event)
+            try:
+                hook(event)
+            except Exception as err:
+                raise _hook_error("transition", hook, err) from err
 
     def _emit_request(  # noqa: PLR0917  (internal)
         self, now: float, path: str, outcome: str, required: int, reason: str, pending: bool
@@ -151,12 +162,18 @@ class BehaviorContext:
         if self.hooks.request:
             event = RequestEvent(now, path, outcome, Autonomy(required), reason, pending)
             for hook in self.hooks.request:
-                hook(event)
+                try:
+                    hook(event)
+                except Exception as err:
+                    raise _hook_error("request", hook, err) from err
 
     def _emit_active(self, now: float, paths: tuple[str, ...]) -> None:
         event = ActiveStatesEvent(now, paths)
         for hook in self.hooks.active:
-            hook(event)
+            try:
+                hook(event)
+            except Exception as err:
+                raise _hook_error("active", hook, err) from err
 
     def _claim_priority(self, owner: Container) -> None:
         """``owner`` (a priority container) became active: hold every active leaf outside it."""

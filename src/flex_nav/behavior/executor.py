@@ -38,7 +38,7 @@ from flex_nav.behavior.autonomy import Autonomy
 from flex_nav.behavior.behavior import Behavior
 from flex_nav.behavior.clock import Clock
 from flex_nav.behavior.container import Container
-from flex_nav.behavior.context import _CURRENT, HOLD_PAUSE, BehaviorContext
+from flex_nav.behavior.context import _CURRENT, HOLD_PAUSE, BehaviorContext, _hook_error
 from flex_nav.behavior.events import BehaviorStatus, CommandEvent, LogLevel, StatusEvent
 from flex_nav.behavior.state import Pending, State
 from flex_nav.behavior.userdata import UserDataView
@@ -396,7 +396,10 @@ class BehaviorExecutor:
         if self._ctx.hooks.status:
             event = StatusEvent(now, self._status, outcome, reason)
             for hook in self._ctx.hooks.status:
-                hook(event)
+                try:
+                    hook(event)
+                except Exception as err:
+                    raise _hook_error("status", hook, err) from err
 
     # --- commands (any thread) ---------------------------------------------------------------------------
     def set_autonomy(self, level: object) -> concurrent.futures.Future[str]:
@@ -571,4 +574,7 @@ class BehaviorExecutor:
         if self._ctx.hooks.command:
             event = CommandEvent(now, name, args, ok, message)
             for hook in self._ctx.hooks.command:
-                hook(event)
+                try:
+                    hook(event)
+                except Exception as err:
+                    raise _hook_error("command", hook, err) from err

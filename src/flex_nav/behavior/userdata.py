@@ -93,6 +93,24 @@ def _refuse(target: object, what: str) -> ReadOnlyUserDataError:
     )
 
 
+def _refusing(*names: str) -> Dict[str, Any]:
+    """Methods that refuse the mutators of the wrapped container type with a clear error."""
+
+    def make(name: str) -> Any:
+        def refuse(self: Any, *args: Any, **kwargs: Any) -> Any:
+            raise _refuse(object.__getattribute__(self, "_ro_target"), f"call {name}()")
+
+        refuse.__name__ = name
+        return refuse
+
+    return {name: make(name) for name in names}
+
+
+_LIST_MUTATORS = ("append", "extend", "insert", "pop", "remove", "sort", "reverse", "clear")
+_DICT_MUTATORS = ("update", "pop", "popitem", "setdefault", "clear")
+_SET_MUTATORS = ("add", "discard", "remove", "pop", "clear", "update")
+
+
 class ReadOnlyObject:
     """Read-only proxy of an arbitrary object (e.g. a ROS message): attributes come back read-only."""
 
@@ -152,7 +170,7 @@ class ReadOnlyObject:
 
 
 class ReadOnlySequence(Sequence[Any]):
-    """Read-only view of a list or tuple; items come back read-only. No copy."""
+    """Read-only view of a list or tuple; items come back read-only; mutators refuse. No copy."""
 
     __slots__ = ("_ro_target",)
 
@@ -201,7 +219,7 @@ class ReadOnlySequence(Sequence[Any]):
 
 
 class ReadOnlyMapping(Mapping[Any, Any]):
-    """Read-only view of a dict; values come back read-only. No copy."""
+    """Read-only view of a dict; values come back read-only; mutators refuse. No copy."""
 
     __slots__ = ("_ro_target",)
 
@@ -246,7 +264,7 @@ class ReadOnlyMapping(Mapping[Any, Any]):
 
 
 class ReadOnlySet(AbstractSet[Any]):
-    """Read-only view of a set (its elements are hashable, returned as they are). No copy."""
+    """Read-only view of a set (elements are hashable, returned as they are); mutators refuse. No copy."""
 
     __slots__ = ("_ro_target",)
 
@@ -281,6 +299,14 @@ class ReadOnlySet(AbstractSet[Any]):
         return repr(object.__getattribute__(self, "_ro_target"))
 
 
+for _view_class, _mutators in (
+    (ReadOnlySequence, _LIST_MUTATORS),
+    (ReadOnlyMapping, _DICT_MUTATORS),
+    (ReadOnlySet, _SET_MUTATORS),
+):
+    for _name, _method in _refusing(*_mutators).items():
+        setattr(_view_class, _name, _method)
+
 # (container key, read through readonly()) per readable child key
 ReadSpec = Dict[str, Tuple[str, bool]]
 
@@ -301,7 +327,7 @@ class UserDataView:
         object.__setattr__(self, "_ud_owner", owner)
 
     def __getattr__(self, key: str) -> Any:
-        if key.startswith("__"):  # copy/pickle/inspect probes
+        if key.startswith(("__", "_ud_")):  # copy/pickle/inspect probes, slots of a half-built copy
             raise AttributeError(key)
         return self._ud_get(key)
 
@@ -343,6 +369,16 @@ class UserDataView:
 
     def __delattr__(self, key: str) -> None:
         raise ReadOnlyUserDataError(f"state {self._ud_owner.path!r} cannot delete userdata key {key!r}")
+
+    def __copy__(self) -> UserDataView:
+        """The same window (same store and declarations)."""
+        return UserDataView(self._ud_store, self._ud_read, self._ud_write, self._ud_owner)
+
+    def __deepcopy__(self, memo: Dict[int, Any]) -> UserDataView:
+        raise TypeError("a userdata view cannot be deep-copied: copy the values you read from it")
+
+    def __reduce__(self) -> Any:
+        raise TypeError("a userdata view cannot be pickled: pickle the values you read from it")
 
     def __contains__(self, key: object) -> bool:
         """True if ``key`` is a declared input that has a value now."""
