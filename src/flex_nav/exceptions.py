@@ -122,3 +122,26 @@ class BehaviorRuntimeError(BehaviorError):
 
 class BehaviorCommandError(BehaviorError, ValueError):
     """An operator command cannot be applied (unknown path, outcome not registered, nothing requested)."""
+
+
+# --- SMACH compatibility (flex_nav.compat.smach re-exports these under SMACH's names) ---------------
+
+
+class SmachError(BehaviorError):
+    """Base of SMACH's four exception types (SMACH derives them from Exception; here they join the family)."""
+
+
+class InvalidStateError(SmachError, BehaviorConstructionError):
+    """SMACH: a state or container is used wrongly (duplicate label, bad outcome policy, nothing opened)."""
+
+
+class InvalidTransitionError(SmachError, BehaviorConstructionError):
+    """SMACH: a transition names an unknown target or outcome, or a state returned an unregistered outcome."""
+
+
+class InvalidConstructionError(SmachError, BehaviorConstructionError):
+    """SMACH: a container was modified while it was not opened for construction."""
+
+
+class InvalidUserCodeError(SmachError, BehaviorRuntimeError):
+    """SMACH: user code (a state's execute, a callback) raised, or read/wrote undeclared userdata."""
