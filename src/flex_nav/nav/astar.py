@@ -94,18 +94,20 @@ def astar(  # noqa: PLR0917, PLR0912, PLR0915 - one compiled kernel
     parent: np.ndarray,
     state: np.ndarray,
     generation: int,
+    heap: np.ndarray,
+    stack: np.ndarray,
 ) -> tuple[float, int]:  # pragma: no cover - compiled
     """Search from flat cell ``start`` to ``goal`` on ``costs`` (uint8, H·W flat, row-major).
 
     Returns (cost of the optimal path or inf, number of expanded cells). ``parent`` then links the path
-    back from ``goal``. ``g`` (float64), ``parent`` (int32) and ``state`` (uint32) are H·W work arrays
+    back from ``goal``. ``heap`` (float64 (R, 3): rows [f, -g, cell]) and ``stack`` (int64) are the queue's
+    storage; when one of them is full the search stops and returns (inf, -1) (heap) or (inf, -2) (stack),
+    and the caller searches again with a bigger one (growing an array inside this kernel makes numba's
+    compile time explode). ``g`` (float64), ``parent`` (int32) and ``state`` (uint32) are H·W work arrays
     reused across calls: ``state == generation`` marks an open cell (its ``g`` is valid) and
     ``state == generation + 1`` a closed one, so ``generation`` must grow by 2 per call.
     """
     height = costs.shape[0] // width
-    capacity = 1 << 16
-    heap = np.empty((capacity, 3), dtype=np.float64)  # rows [f, -g, cell]; cell < 2**53 is exact
-    stack = np.empty(1 << 10, dtype=np.int64)  # successors with f == the current minimum
     goal_row = goal // width
     goal_col = goal - goal_row * width
     diag_extra = diagonal_factor - 1.0
@@ -172,17 +174,12 @@ def astar(  # noqa: PLR0917, PLR0912, PLR0915 - one compiled kernel
             if f <= f_min:
                 # f is the queue's minimum: it would be popped next anyway (order among equal f is free)
                 if top == stack.shape[0]:
-                    grown = np.empty(2 * top, dtype=np.int64)
-                    grown[:top] = stack[:top]
-                    stack = grown
+                    return np.inf, -2  # stack full: the caller grows it and searches again
                 stack[top] = nb
                 top += 1
                 continue
-            if size == capacity:
-                capacity *= 2
-                grown_heap = np.empty((capacity, 3), dtype=np.float64)
-                grown_heap[:size] = heap[:size]
-                heap = grown_heap
+            if size == heap.shape[0]:
+                return np.inf, -1  # heap full: the caller grows it and searches again
             _push(heap, size, f, -cand, nb)
             size += 1
     return np.inf, expanded

@@ -275,3 +275,16 @@ def test_bad_params(kwargs):
 def test_path_cost_rejects_non_neighbour_paths():
     with pytest.raises(ConfigError):
         GridPlanner().path_cost(np.zeros((5, 5), dtype=np.uint8), np.array([[0, 0], [0, 2]]))
+
+
+def test_full_queue_storage_is_grown_and_the_search_repeated():
+    rng = np.random.default_rng(8)
+    costs = random_costs(rng, (60, 60), lethal=0.1)
+    planner = GridPlanner()
+    planner._heap = np.empty((2, 3))
+    planner._stack = np.empty(1, dtype=np.int64)
+    free = np.argwhere(np.isfinite(planner.weights[costs]))
+    s, g = tuple(int(v) for v in free[0]), tuple(int(v) for v in free[-1])
+    cost, _, expanded = planner.plan_cells(costs, s, g)
+    assert cost == GridPlanner().plan_cells(costs, s, g)[0] and expanded > 0
+    assert len(planner._heap) > 2 and len(planner._stack) > 1
