@@ -15,7 +15,6 @@ from flex_nav_sim.profiles import RobotProfile
 from flex_nav_sim.world import Person, Rgba, Solid
 
 FLOOR_FRICTION = 1.0  # [-] Bullet multiplies the two bodies' friction: a box's own value then rules
-FLOOR_COLOR: Rgba = (0.93, 0.93, 0.9, 1.0)
 ROBOT_COLORS: Tuple[Rgba, ...] = (
     (0.15, 0.15, 0.15, 1.0),
     (0.1, 0.3, 0.8, 1.0),
@@ -35,18 +34,10 @@ def quaternion_yaw(q: Tuple[float, ...]) -> float:
     return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
 
 
-def create_floor(client: Any, bounds: Tuple[float, float, float, float]) -> int:
-    """A static floor plane at z = 0, drawn as a thin slab over ``bounds`` (xmin, ymin, xmax, ymax) [m]."""
+def create_floor(client: Any) -> int:
+    """A static floor plane at z = 0 (drawn by pybullet's default checkerboard)."""
     shape = client.createCollisionShape(pybullet.GEOM_PLANE)
-    x0, y0, x1, y1 = bounds
-    half = [(x1 - x0) / 2.0 + 1.0, (y1 - y0) / 2.0 + 1.0, 0.001]
-    visual = client.createVisualShape(
-        pybullet.GEOM_BOX,
-        halfExtents=half,
-        rgbaColor=FLOOR_COLOR,
-        visualFramePosition=[(x0 + x1) / 2.0, (y0 + y1) / 2.0, -0.001],
-    )
-    body = int(client.createMultiBody(0.0, shape, visual, [0.0, 0.0, 0.0]))
+    body = int(client.createMultiBody(0.0, shape, -1, [0.0, 0.0, 0.0]))
     client.changeDynamics(body, -1, lateralFriction=FLOOR_FRICTION)
     return body
 

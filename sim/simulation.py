@@ -16,6 +16,7 @@ from __future__ import annotations
 import contextlib
 import math
 import os
+import time
 from dataclasses import dataclass, replace
 from typing import Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
@@ -34,7 +35,7 @@ from flex_nav_sim.bodies import (
     yaw_quaternion,
 )
 from flex_nav_sim.odometry import inverse, multiply
-from flex_nav_sim.profiles import RobotProfile, load_profile
+from flex_nav_sim.profiles import CameraSpec, LidarSpec, RobotProfile, load_profile
 from flex_nav_sim.readings import (
     BumperReading,
     CommandNotice,
@@ -52,6 +53,7 @@ from flex_nav_sim.world import Person, Solid, Spawn, WorldSpec, check_spawns
 Reading = Union[
     OdometryReading, ScanReading, BumperReading, ImageReading, ContactReading, WorldEventReading, CommandNotice
 ]
+COST_KEYS = ("physics", "lidar", "camera", "other_sensors")  # parts of Simulation.costs
 DEFAULT_PHYSICS_RATE = 240.0  # [Hz] fixed physics step (pybullet's default time step is 1/240 s)
 _EPS = 1e-9  # [s] scheduling tolerance
 
@@ -133,6 +135,7 @@ class Simulation:
         self.rng = np.random.default_rng(seed)
         self.sensors = sensors
         self.drift = drift
+        self.costs: Dict[str, float] = dict.fromkeys(COST_KEYS, 0.0)  # [s] wall time spent, by part
         self.gui_active = bool(gui and os.environ.get("DISPLAY"))
         mode = pybullet.GUI if self.gui_active else pybullet.DIRECT
         self.client = bullet_client.BulletClient(connection_mode=mode)
@@ -166,7 +169,7 @@ class Simulation:
         c.setPhysicsEngineParameter(deterministicOverlappingPairs=1)
         if self.gui_active:
             c.configureDebugVisualizer(pybullet.COV_ENABLE_GUI, 0)
-        self.floor = create_floor(c, self.world.bounds())
+        self.floor = create_floor(c)
         self._names: Dict[int, Tuple[str, str]] = {}  # body -> (name, kind)
         self._solid_bodies: Dict[str, int] = {}
         self._solids: Dict[str, Solid] = {s.name: s for s in self.world.solids}
@@ -198,6 +201,18 @@ class Simulation:
         self._names[body] = (solid.name, solid.kind)
 
     # -- public API -------------------------------------------------------------------------------
+    def lidar_spec_of(self, robot: str) -> Optional[LidarSpec]:
+        """The lidar actually simulated for ``robot`` (None if lidars are off)."""
+        self.robot(robot)  # ConfigError for an unknown name
+        lidar = self._slots[robot].lidar
+        return lidar.spec if lidar is not None else None
+
+    def camera_spec_of(self, robot: str) -> Optional[CameraSpec]:
+        """The camera actually simulated for ``robot`` (None if off or the profile has none)."""
+        self.robot(robot)
+        camera = self._slots[robot].camera
+        return camera.spec if camera is not None else None
+
     @property
     def robot_names(self) -> List[str]:
         return list(self._slots)
@@ -232,6 +247,7 @@ class Simulation:
     def step(self) -> List[Reading]:
         """Advance one physics step; return the readings due at the new time."""
         out: List[Reading] = []
+        start = time.perf_counter()
         self._apply_events(out)
         self._move_people()
         for slot in self._slots.values():
@@ -244,6 +260,7 @@ class Simulation:
         self.time = self.steps * self.dt
         for slot in self._slots.values():
             slot.robot.latch_contacts()
+        self.costs["physics"] += time.perf_counter() - start
         for slot in self._slots.values():
             self._sample(slot, out)
         return out
@@ -319,6 +336,8 @@ class Simulation:
         profile = robot.profile
         t = self.time
         pose: Optional[Pose2D] = None
+        costs = self.costs
+        start = time.perf_counter()
         if self.sensors.odometry and t >= slot.next_odom - _EPS:
             slot.next_odom += 1.0 / profile.odometry.rate
             pose, v, w = robot.truth()
@@ -343,16 +362,22 @@ class Simulation:
             pressed, changed, contacts = robot.sample_bumpers()
             out.append(BumperReading(robot.name, t, pressed, tuple(changed)))
             self._contact_events(robot, contacts, out)
+        mid = time.perf_counter()
+        costs["other_sensors"] += mid - start
         if slot.lidar is not None and t >= slot.next_scan - _EPS:
             slot.next_scan += 1.0 / profile.lidar.rate
             if pose is None:
                 pose = robot.truth()[0]
             out.append(ScanReading(robot.name, t, slot.lidar.scan(pose)))
+            end = time.perf_counter()
+            costs["lidar"] += end - mid
+            mid = end
         if slot.camera is not None and t >= slot.next_image - _EPS:
             slot.next_image += 1.0 / slot.camera.spec.rate
             if pose is None:
                 pose = robot.truth()[0]
             out.append(ImageReading(robot.name, t, slot.camera.render(pose)))
+            costs["camera"] += time.perf_counter() - mid
 
     def _contact_events(self, robot: SimRobot, contacts: Mapping[int, Contact], out: List[Reading]) -> None:
         now = set(contacts)

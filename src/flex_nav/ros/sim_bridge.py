@@ -1,0 +1,465 @@
+"""``sim`` node: the pybullet simulator (:mod:`flex_nav_sim`) behind the ROS interface of the real robots.
+
+``rosrun flex_nav sim _world:=lab [_robots:=robot1,robot2:create2:3:1:90] [_seed:=0] [_rtf:=1.0]``
+
+One thread steps the simulation and publishes what each step reports; ROS callbacks only queue
+velocity commands for it. Everything is validated before anything is advertised: an unknown world
+or profile, a malformed file, a robot inside a wall or two robots with one namespace make the node
+log the reason and exit with status 2, with no topic advertised and no physics server left behind.
+
+Private parameters:
+  ~world         str    (required) world name (``sim/worlds/<name>.yaml``) or path
+  ~robots        str|list  robots to spawn, default the world's (see :mod:`flex_nav_sim.spawn_spec`)
+  ~seed          int    0      seed of the one random generator (noise): same seed, same run
+  ~rtf           float  1.0    real-time factor to keep; 0 = as fast as possible
+  ~physics_rate  float  240    [Hz] fixed physics step rate
+  ~clock_rate    float  100    [Hz] /clock publication rate (in simulated time)
+  ~lidar, ~camera, ~bumpers  bool  true  simulate these sensors
+  ~gui           bool   false  pybullet GUI window (only if a display exists)
+  ~drift_xy, ~drift_yaw, ~drift_tau  float  0, 0, 10  localization drift: [m], [rad], [s] (0 = exact)
+  ~map_frame     str    map
+  ~duration      float  0      [s] simulated time after which the node exits (0 = run until shutdown)
+
+Per robot ``NS`` (its name; frames are prefixed ``NS/``; an empty name is allowed for a single robot):
+  publishes  NS/odom (nav_msgs/Odometry, NS/odom -> NS/base_footprint), NS/ground_truth (Odometry in
+             map), NS/scan (LaserScan, NS/laser), NS/camera/rgb/image_raw + camera_info
+             (NS/camera_rgb_optical_frame), NS/bumper_state (BumperState, latched, on change),
+             NS/events/bumper (kobuki profiles: BumperEvent), NS/bumper (create profiles: CreateBumper),
+             NS/sim_events (SimEvent: contacts begin/end, ignored/clamped/timed-out commands)
+  tf         map -> NS/odom -> NS/base_footprint; static NS/base_footprint -> NS/base_link, NS/laser,
+             NS/camera_rgb_frame -> NS/camera_rgb_optical_frame
+  subscribes NS/cmd_vel (geometry_msgs/Twist)
+Global: /clock (rosgraph_msgs/Clock; run every other node with use_sim_time), sim_events (world events).
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+import threading
+import time
+from dataclasses import dataclass
+from typing import Any, Callable, Dict, List, Optional, Tuple
+
+import genpy
+import rospy
+from geometry_msgs.msg import TransformStamped, Twist
+from nav_msgs.msg import Odometry
+from rosgraph_msgs.msg import Clock
+from sensor_msgs.msg import CameraInfo, Image, LaserScan
+from tf2_msgs.msg import TFMessage
+
+from flex_nav.exceptions import ConfigError
+from flex_nav.msg import BumperEvent, BumperState, CreateBumper, SimEvent
+from flex_nav.ros.node import init_node
+from flex_nav.ros.params import param_bool, param_float, param_int, param_str
+from flex_nav_sim.profiles import RobotProfile
+from flex_nav_sim.readings import (
+    BumperReading,
+    CommandNotice,
+    ContactReading,
+    ImageReading,
+    OdometryReading,
+    Pose2D,
+    ScanReading,
+    WorldEventReading,
+)
+from flex_nav_sim.simulation import LocalizationDrift, SensorOptions, Simulation
+from flex_nav_sim.spawn_spec import resolve_spawns
+from flex_nav_sim.world import load_world
+
+NODE_NAME = "sim"
+KOBUKI_CODES = {"left": BumperEvent.LEFT, "center": BumperEvent.CENTER, "right": BumperEvent.RIGHT}
+PACE_SLACK_S = 0.002  # [s] sleep only when this far ahead of the real-time schedule
+MAX_LAG_S = 0.25  # [s] further behind than this: re-anchor the schedule instead of bursting to catch up
+STATS_PERIOD_S = 30.0  # [s] wall time between log lines with the achieved real-time factor
+ODOM_COVARIANCE = (0.001, 0.001, 1e6, 1e6, 1e6, 0.003)  # diagonal [m^2, m^2, -, -, -, rad^2] (planar)
+
+
+def stamp_of(t: float) -> genpy.Time:
+    """ROS time of simulated time ``t`` [s]."""
+    nanoseconds = round(t * 1e9)
+    return genpy.Time(nanoseconds // 1_000_000_000, nanoseconds % 1_000_000_000)
+
+
+def set_yaw(q: Any, yaw: float) -> None:
+    """Write a yaw-only rotation into geometry_msgs/Quaternion ``q``."""
+    q.x = q.y = 0.0
+    q.z = math.sin(yaw / 2.0)
+    q.w = math.cos(yaw / 2.0)
+
+
+def transform(parent: str, child: str, xyz: Tuple[float, float, float], quat: Tuple[float, ...]) -> TransformStamped:
+    tf = TransformStamped()
+    tf.header.frame_id = parent
+    tf.child_frame_id = child
+    tf.transform.translation.x, tf.transform.translation.y, tf.transform.translation.z = xyz
+    r = tf.transform.rotation
+    r.x, r.y, r.z, r.w = quat
+    return tf
+
+
+class RobotIO:
+    """One robot's publishers, subscriber, frames and reusable messages."""
+
+    def __init__(
+        self, name: str, profile: RobotProfile, sim: Simulation, map_frame: str, queue_command: Callable
+    ) -> None:
+        self.name = name
+        self.profile = profile
+        prefix = f"{name}/" if name else ""
+        self.frame_odom = prefix + "odom"
+        self.frame_base = prefix + "base_footprint"
+        self.frame_laser = prefix + "laser"
+        self.frame_camera = prefix + "camera_rgb_optical_frame"
+        self.map_frame = map_frame
+
+        def topic(t: str) -> str:
+            return f"{name}/{t}" if name else t
+
+        self.pub_odom = rospy.Publisher(topic("odom"), Odometry, queue_size=10)
+        self.pub_truth = rospy.Publisher(topic("ground_truth"), Odometry, queue_size=10)
+        self.lidar = sim.lidar_spec_of(name)
+        self.pub_scan = rospy.Publisher(topic("scan"), LaserScan, queue_size=5) if self.lidar else None
+        self.camera = sim.camera_spec_of(name)
+        if self.camera is not None:
+            self.pub_image: Optional[rospy.Publisher] = rospy.Publisher(
+                topic("camera/rgb/image_raw"), Image, queue_size=2
+            )
+            self.pub_info: Optional[rospy.Publisher] = rospy.Publisher(
+                topic("camera/rgb/camera_info"), CameraInfo, queue_size=2
+            )
+        else:
+            self.pub_image = self.pub_info = None
+        self.pub_state = rospy.Publisher(topic("bumper_state"), BumperState, queue_size=10, latch=True)
+        style = profile.bumper.driver_style
+        self.pub_kobuki = (
+            rospy.Publisher(topic("events/bumper"), BumperEvent, queue_size=10) if style == "kobuki" else None
+        )
+        self.pub_create = rospy.Publisher(topic("bumper"), CreateBumper, queue_size=10) if style == "create" else None
+        self.pub_events = rospy.Publisher(topic("sim_events"), SimEvent, queue_size=50)
+        self.sub_cmd = rospy.Subscriber(
+            topic("cmd_vel"), Twist, lambda msg: queue_command(name, msg), queue_size=1, tcp_nodelay=True
+        )
+        self._prepare_messages()
+
+    def _prepare_messages(self) -> None:
+        self.odom = Odometry()
+        self.odom.header.frame_id = self.frame_odom
+        self.odom.child_frame_id = self.frame_base
+        for i, value in enumerate(ODOM_COVARIANCE):
+            self.odom.pose.covariance[i * 7] = value
+            self.odom.twist.covariance[i * 7] = value
+        self.truth = Odometry()
+        self.truth.header.frame_id = self.map_frame
+        self.truth.child_frame_id = self.frame_base
+        self.tf_map_odom = transform(self.map_frame, self.frame_odom, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
+        self.tf_odom_base = transform(self.frame_odom, self.frame_base, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
+        if self.lidar is not None:
+            self.scan = LaserScan()
+            self.scan.header.frame_id = self.frame_laser
+            self.scan.angle_min = self.lidar.angle_min
+            self.scan.angle_max = self.lidar.angle_max
+            self.scan.angle_increment = self.lidar.angle_increment
+            self.scan.scan_time = 1.0 / self.lidar.rate
+            self.scan.time_increment = self.scan.scan_time / 360.0 * math.degrees(self.lidar.angle_increment)
+            self.scan.range_min = self.lidar.range_min
+            self.scan.range_max = self.lidar.range_max
+        if self.camera is not None:
+            cam = self.camera
+            self.image = Image()
+            self.image.header.frame_id = self.frame_camera
+            self.image.height, self.image.width = cam.height, cam.width
+            self.image.encoding = "rgb8"
+            self.image.step = cam.width * 3
+            self.info = CameraInfo()
+            self.info.header.frame_id = self.frame_camera
+            self.info.height, self.info.width = cam.height, cam.width
+            self.info.distortion_model = "plumb_bob"
+            self.info.D = [0.0] * 5
+            f, cx, cy = cam.focal_px, cam.width / 2.0, cam.height / 2.0
+            self.info.K = [f, 0.0, cx, 0.0, f, cy, 0.0, 0.0, 1.0]
+            self.info.R = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]
+            self.info.P = [f, 0.0, cx, 0.0, 0.0, f, cy, 0.0, 0.0, 0.0, 1.0, 0.0]
+        self.state = BumperState()
+        self.state.zones = [z.name for z in self.profile.bumper.zones]
+        self.state.pressed = [False] * len(self.state.zones)
+
+    def static_transforms(self) -> List[TransformStamped]:
+        """base_footprint -> base_link, laser, camera frames (published once, latched)."""
+        p = self.profile
+        prefix = self.frame_base[: -len("base_footprint")]
+        tfs = [
+            transform(self.frame_base, prefix + "base_link", (0.0, 0.0, p.drive.wheel_radius), (0.0, 0.0, 0.0, 1.0)),
+            transform(self.frame_base, self.frame_laser, p.lidar.mount, (0.0, 0.0, 0.0, 1.0)),
+        ]
+        if p.camera is not None:
+            half = p.camera.pitch / 2.0
+            tfs.append(
+                transform(
+                    self.frame_base,
+                    prefix + "camera_rgb_frame",
+                    p.camera.mount,
+                    (0.0, math.sin(half), 0.0, math.cos(half)),
+                )
+            )
+            # optical frame: z forward, x right, y down
+            tfs.append(
+                transform(prefix + "camera_rgb_frame", self.frame_camera, (0.0, 0.0, 0.0), (-0.5, 0.5, -0.5, 0.5))
+            )
+        return tfs
+
+
+@dataclass(frozen=True)
+class BridgeOptions:
+    """How the bridge runs the simulation (from the node's parameters)."""
+
+    rtf: float = 1.0  # real-time factor to keep; 0 = as fast as possible
+    clock_rate: float = 100.0  # [Hz] /clock rate in simulated time
+    map_frame: str = "map"
+    duration: float = 0.0  # [s] simulated time to run (0 = until shutdown)
+
+
+class SimBridge:
+    """Steps the simulation in one thread and publishes its readings."""
+
+    def __init__(self, sim: Simulation, options: BridgeOptions) -> None:
+        self.sim = sim
+        self.rtf = options.rtf
+        self.clock_period = 1.0 / options.clock_rate
+        self.duration = options.duration
+        map_frame = options.map_frame
+        self._lock = threading.Lock()
+        self._pending: Dict[str, Tuple[float, float]] = {}
+        self.pub_clock = rospy.Publisher("/clock", Clock, queue_size=10)
+        self.pub_tf = rospy.Publisher("/tf", TFMessage, queue_size=100)
+        self.pub_tf_static = rospy.Publisher("/tf_static", TFMessage, queue_size=10, latch=True)
+        self.pub_world_events = rospy.Publisher("sim_events", SimEvent, queue_size=50)
+        self.robots = {
+            name: RobotIO(name, sim.robot(name).profile, sim, map_frame, self._queue_command)
+            for name in sim.robot_names
+        }
+        self.publish_cost = 0.0  # [s] wall time spent building and publishing messages
+        self._handlers: Dict[type, Callable] = {
+            OdometryReading: self._on_odometry,
+            ScanReading: self._on_scan,
+            BumperReading: self._on_bumper,
+            ImageReading: self._on_image,
+            ContactReading: self._on_contact,
+            WorldEventReading: self._on_world_event,
+            CommandNotice: self._on_notice,
+        }
+        self._clock = Clock()
+        self._tf = TFMessage()
+
+    # -- commands (ROS threads) -------------------------------------------------------------------
+    def _queue_command(self, robot: str, msg: Twist) -> None:
+        with self._lock:
+            self._pending[robot] = (msg.linear.x, msg.angular.z)
+
+    def _apply_commands(self) -> None:
+        if not self._pending:
+            return
+        with self._lock:
+            pending, self._pending = self._pending, {}
+        for robot, (v, w) in pending.items():
+            notice = self.sim.command(robot, v, w)
+            if notice is not None:
+                self._on_notice(notice)
+
+    # -- main loop --------------------------------------------------------------------------------
+    def run(self) -> None:
+        """Step and publish until shutdown (or ``duration``); logs the achieved real-time factor."""
+        static = [tf for io in self.robots.values() for tf in io.static_transforms()]
+        self.pub_tf_static.publish(TFMessage(transforms=static))
+        for io in self.robots.values():
+            io.pub_state.publish(io.state)
+        self._publish_clock(0.0)
+        sim = self.sim
+        next_clock = self.clock_period
+        wall_start = anchor_wall = time.monotonic()
+        anchor_sim = 0.0
+        next_stats = wall_start + STATS_PERIOD_S
+        while not rospy.is_shutdown():
+            self._apply_commands()
+            readings = sim.step()
+            t = sim.time
+            start = time.perf_counter()
+            if t >= next_clock - 1e-9:
+                self._publish_clock(t)
+                next_clock += self.clock_period
+            for reading in readings:
+                self._handlers[type(reading)](reading)
+            self.publish_cost += time.perf_counter() - start
+            if self.duration and t >= self.duration - 1e-9:
+                break
+            now = time.monotonic()
+            if self.rtf > 0.0:
+                ahead = anchor_wall + (t - anchor_sim) / self.rtf - now
+                if ahead > PACE_SLACK_S:
+                    time.sleep(ahead)
+                elif ahead < -MAX_LAG_S:
+                    anchor_wall, anchor_sim = now, t
+            if now >= next_stats:
+                next_stats = now + STATS_PERIOD_S
+                rospy.loginfo(self.stats(now - wall_start))
+        rospy.loginfo(self.stats(time.monotonic() - wall_start))
+
+    def stats(self, wall: float) -> str:
+        """One line: simulated time, achieved real-time factor and where the wall time went."""
+        costs = dict(self.sim.costs, ros_publishing=self.publish_cost)
+        parts = ", ".join(f"{k} {v:.2f} s" for k, v in costs.items())
+        rtf = self.sim.time / wall if wall > 0 else 0.0
+        return f"sim: t = {self.sim.time:.1f} s in {wall:.1f} s wall, real-time factor {rtf:.2f}; cost: {parts}"
+
+    # -- publishing ---------------------------------------------------------------------------------
+    def _publish_clock(self, t: float) -> None:
+        self._clock.clock = stamp_of(t)
+        self.pub_clock.publish(self._clock)
+
+    def _on_odometry(self, r: OdometryReading) -> None:
+        io = self.robots[r.robot]
+        stamp = stamp_of(r.stamp)
+        odom = io.odom
+        odom.header.stamp = stamp
+        _set_pose(odom.pose.pose, r.odom_pose)
+        odom.twist.twist.linear.x = r.linear
+        odom.twist.twist.angular.z = r.angular
+        io.pub_odom.publish(odom)
+        truth = io.truth
+        truth.header.stamp = stamp
+        _set_pose(truth.pose.pose, r.truth_pose)
+        truth.twist.twist.linear.x = r.truth_linear
+        truth.twist.twist.angular.z = r.truth_angular
+        io.pub_truth.publish(truth)
+        for tf, pose in ((io.tf_map_odom, r.map_to_odom), (io.tf_odom_base, r.odom_pose)):
+            tf.header.stamp = stamp
+            tf.transform.translation.x, tf.transform.translation.y = pose.x, pose.y
+            set_yaw(tf.transform.rotation, pose.yaw)
+        self._tf.transforms = [io.tf_map_odom, io.tf_odom_base]
+        self.pub_tf.publish(self._tf)
+
+    def _on_scan(self, r: ScanReading) -> None:
+        io = self.robots[r.robot]
+        if io.pub_scan is None:
+            return
+        io.scan.header.stamp = stamp_of(r.stamp)
+        io.scan.ranges = r.ranges.tolist()
+        io.pub_scan.publish(io.scan)
+
+    def _on_image(self, r: ImageReading) -> None:
+        io = self.robots[r.robot]
+        if io.pub_image is None or io.pub_info is None:
+            return
+        stamp = stamp_of(r.stamp)
+        io.image.header.stamp = io.info.header.stamp = stamp
+        io.image.data = r.rgb.tobytes()
+        io.pub_image.publish(io.image)
+        io.pub_info.publish(io.info)
+
+    def _on_bumper(self, r: BumperReading) -> None:
+        io = self.robots[r.robot]
+        if io.pub_create is not None:
+            msg = CreateBumper()
+            msg.header.stamp = stamp_of(r.stamp)
+            msg.header.frame_id = io.frame_base
+            msg.is_left_pressed = r.pressed["left"]
+            msg.is_right_pressed = r.pressed["right"]
+            io.pub_create.publish(msg)
+        if not r.changed:
+            return
+        if io.pub_kobuki is not None:
+            for zone in r.changed:
+                event = BumperEvent(bumper=KOBUKI_CODES[zone], state=int(r.pressed[zone]))
+                io.pub_kobuki.publish(event)
+        io.state.header.stamp = stamp_of(r.stamp)
+        io.state.header.frame_id = io.frame_base
+        io.state.pressed = [r.pressed[z] for z in io.state.zones]
+        io.pub_state.publish(io.state)
+
+    def _on_contact(self, r: ContactReading) -> None:
+        msg = SimEvent()
+        msg.header.stamp = stamp_of(r.stamp)
+        msg.header.frame_id = self.robots[r.robot].map_frame
+        msg.kind = SimEvent.CONTACT_BEGIN if r.begin else SimEvent.CONTACT_END
+        msg.robot, msg.other, msg.other_kind, msg.zones = r.robot, r.other, r.other_kind, list(r.zones)
+        msg.position.x, msg.position.y, msg.position.z = r.point
+        verb = "touches" if r.begin else "no longer touches"
+        where = f" (bumper {', '.join(r.zones)})" if r.zones else ""
+        msg.detail = f"{r.robot or 'robot'} {verb} {r.other_kind} {r.other}{where}"
+        self.robots[r.robot].pub_events.publish(msg)
+
+    def _on_world_event(self, r: WorldEventReading) -> None:
+        msg = SimEvent(kind=SimEvent.WORLD_EVENT, other=r.target, other_kind=r.action, detail=r.detail)
+        msg.header.stamp = stamp_of(r.stamp)
+        msg.position.x = msg.position.y = msg.position.z = math.nan
+        rospy.loginfo("sim: t = %.2f s: %s", r.stamp, r.detail)
+        self.pub_world_events.publish(msg)
+
+    def _on_notice(self, r: CommandNotice) -> None:
+        log = rospy.loginfo if r.kind == "timeout" else rospy.logwarn
+        log("sim: %s: %s", r.robot or "robot", r.detail)
+        msg = SimEvent(kind=SimEvent.COMMAND, robot=r.robot, other_kind=r.kind, detail=r.detail)
+        msg.header.stamp = stamp_of(r.stamp)
+        msg.position.x = msg.position.y = msg.position.z = math.nan
+        self.robots[r.robot].pub_events.publish(msg)
+
+
+def _set_pose(pose: Any, p: Pose2D) -> None:
+    pose.position.x, pose.position.y = p.x, p.y
+    set_yaw(pose.orientation, p.yaw)
+
+
+def build_simulation() -> Tuple[Simulation, BridgeOptions]:
+    """Read and validate every parameter, load the world and profiles, create the simulation."""
+    world = load_world(param_str("~world"))
+    spawns = resolve_spawns(world, rospy.get_param("~robots", ""))
+    drift_xy = param_float("~drift_xy", 0.0, 0.0, 10.0)
+    drift_yaw = param_float("~drift_yaw", 0.0, 0.0, math.pi)
+    drift = (
+        LocalizationDrift(drift_xy, drift_yaw, param_float("~drift_tau", 10.0, 0.01, 1e6))
+        if drift_xy > 0.0 or drift_yaw > 0.0
+        else None
+    )
+    options = BridgeOptions(
+        rtf=param_float("~rtf", 1.0, 0.0, 1000.0),
+        clock_rate=param_float("~clock_rate", 100.0, 1.0, 10000.0),
+        map_frame=param_str("~map_frame", "map"),
+        duration=param_float("~duration", 0.0, 0.0, 1e9),
+    )
+    if not options.map_frame:
+        raise ConfigError("parameter ~map_frame must not be empty")
+    sensors = SensorOptions(
+        lidar=param_bool("~lidar", True), camera=param_bool("~camera", True), bumpers=param_bool("~bumpers", True)
+    )
+    gui = param_bool("~gui", False)
+    sim = Simulation(
+        world,
+        spawns,
+        seed=param_int("~seed", 0, 0),
+        physics_rate=param_float("~physics_rate", 240.0, 30.0, 5000.0),
+        sensors=sensors,
+        drift=drift,
+        gui=gui,
+    )
+    if gui and not sim.gui_active:
+        rospy.logwarn("sim: ~gui requested but no display (DISPLAY unset): running headless")
+    return sim, options
+
+
+def main() -> int:
+    init_node(NODE_NAME)
+    try:
+        sim, options = build_simulation()
+    except ConfigError as err:
+        rospy.logfatal("sim: %s", err)
+        print(f"[sim] ERROR: {err}", file=sys.stderr)
+        return 2
+    try:
+        bridge = SimBridge(sim, options)
+        names = ", ".join(f"{n or '(global)'} ({sim.robot(n).profile.name})" for n in sim.robot_names)
+        rospy.loginfo("sim: world %s, robots %s, seed %d, rtf %s", sim.world.name, names, sim.seed, options.rtf)
+        bridge.run()
+    finally:
+        sim.close()
+    return 0

@@ -1,0 +1,71 @@
+#!/usr/bin/env python3
+"""rostest node for sim_bad_input.test: each bad start of the sim node fails loudly and cleanly."""
+
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+from pathlib import Path
+
+import rosgraph
+import rostest
+
+SIM = Path(__file__).resolve().parents[2] / "scripts" / "sim"
+RUN_TIMEOUT_S = 60.0  # [s] a rejected start must end well within this
+
+
+class TestSimBadInput(unittest.TestCase):
+    runs = 0
+
+    def run_sim(self, *params):
+        TestSimBadInput.runs += 1
+        name = f"sim_bad_{TestSimBadInput.runs}"
+        proc = subprocess.run(
+            [str(SIM), f"__name:={name}", *params],
+            capture_output=True,
+            text=True,
+            timeout=RUN_TIMEOUT_S,
+            env=dict(os.environ),
+            check=False,
+        )
+        self.assertEqual(proc.returncode, 2, f"exit {proc.returncode}; stderr:\n{proc.stderr[-2000:]}")
+        publishers, subscribers, _ = rosgraph.Master("/test_sim_bad_input").getSystemState()
+        for topic, nodes in publishers + subscribers:  # nothing half-started stays registered
+            self.assertNotIn(f"/{name}", nodes, f"{name} still registered on {topic}")
+        self.assertNotIn("/clock", [topic for topic, _ in publishers])
+        return proc.stderr
+
+    def test_unknown_world(self):
+        err = self.run_sim("_world:=moon")
+        self.assertIn("world 'moon' is not valid (valid: corridor, lab, open_room, two_rooms)", err)
+
+    def test_unknown_profile(self):
+        err = self.run_sim("_world:=lab", "_robots:=robot1:roomba")
+        self.assertIn("robot profile 'roomba' is not valid (valid: create2, kobuki, turtlebot4)", err)
+
+    def test_malformed_world_file(self):
+        with tempfile.NamedTemporaryFile("w", suffix=".yaml", delete=False) as bad:
+            bad.write("name: broken\nrooms: [{min: [0, 0]\n")
+        try:
+            err = self.run_sim(f"_world:={bad.name}")
+        finally:
+            os.unlink(bad.name)
+        self.assertIn("malformed YAML", err)
+        self.assertIn(bad.name, err)
+
+    def test_robot_spawned_inside_obstacle(self):
+        err = self.run_sim("_world:=lab", "_robots:=robot1:kobuki:4.0:3.0:0")
+        self.assertIn("robot 'robot1' spawned at (4.00, 3.00) overlaps obstacle 'island'", err)
+
+    def test_two_robots_one_namespace(self):
+        err = self.run_sim("_world:=lab", "_robots:=robot1:kobuki:1:1 robot1:create2:1:5")
+        self.assertIn("two robots share the namespace 'robot1'", err)
+
+    def test_bad_parameter(self):
+        err = self.run_sim("_world:=lab", "_rtf:=-1")
+        self.assertIn("rtf = -1 is outside [0.0, 1000.0]", err)
+
+
+if __name__ == "__main__":
+    rostest.rosrun("flex_nav", "sim_bad_input", TestSimBadInput, sys.argv)
