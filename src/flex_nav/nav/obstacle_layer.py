@@ -111,17 +111,19 @@ class ObstacleLayer:
         xs, ys, _, hit = scan.endpoints(self.params.raytrace_range)
         clear = usable & (hit | self.params.clear_on_no_return)
         row0, col0 = geo.world_to_cell(scan.sensor_x, scan.sensor_y)
-        if not geo.in_bounds((row0, col0)):
-            return None
-        end_rows, end_cols = geo.world_to_cells(xs[clear], ys[clear])
-        set_rays(self.costs, row0, col0, end_rows, end_cols, FREE)
+        sensor_inside = geo.in_bounds((row0, col0))
+        if sensor_inside:  # like costmap_2d: no clearing from a sensor off the grid, marking still happens
+            end_rows, end_cols = geo.world_to_cells(xs[clear], ys[clear])
+            set_rays(self.costs, row0, col0, end_rows, end_cols, FREE)
         # marks: hits closer than obstacle_range (measured on the uncut reading)
         with np.errstate(invalid="ignore"):
             mark = usable & hit & (ranges < self.params.obstacle_range)
         angles = scan.sensor_yaw + scan.angle_min + scan.angle_increment * np.flatnonzero(mark)
         mark_x = scan.sensor_x + ranges[mark] * np.cos(angles)
         mark_y = scan.sensor_y + ranges[mark] * np.sin(angles)
-        self._mark(mark_x, mark_y)
+        marked = self._mark(mark_x, mark_y)
+        if not sensor_inside:
+            return marked
         reach = max(self.params.raytrace_range, self.params.obstacle_range) / geo.resolution + 1
         return (
             max(0, int(row0 - reach)),

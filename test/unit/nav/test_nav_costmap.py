@@ -206,12 +206,19 @@ def test_bad_scans_and_points_raise():
         ObstacleLayerParams(obstacle_range=-1.0)
 
 
-def test_sensor_off_grid_changes_nothing():
-    cm = Costmap(CostmapGeometry(20, 20, RES), obstacles=ObstacleLayerParams())
+def test_sensor_off_grid_marks_but_does_not_clear():
+    cm = Costmap(CostmapGeometry(20, 20, RES), obstacles=ObstacleLayerParams(obstacle_range=4.0, raytrace_range=5.0))
+    cm.add_bumper_hits(np.array([0.02]), np.array([0.52]))
+    cm.update()
     before = cm.costs.copy()
-    cm.add_scan(_scan([0.5], x=-3.0))
+    cm.add_scan(_scan([0.5], x=-3.0))  # hit at x=-2.5, off the grid too: nothing changes
     cm.update()
     np.testing.assert_array_equal(cm.costs, before)
+    # from off the grid, a beam through the mark hitting behind it: the mark stays, the hit is marked
+    cm.add_scan(_scan([3.32], x=-3.0, y=0.52))
+    cm.update()
+    assert cm.cost_at(0.02, 0.52) == LETHAL
+    assert cm.cost_at(0.32, 0.52) == LETHAL
 
 
 def _static_grid(size=120, seed=5):
