@@ -37,8 +37,11 @@ class Autonomy(enum.IntEnum):
             except ValueError:
                 raise ConfigError(choices_message("autonomy level", value, _CHOICES)) from None
         if isinstance(value, str):
+            text = value.strip()
+            if text in ("0", "1", "2", "3"):
+                return cls(int(text))
             try:
-                return cls[value.strip().upper()]
+                return cls[text.upper()]
             except KeyError:
                 raise ConfigError(choices_message("autonomy level", value, _CHOICES)) from None
         raise ConfigError(choices_message("autonomy level", value, _CHOICES))

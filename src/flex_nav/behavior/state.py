@@ -128,6 +128,7 @@ class State:
         self._entering = False  # on_enter is due at the next tick
         self._entered = False  # on_enter was called, on_exit not yet
         self._due = math.inf  # [s] next tick time; inf: nothing to do until woken
+        self._next_s = -math.inf  # [s] earliest next execute (rate limit, kept across re-entries)
         self._pending: Optional[Pending] = None
         self._hold_mask = 0  # context.HOLD_* bits: paused by the operator / held by a priority container
         self._calls_enter = True
@@ -254,6 +255,7 @@ class State:
         self._calls_exit = cls.on_exit is not State.on_exit or "on_exit" in self.__dict__
 
     def _reset_run_state(self) -> None:
+        self._next_s = -math.inf
         self._active = False
         self._entering = False
         self._entered = False
@@ -276,7 +278,8 @@ class State:
     def _activate(self, now: float) -> None:
         self._active = True
         self._entering = True
-        self._due = now
+        # a state never executes faster than its rate, even when it is re-entered at once (loops)
+        self._due = now if self._next_s <= now else self._next_s
         ctx = self._ctx
         if ctx is not None and ctx._priority and ctx._outside_priority(self):
             from flex_nav.behavior.context import HOLD_PRIORITY  # noqa: PLC0415  (cycle; rare path)
@@ -301,8 +304,9 @@ class State:
             raise BehaviorRuntimeError(
                 f"state {self._path!r} ({type(self).__name__}) raised {type(err).__name__} in {phase}: {err}"
             ) from err
+        self._next_s = now + self._period_s
         if outcome is None:
-            self._due = now + self._period_s
+            self._due = self._next_s
         return outcome
 
     def _leave(self) -> None:

@@ -1,0 +1,634 @@
+"""Behaviors defined in YAML, loaded with line numbers: every error reads ``file:line: what (valid: ...)``.
+
+The schema is documented in ``docs/behavior_yaml.md``. In short::
+
+    behavior: patrol                  # the name; the file is patrol.yaml
+    description: Drive to two points, forever.
+    parameters:                       # typed, overridable at load time
+      pause_s: {type: float, default: 1.0, min: 0.0, description: "[s] pause at each point"}
+    input_keys: [first, second]
+    userdata: {count: 0}
+    outcomes: [finished, failed]
+    states:
+      Pause:
+        class: flex_nav.behavior.builtin_states.Wait
+        parameters: {wait_time_s: $pause_s}
+        transitions: {done: Drive}
+        autonomy: {done: low}
+      Drive:
+        behavior: drive_to            # a sub-behavior, by name
+        parameters: {speed: 0.2}
+        transitions: {finished: Pause, failed: failed}
+        remapping: {goal: first}
+
+Containers nest with ``state_machine:``, ``concurrency:`` (with ``conditions``) and ``priority:``.
+The file is read with ``yaml.compose`` so that every node keeps its line; names (labels, outcomes,
+keys, autonomy levels) are taken as written, so ``off`` or ``yes`` stay strings there, while
+parameter and userdata values are ordinary YAML values (``$name`` refers to a behavior parameter,
+``$$`` escapes a literal ``$``). State classes are imported by their dotted path; nothing in a file is
+evaluated. After building, the whole tree is validated and engine errors are mapped back to the
+line that caused them.
+
+Sub-behaviors are looked up by name as ``<name>.yaml``: first beside the including file, then in the
+search path (``search_path`` argument, else the ``FLEX_NAV_BEHAVIOR_PATH`` directories, then the
+package's ``behaviors/`` directory).
+"""
+
+from __future__ import annotations
+
+import importlib
+import inspect
+import math
+import os
+import re
+from pathlib import Path
+from typing import Any, Dict, List, Mapping, NoReturn, Optional, Sequence, Tuple, Type, Union
+
+import yaml
+from yaml.nodes import MappingNode, Node, ScalarNode, SequenceNode
+
+from flex_nav.behavior.behavior import Behavior
+from flex_nav.behavior.concurrency import ConcurrencyContainer
+from flex_nav.behavior.container import Container, child_path
+from flex_nav.behavior.priority import PriorityContainer
+from flex_nav.behavior.state import State
+from flex_nav.behavior.state_machine import StateMachine
+from flex_nav.exceptions import BehaviorConstructionError, BehaviorLoadError, ConfigError, choices_message
+
+BEHAVIOR_PATH_ENV = "FLEX_NAV_BEHAVIOR_PATH"
+PACKAGE_BEHAVIORS_DIR = Path(__file__).resolve().parents[3] / "behaviors"
+_NAME_RE = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_\-]*$")
+_STR_TAG = "tag:yaml.org,2002:str"
+
+_TOP_KEYS = (
+    "behavior",
+    "description",
+    "parameters",
+    "input_keys",
+    "output_keys",
+    "userdata",
+    "outcomes",
+    "initial",
+    "states",
+)
+_CONTAINER_KEYS = ("outcomes", "input_keys", "output_keys", "userdata", "initial", "states")
+_CONCURRENCY_KEYS = ("outcomes", "input_keys", "output_keys", "userdata", "states", "conditions")
+_KINDS = ("class", "state_machine", "concurrency", "priority", "behavior")
+_PARAM_KEYS = ("type", "default", "min", "max", "choices", "description")
+_PARAM_TYPES: Dict[str, Tuple[type, ...]] = {
+    "float": (float, int),
+    "int": (int,),
+    "bool": (bool,),
+    "str": (str,),
+    "list": (list,),
+    "dict": (dict,),
+}
+
+Where = Tuple[str, int]  # (file, 1-based line)
+MarkKey = Tuple[str, Optional[str], Optional[str], Optional[str]]  # (container path, label, field, item)
+
+
+def default_search_path() -> List[Path]:
+    """Directories searched for behaviors by name: $FLEX_NAV_BEHAVIOR_PATH, then the package's behaviors/."""
+    dirs = [Path(p) for p in os.environ.get(BEHAVIOR_PATH_ENV, "").split(os.pathsep) if p]
+    if PACKAGE_BEHAVIORS_DIR.is_dir():
+        dirs.append(PACKAGE_BEHAVIORS_DIR)
+    return dirs
+
+
+def list_behaviors(search_path: Optional[Sequence[Union[str, Path]]] = None) -> Dict[str, Path]:
+    """Behavior names found in the search path (the first file of each name wins)."""
+    found: Dict[str, Path] = {}
+    for directory in _dirs(search_path):
+        if directory.is_dir():
+            for path in sorted(directory.glob("*.yaml")):
+                found.setdefault(path.stem, path)
+    return found
+
+
+def find_behavior(name: str, search_path: Optional[Sequence[Union[str, Path]]] = None) -> Path:
+    """The file of behavior ``name`` (a plain name: no path separators, safe for names received remotely)."""
+    if not isinstance(name, str) or not _NAME_RE.match(name):
+        raise ConfigError(f"behavior name {name!r} must be letters, digits, '_' or '-' (no paths)")
+    dirs = _dirs(search_path)
+    for directory in dirs:
+        candidate = directory / f"{name}.yaml"
+        if candidate.is_file():
+            return candidate
+    raise ConfigError(
+        choices_message(
+            f"behavior (looked in: {', '.join(str(d) for d in dirs) or 'no directories'})", name, list_behaviors(dirs)
+        )
+    )
+
+
+def load_behavior(
+    source: Union[str, Path],
+    parameters: Optional[Mapping[str, Any]] = None,
+    search_path: Optional[Sequence[Union[str, Path]]] = None,
+) -> Behavior:
+    """Load, build and validate a behavior from a file path or a behavior name.
+
+    ``parameters`` override the behavior's declared parameters (type-checked). Raises
+    BehaviorLoadError (``file:line: ...``) for anything wrong in the files, ConfigError for a bad
+    name or parameter override.
+    """
+    path = Path(source)
+    if not (path.suffix in (".yaml", ".yml") or path.is_file()):
+        path = find_behavior(str(source), search_path)
+    loader = _Loader(_dirs(search_path))
+    return loader.load_top(path, dict(parameters or {}))
+
+
+def load_behavior_text(
+    text: str,
+    file: str = "<string>",
+    parameters: Optional[Mapping[str, Any]] = None,
+    search_path: Optional[Sequence[Union[str, Path]]] = None,
+) -> Behavior:
+    """Like :func:`load_behavior` for YAML text (``file`` is only used in messages)."""
+    loader = _Loader(_dirs(search_path))
+    return loader.load_top(Path(file), dict(parameters or {}), text=text)
+
+
+def _dirs(search_path: Optional[Sequence[Union[str, Path]]]) -> List[Path]:
+    return [Path(p) for p in search_path] if search_path is not None else default_search_path()
+
+
+class _ParamSpec:
+    def __init__(self, name: str, type_name: str, default: Any, has_default: bool, where: Where) -> None:
+        self.name = name
+        self.type_name = type_name
+        self.default = default
+        self.has_default = has_default
+        self.minimum: Optional[float] = None
+        self.maximum: Optional[float] = None
+        self.choices: Optional[List[Any]] = None
+        self.where = where
+
+    def check(self, value: Any) -> Any:
+        """The value converted to the declared type, or ConfigError saying why not."""
+        kinds = _PARAM_TYPES[self.type_name]
+        if isinstance(value, bool) and self.type_name != "bool":
+            raise ConfigError(f"parameter {self.name!r} must be {self.type_name}, got bool {value!r}")
+        if not isinstance(value, kinds):
+            raise ConfigError(f"parameter {self.name!r} must be {self.type_name}, got {type(value).__name__} {value!r}")
+        if self.type_name == "float":
+            value = float(value)  # type: ignore[arg-type]  # an int or float here
+            if not math.isfinite(value):
+                raise ConfigError(f"parameter {self.name!r} must be finite, got {value!r}")
+        if self.minimum is not None and value < self.minimum:
+            raise ConfigError(f"parameter {self.name!r} = {value!r} is below its minimum {self.minimum!r}")
+        if self.maximum is not None and value > self.maximum:
+            raise ConfigError(f"parameter {self.name!r} = {value!r} is above its maximum {self.maximum!r}")
+        if self.choices is not None and value not in self.choices:
+            raise ConfigError(choices_message(f"parameter {self.name!r} value", value, self.choices))
+        return value
+
+
+class _Loader:
+    """One load: files on the include stack, marks from engine items to lines, YAML constructor."""
+
+    def __init__(self, search_path: List[Path]) -> None:
+        self.search_path = search_path
+        self.marks: Dict[MarkKey, Where] = {}
+        self.stack: List[Path] = []
+        self.file = "<string>"
+        self.params: Dict[str, Any] = {}
+        self.constructor = yaml.SafeLoader("")
+
+    # --- errors and marks ------------------------------------------------------------------------
+    def fail(self, node: Optional[Node], message: str, where: Optional[Where] = None) -> NoReturn:
+        if where is None:
+            where = (self.file, node.start_mark.line + 1 if node is not None else 0)
+        raise BehaviorLoadError(message, where[0], where[1])
+
+    def mark(self, key: MarkKey, node: Node) -> None:
+        self.marks[key] = (self.file, node.start_mark.line + 1)
+
+    def engine_error(self, err: BehaviorConstructionError, fallback: Where) -> NoReturn:
+        container = err.container or "/"
+        item = None if err.item is None else str(err.item)
+        keys: List[MarkKey] = [(container, None, err.field, item), (container, None, None, None)]
+        if err.label is not None:
+            keys[:0] = [(container, err.label, err.field, item), (container, err.label, None, None)]
+        for key in keys:
+            where = self.marks.get(key)
+            if where is not None:
+                break
+        else:
+            where = fallback
+        raise BehaviorLoadError(str(err), where[0], where[1]) from err
+
+    # --- node helpers --------------------------------------------------------------------------------
+    def pairs(self, node: Node, what: str) -> Dict[str, Tuple[Node, Node]]:
+        if not isinstance(node, MappingNode):
+            self.fail(node, f"{what} must be a mapping, got {_kind(node)}")
+        result: Dict[str, Tuple[Node, Node]] = {}
+        for key_node, value_node in node.value:
+            if not isinstance(key_node, ScalarNode) or not key_node.value:
+                self.fail(key_node, f"keys of {what} must be plain names, got {_kind(key_node)}")
+            key = key_node.value
+            if key in result:
+                self.fail(
+                    key_node, f"duplicate key {key!r} in {what} (first on line {result[key][0].start_mark.line + 1})"
+                )
+            result[key] = (key_node, value_node)
+        return result
+
+    def only(self, pairs: Dict[str, Tuple[Node, Node]], valid: Sequence[str], what: str) -> None:
+        for key, (key_node, _) in pairs.items():
+            if key not in valid:
+                self.fail(key_node, choices_message(f"unknown key in {what}:", key, valid))
+
+    def name(self, node: Node, what: str) -> str:
+        if not isinstance(node, ScalarNode) or node.value == "":
+            self.fail(node, f"{what} must be a name, got {_kind(node)}")
+        return str(node.value)
+
+    def names(self, node: Node, what: str) -> List[Tuple[str, Node]]:
+        if not isinstance(node, SequenceNode):
+            self.fail(node, f"{what} must be a list of names, got {_kind(node)}")
+        return [(self.name(item, f"each of {what}"), item) for item in node.value]
+
+    def value(self, node: Node) -> Any:
+        """The Python value of ``node``; ``$name`` scalars are behavior parameters."""
+        if isinstance(node, ScalarNode):
+            if node.tag == _STR_TAG and node.value.startswith("$"):
+                if node.value.startswith("$$"):
+                    return node.value[1:]
+                name = node.value[1:]
+                if name not in self.params:
+                    self.fail(node, choices_message("parameter reference", node.value, [f"${p}" for p in self.params]))
+                return self.params[name]
+            return self.constructor.construct_object(node, deep=True)
+        if isinstance(node, SequenceNode):
+            return [self.value(item) for item in node.value]
+        if isinstance(node, MappingNode):
+            return {self.value(k): self.value(v) for k, v in node.value}
+        self.fail(node, f"unexpected YAML node {_kind(node)}")
+
+    # --- files --------------------------------------------------------------------------------------------
+    def compose(self, path: Path, text: Optional[str]) -> Node:
+        file = str(path)
+        try:
+            if text is None:
+                text = path.read_text(encoding="utf-8")
+            node = yaml.compose(text, Loader=yaml.SafeLoader)
+        except OSError as err:
+            raise BehaviorLoadError(f"cannot read the file: {err.strerror or err}", file, 0) from err
+        except yaml.MarkedYAMLError as err:
+            mark = err.problem_mark or err.context_mark
+            line = mark.line + 1 if mark is not None else 0
+            raise BehaviorLoadError(f"YAML syntax error: {err.problem or err}", file, line) from err
+        except yaml.YAMLError as err:
+            raise BehaviorLoadError(f"YAML error: {err}", file, 0) from err
+        if node is None:
+            raise BehaviorLoadError("the file is empty (a behavior needs behavior:, outcomes: and states:)", file, 1)
+        return node
+
+    def load_top(self, path: Path, overrides: Dict[str, Any], text: Optional[str] = None) -> Behavior:
+        root, name, description, params = self.load_file(path, overrides, "/", None, text)
+        try:
+            root.validate()
+        except BehaviorConstructionError as err:
+            self.engine_error(err, (str(path), 1))
+        return Behavior(name, root, description, params, path if text is None else None)
+
+    def load_file(
+        self,
+        path: Path,
+        overrides: Dict[str, Any],
+        cpath: str,
+        included_at: Optional[Where],
+        text: Optional[str] = None,
+    ) -> Tuple[StateMachine, str, str, Dict[str, Any]]:
+        outer_file, outer_params = self.file, self.params
+        resolved = path.resolve() if text is None else path
+        if resolved in self.stack:
+            chain = " -> ".join(p.stem for p in [*self.stack, resolved])
+            raise BehaviorLoadError(f"behavior includes itself: {chain}", *(included_at or (str(path), 0)))
+        self.stack.append(resolved)
+        self.file = str(path)
+        try:
+            node = self.compose(path, text)
+            top = self.pairs(node, "a behavior file")
+            self.only(top, _TOP_KEYS, "a behavior file")
+            for required in ("behavior", "outcomes", "states"):
+                if required not in top:
+                    self.fail(node, f"a behavior file needs the key {required!r} (keys: {', '.join(_TOP_KEYS)})")
+            name_node = top["behavior"][1]
+            name = self.name(name_node, "behavior")
+            if not _NAME_RE.match(name):
+                self.fail(name_node, f"behavior name {name!r} must be letters, digits, '_' or '-'")
+            if text is None and path.stem != name:
+                self.fail(name_node, f"behavior {name!r} must be in a file named {name}.yaml, not {path.name}")
+            description = ""
+            if "description" in top:
+                description = str(self.value(top["description"][1]))
+            self.params = self.parameters(top.get("parameters"), overrides, name, included_at)
+            root = self.machine(top, StateMachine, cpath, node)
+            return root, name, description, dict(self.params)
+        finally:
+            self.stack.pop()
+            self.file, self.params = outer_file, outer_params
+
+    def parameters(
+        self, entry: Optional[Tuple[Node, Node]], overrides: Dict[str, Any], behavior: str, included_at: Optional[Where]
+    ) -> Dict[str, Any]:
+        specs: Dict[str, _ParamSpec] = {}
+        if entry is not None:
+            for pname, (key_node, spec_node) in self.pairs(entry[1], "parameters").items():
+                specs[pname] = self.param_spec(pname, key_node, spec_node)
+        values: Dict[str, Any] = {}
+        for pname, value in overrides.items():
+            if pname not in specs:
+                message = choices_message(f"behavior {behavior!r} has no parameter; override", pname, specs)
+                if included_at is not None:
+                    raise BehaviorLoadError(message, *included_at)
+                raise ConfigError(message)
+            try:
+                values[pname] = specs[pname].check(value)
+            except ConfigError as err:
+                message = f"behavior {behavior!r}: override of {err}"
+                if included_at is not None:
+                    raise BehaviorLoadError(message, *included_at) from err
+                raise ConfigError(message) from err
+        for pname, spec in specs.items():
+            if pname not in values:
+                if not spec.has_default:
+                    message = f"behavior {behavior!r} needs a value for parameter {pname!r} (it has no default)"
+                    raise BehaviorLoadError(message, *(included_at or spec.where))
+                values[pname] = spec.default
+        return values
+
+    def param_spec(self, pname: str, key_node: Node, spec_node: Node) -> _ParamSpec:
+        spec_pairs = self.pairs(spec_node, f"parameter {pname!r}")
+        self.only(spec_pairs, _PARAM_KEYS, f"parameter {pname!r}")
+        if "type" not in spec_pairs:
+            self.fail(spec_node, f"parameter {pname!r} needs a type (valid: {', '.join(_PARAM_TYPES)})")
+        type_node = spec_pairs["type"][1]
+        type_name = self.name(type_node, f"type of parameter {pname!r}")
+        if type_name not in _PARAM_TYPES:
+            self.fail(type_node, choices_message(f"type of parameter {pname!r}", type_name, _PARAM_TYPES))
+        has_default = "default" in spec_pairs
+        spec = _ParamSpec(pname, type_name, None, has_default, (self.file, key_node.start_mark.line + 1))
+        for bound in ("min", "max"):
+            if bound in spec_pairs:
+                bound_node = spec_pairs[bound][1]
+                value = self.constructor.construct_object(bound_node, deep=True)
+                numeric = isinstance(value, (int, float)) and not isinstance(value, bool)
+                if type_name not in ("float", "int") or not numeric:
+                    self.fail(bound_node, f"{bound} of parameter {pname!r} needs a number and a float or int type")
+                setattr(spec, "minimum" if bound == "min" else "maximum", value)
+        if "choices" in spec_pairs:
+            choices = self.constructor.construct_object(spec_pairs["choices"][1], deep=True)
+            if not isinstance(choices, list) or not choices:
+                self.fail(spec_pairs["choices"][1], f"choices of parameter {pname!r} must be a non-empty list")
+            spec.choices = choices
+        if has_default:
+            default_node = spec_pairs["default"][1]
+            try:
+                spec.default = spec.check(self.constructor.construct_object(default_node, deep=True))
+            except ConfigError as err:
+                self.fail(default_node, f"default of {err}")
+        return spec
+
+    # --- containers ------------------------------------------------------------------------------------------
+    def container_head(self, pairs: Dict[str, Tuple[Node, Node]], what: str, node: Node) -> Dict[str, Any]:
+        if "outcomes" not in pairs:
+            self.fail(node, f"{what} needs outcomes")
+        if "states" not in pairs:
+            self.fail(node, f"{what} needs states")
+        head: Dict[str, Any] = {"outcomes": [n for n, _ in self.names(pairs["outcomes"][1], "outcomes")]}
+        for key in ("input_keys", "output_keys"):
+            head[key] = [n for n, _ in self.names(pairs[key][1], key)] if key in pairs else []
+        if "userdata" in pairs:
+            defaults = self.pairs(pairs["userdata"][1], "userdata")
+            head["userdata"] = {key: self.value(value_node) for key, (_, value_node) in defaults.items()}
+        return head
+
+    def machine(
+        self, pairs: Dict[str, Tuple[Node, Node]], cls: Type[StateMachine], cpath: str, node: Node
+    ) -> StateMachine:
+        what = f"{cls.kind} {cpath}"
+        head = self.container_head(pairs, what, node)
+        self.mark((cpath, None, None, None), pairs["states"][0])
+        try:
+            sm = cls(**head)
+        except ConfigError as err:
+            self.fail(node, f"{what}: {err}")
+        sm._path = cpath  # for add-time messages; attach sets it again
+        for key in ("output_keys",):
+            if key in pairs:
+                for key_name, key_node in self.names(pairs[key][1], key):
+                    self.mark((cpath, None, "key", key_name), key_node)
+        if "initial" in pairs:
+            initial_node = pairs["initial"][1]
+            sm.set_initial_state(self.name(initial_node, "initial"))
+            self.mark((cpath, None, "initial", None), initial_node)
+            self.mark((cpath, None, "initial", initial_node.value), initial_node)
+        states = self.pairs(pairs["states"][1], f"states of {what}")
+        for label, (label_node, state_node) in states.items():
+            path = child_path(cpath, label)
+            self.mark((cpath, label, None, None), label_node)
+            self.mark((cpath, label, "label", label), label_node)
+            entry = self.pairs(state_node, f"state {label!r}")
+            state = self.state(entry, label, path, state_node, in_concurrency=False)
+            transitions = self.links(entry, "transitions", cpath, label)
+            autonomy = self.links(entry, "autonomy", cpath, label)
+            remapping = self.links(entry, "remapping", cpath, label)
+            try:
+                sm.add(label, state, transitions=transitions, autonomy=autonomy, remapping=remapping)
+            except BehaviorConstructionError as err:
+                err.container = cpath
+                self.engine_error(err, (self.file, label_node.start_mark.line + 1))
+        return sm
+
+    def links(self, entry: Dict[str, Tuple[Node, Node]], key: str, cpath: str, label: str) -> Dict[str, str]:
+        """transitions / autonomy / remapping of a state: names as written, each item marked."""
+        if key not in entry:
+            return {}
+        field = {"transitions": "transition", "autonomy": "autonomy", "remapping": "remapping"}[key]
+        result: Dict[str, str] = {}
+        for item, (item_node, value_node) in self.pairs(entry[key][1], f"{key} of {label!r}").items():
+            result[item] = self.name(value_node, f"{key} of {label!r}.{item}")
+            self.mark((cpath, label, field, item), item_node)
+        return result
+
+    def concurrency(self, pairs: Dict[str, Tuple[Node, Node]], cpath: str, node: Node) -> ConcurrencyContainer:
+        what = f"concurrency container {cpath}"
+        self.only(pairs, _CONCURRENCY_KEYS, what)
+        head = self.container_head(pairs, what, node)
+        self.mark((cpath, None, None, None), pairs["states"][0])
+        try:
+            cc = ConcurrencyContainer(**head)
+        except ConfigError as err:
+            self.fail(node, f"{what}: {err}")
+        cc._path = cpath  # for add-time messages; attach sets it again
+        if "output_keys" in pairs:
+            for key_name, key_node in self.names(pairs["output_keys"][1], "output_keys"):
+                self.mark((cpath, None, "key", key_name), key_node)
+        for label, (label_node, state_node) in self.pairs(pairs["states"][1], f"states of {what}").items():
+            self.mark((cpath, label, None, None), label_node)
+            self.mark((cpath, label, "label", label), label_node)
+            entry = self.pairs(state_node, f"state {label!r}")
+            state = self.state(entry, label, child_path(cpath, label), state_node, in_concurrency=True)
+            autonomy = self.links(entry, "autonomy", cpath, label)
+            remapping = self.links(entry, "remapping", cpath, label)
+            try:
+                cc.add(label, state, remapping=remapping, autonomy=autonomy)
+            except BehaviorConstructionError as err:
+                err.container = cpath
+                self.engine_error(err, (self.file, label_node.start_mark.line + 1))
+        if "conditions" not in pairs:
+            self.fail(node, f"{what} needs conditions (a list of {{outcome: ..., when: [[state, outcome], ...]}})")
+        conditions_node = pairs["conditions"][1]
+        if not isinstance(conditions_node, SequenceNode):
+            self.fail(conditions_node, f"conditions of {what} must be a list, got {_kind(conditions_node)}")
+        for condition_node in conditions_node.value:
+            condition = self.pairs(condition_node, f"a condition of {what}")
+            self.only(condition, ("outcome", "when"), f"a condition of {what}")
+            if "outcome" not in condition or "when" not in condition:
+                self.fail(condition_node, "a condition needs outcome: and when: [[state, outcome], ...]")
+            outcome = self.name(condition["outcome"][1], "condition outcome")
+            self.mark((cpath, None, "condition", outcome), condition_node)
+            when_node = condition["when"][1]
+            if not isinstance(when_node, SequenceNode):
+                self.fail(when_node, f"when of condition {outcome!r} must be a list of [state, outcome] pairs")
+            when: List[Tuple[str, str]] = []
+            for pair_node in when_node.value:
+                if not isinstance(pair_node, SequenceNode) or len(pair_node.value) != 2:
+                    self.fail(pair_node, f"each item of when of condition {outcome!r} must be a pair [state, outcome]")
+                child = self.name(pair_node.value[0], "state of a condition")
+                child_outcome = self.name(pair_node.value[1], "outcome of a condition")
+                self.mark((cpath, child, "condition", outcome), pair_node)
+                when.append((child, child_outcome))
+            cc.add_condition(outcome, when)
+        return cc
+
+    # --- states --------------------------------------------------------------------------------------------------
+    def state(
+        self, entry: Dict[str, Tuple[Node, Node]], label: str, path: str, node: Node, in_concurrency: bool
+    ) -> State:
+        kinds = [k for k in _KINDS if k in entry]
+        if len(kinds) != 1:
+            found = ", ".join(kinds) or "none"
+            self.fail(node, f"state {label!r} needs exactly one of {', '.join(_KINDS)} (found: {found})")
+        kind = kinds[0]
+        links = ("autonomy", "remapping") if in_concurrency else ("transitions", "autonomy", "remapping")
+        if kind == "class":
+            self.only(entry, ("class", "parameters", "rate_hz", *links), f"state {label!r}")
+            state = self.leaf(entry, label, node)
+            if "rate_hz" in entry:
+                rate_node = entry["rate_hz"][1]
+                try:
+                    state.rate_hz = self.value(rate_node)
+                except ConfigError as err:
+                    self.fail(rate_node, f"state {label!r}: {err}")
+            return state
+        if kind == "behavior":
+            self.only(entry, ("behavior", "parameters", *links), f"state {label!r}")
+            return self.sub_behavior(entry, label, path)
+        self.only(entry, (kind, *links), f"state {label!r}")
+        body_node = entry[kind][1]
+        body = self.pairs(body_node, f"{kind} of {label!r}")
+        if kind == "concurrency":
+            return self.concurrency(body, path, body_node)
+        cls: Type[StateMachine] = PriorityContainer if kind == "priority" else StateMachine
+        self.only(body, _CONTAINER_KEYS, f"{kind} of {label!r}")
+        return self.machine(body, cls, path, body_node)
+
+    def leaf(self, entry: Dict[str, Tuple[Node, Node]], label: str, node: Node) -> State:
+        class_node = entry["class"][1]
+        class_path = self.name(class_node, f"class of {label!r}")
+        cls = self.import_state_class(class_path, class_node)
+        params: Dict[str, Any] = {}
+        param_nodes: Dict[str, Node] = {}
+        if "parameters" in entry:
+            for pname, (pkey, pvalue) in self.pairs(entry["parameters"][1], f"parameters of {label!r}").items():
+                params[pname] = self.value(pvalue)
+                param_nodes[pname] = pkey
+        signature = inspect.signature(cls.__init__)
+        accepted = [
+            n
+            for n, p in signature.parameters.items()
+            if n != "self" and p.kind not in (p.VAR_POSITIONAL, p.VAR_KEYWORD)
+        ]
+        takes_any = any(p.kind is p.VAR_KEYWORD for p in signature.parameters.values())
+        for pname, pnode in param_nodes.items():
+            if pname not in accepted and not takes_any:
+                self.fail(pnode, choices_message(f"state class {cls.__name__} has no parameter", pname, accepted))
+        missing = [
+            n
+            for n, p in signature.parameters.items()
+            if n in accepted and p.default is p.empty and p.kind is not p.VAR_POSITIONAL and n not in params
+        ]
+        if missing:
+            self.fail(
+                entry["parameters"][0] if "parameters" in entry else class_node,
+                f"state {label!r}: {cls.__name__} needs parameter(s) {', '.join(missing)} "
+                f"(parameters: {', '.join(accepted)})",
+            )
+        try:
+            return cls(**params)
+        except (ConfigError, ValueError, TypeError) as err:
+            self.fail(class_node, f"state {label!r}: {cls.__name__} rejected its parameters: {err}")
+
+    def import_state_class(self, class_path: str, node: Node) -> Type[State]:
+        module_name, _, class_name = class_path.rpartition(".")
+        if not module_name:
+            self.fail(node, f"class {class_path!r} must be a dotted path module.Class")
+        try:
+            module = importlib.import_module(module_name)
+        except ImportError as err:
+            self.fail(node, f"cannot import module {module_name!r} for state class {class_path!r}: {err}")
+        states = sorted(
+            n
+            for n, obj in vars(module).items()
+            if inspect.isclass(obj) and issubclass(obj, State) and not issubclass(obj, Container)
+        )
+        cls = getattr(module, class_name, None)
+        if cls is None:
+            self.fail(node, choices_message(f"module {module_name!r} has no state class", class_name, states))
+        if not inspect.isclass(cls) or not issubclass(cls, State):
+            self.fail(node, f"{class_path!r} is not a State class (state classes there: {', '.join(states) or 'none'})")
+        if issubclass(cls, Container):
+            self.fail(node, f"{class_path!r} is a container: use state_machine:, concurrency: or priority: instead")
+        return cls
+
+    def sub_behavior(self, entry: Dict[str, Tuple[Node, Node]], label: str, path: str) -> StateMachine:
+        name_node = entry["behavior"][1]
+        name = self.name(name_node, f"behavior of {label!r}")
+        where = (self.file, name_node.start_mark.line + 1)
+        dirs = [Path(self.file).parent, *self.search_path] if self.file != "<string>" else list(self.search_path)
+        try:
+            file = find_behavior(name, dirs)
+        except ConfigError as err:
+            raise BehaviorLoadError(f"state {label!r}: {err}", *where) from err
+        overrides: Dict[str, Any] = {}
+        if "parameters" in entry:
+            for pname, (_, pvalue) in self.pairs(entry["parameters"][1], f"parameters of {label!r}").items():
+                overrides[pname] = self.value(pvalue)
+        root, _, _, _ = self.load_file(file, overrides, path, where)
+        return root
+
+
+def _kind(node: Optional[Node]) -> str:
+    if isinstance(node, MappingNode):
+        return "a mapping"
+    if isinstance(node, SequenceNode):
+        return "a list"
+    if isinstance(node, ScalarNode):
+        return f"the value {node.value!r}" if node.value else "an empty value"
+    return "nothing"
+
+
+__all__ = [
+    "BEHAVIOR_PATH_ENV",
+    "default_search_path",
+    "find_behavior",
+    "list_behaviors",
+    "load_behavior",
+    "load_behavior_text",
+]
