@@ -59,9 +59,10 @@ class KinematicRobot:
         self.static_tf.sendTransform(transform(self.map_frame, self.odom_frame, rospy.Time.now(), *self.start))
         rospy.Subscriber("cmd_vel", Twist, self.on_cmd, queue_size=1, tcp_nodelay=True)
         self.last_step = rospy.get_time()
-        rospy.Timer(rospy.Duration(1.0 / self.rate_hz), self.step)
+        rospy.Timer(rospy.Duration(1.0 / self.rate_hz), quiet_at_shutdown(self.step))
         if self.grid is not None:
-            rospy.Timer(rospy.Duration(1.0 / float(rospy.get_param("~scan_rate", 10.0))), self.publish_scan)
+            scan_period_s = 1.0 / float(rospy.get_param("~scan_rate", 10.0))
+            rospy.Timer(rospy.Duration(scan_period_s), quiet_at_shutdown(self.publish_scan))
 
     def on_cmd(self, msg):
         with self.lock:
@@ -128,6 +129,19 @@ class KinematicRobot:
         scan.range_max = self.scan_range
         scan.ranges = ranges.astype(np.float32).tolist()
         self.scan_pub.publish(scan)
+
+
+def quiet_at_shutdown(callback):
+    """Timer callbacks may still fire while rospy closes the publishers: ignore that, not real errors."""
+
+    def wrapped(event):
+        try:
+            callback(event)
+        except rospy.ROSException:
+            if not rospy.is_shutdown():
+                raise
+
+    return wrapped
 
 
 if __name__ == "__main__":

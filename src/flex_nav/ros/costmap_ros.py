@@ -20,9 +20,10 @@ Publishes the costmap as OccupancyGrid on ``~<name>/costmap``. The node serves C
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import threading
-from typing import Optional
+from typing import Optional, Tuple
 
 import actionlib
 import numpy as np
@@ -41,29 +42,48 @@ from flex_nav.nav.inflation import InflationParams
 from flex_nav.nav.obstacle_layer import LaserScan, ObstacleLayerParams
 from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.ros.conversions import grid_map_of, occupancy_grid_msg
-from flex_nav.ros.params import param_bool, param_float, param_str
+from flex_nav.ros.params import param_bool, param_float, param_str, reject_unknown
 from flex_nav.ros.robot_pose import RobotPoseSource
 
 MAP_WAIT_S = 30.0  # [s] default bound on waiting for the first map
+PARAMETERS = (
+    "global_frame", "robot_base_frame", "rolling_window", "static_map", "map_topic", "width", "height",
+    "resolution", "scan_topic", "bumper_topic", "obstacle_range", "raytrace_range", "track_unknown_space",
+    "robot_radius", "inflation_radius", "cost_scaling_factor", "update_frequency", "publish_frequency",
+    "transform_tolerance",
+)  # the names under ~<name>/ (anything else is a ConfigError)
 
 
 class CostmapROS:
     """One costmap with its ROS inputs and outputs; ``name`` is its parameter namespace (e.g. "global_costmap")."""
 
-    def __init__(self, name: str, tf_buffer: tf2_ros.Buffer) -> None:
+    def __init__(
+        self,
+        name: str,
+        tf_buffer: tf2_ros.Buffer,
+        *,
+        rolling_default: bool = False,
+        static_default: Optional[bool] = None,
+    ) -> None:
+        """``rolling_default``/``static_default``: defaults of ``rolling_window`` and ``static_map`` (None: a
+        static layer unless rolling), so each node picks the usual kind of costmap for its job."""
         ns = f"~{name}/"
+        reject_unknown(ns, PARAMETERS)
         self.name = name
         self.lock = threading.RLock()
         self.tf_buffer = tf_buffer
         self.global_frame = param_str(ns + "global_frame", param_str("~global_frame", "map"))
         self.robot_base_frame = param_str(ns + "robot_base_frame", param_str("~robot_base_frame", "base_footprint"))
-        self.rolling_window = param_bool(ns + "rolling_window", False)
-        self.use_static_map = param_bool(ns + "static_map", not self.rolling_window)
+        self.rolling_window = param_bool(ns + "rolling_window", rolling_default)
+        self.use_static_map = param_bool(
+            ns + "static_map", (not self.rolling_window) if static_default is None else static_default
+        )
         self.map_topic = param_str(ns + "map_topic", "map")
         self.width_m = param_float(ns + "width", 4.0, 0.1, 1000.0)
         self.height_m = param_float(ns + "height", 4.0, 0.1, 1000.0)
         self.resolution = param_float(ns + "resolution", 0.05, 0.001, 10.0)
         scan_topic = param_str(ns + "scan_topic", "scan")
+        self.scan_topic = scan_topic
         bumper_topic = param_str(ns + "bumper_topic", "bumper_hits")
         self.obstacles = ObstacleLayerParams(
             obstacle_range=param_float(ns + "obstacle_range", 2.5, 0.0, 100.0),
@@ -85,7 +105,8 @@ class CostmapROS:
             raise ConfigError(f"{rospy.resolve_name(ns)}: a costmap needs static_map: true or rolling_window: true")
 
         self.costmap: Optional[Costmap] = None
-        self.last_scan_time: Optional[rospy.Time] = None
+        self.last_scan_time: Optional[rospy.Time] = None  # header stamp of the newest scan used
+        self.last_scan_received_s: Optional[float] = None  # [s] rospy.get_time() when it was used
         self._map_received = threading.Event()
         if self.rolling_window:
             self.costmap = Costmap.rolling(
@@ -159,6 +180,7 @@ class CostmapROS:
             return
         with self.lock:
             self.last_scan_time = msg.header.stamp
+            self.last_scan_received_s = rospy.get_time()
             if self.costmap is not None:
                 if self.rolling_window:
                     self.costmap.recentre(x, y)
@@ -206,6 +228,13 @@ class CostmapROS:
                 frame_id=self.global_frame, stamp=rospy.Time.now(),
             )
         self.publisher.publish(msg)
+
+    def snapshot(self) -> Optional[Tuple[np.ndarray, CostmapGeometry]]:
+        """A copy of the current costs and geometry (for planning or checking outside the lock), or None."""
+        with self.lock:
+            if self.costmap is None:
+                return None
+            return self.costmap.costs.copy(), dataclasses.replace(self.costmap.geometry)
 
     def wait_for_map(self, timeout_s: float = MAP_WAIT_S) -> bool:
         """True once a static costmap has a map (immediately for a rolling window without a static layer)."""

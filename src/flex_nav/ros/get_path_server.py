@@ -19,7 +19,6 @@ costs, so goal and cancel callbacks never wait for it.
 
 from __future__ import annotations
 
-import dataclasses
 import time
 
 import numpy as np
@@ -37,7 +36,9 @@ from flex_nav.ros.costmap_ros import CostmapROS
 from flex_nav.ros.frames import goal_in_frame
 from flex_nav.ros.goal_server import RESULT_ABORTED, RESULT_SUCCEEDED, GoalServer, GoalTicket
 from flex_nav.ros.nav_params import planner_params
-from flex_nav.ros.params import param_float
+from flex_nav.ros.params import param_float, reject_unknown
+
+PARAMETERS = ("global_frame", "robot_base_frame", "map_timeout", "transform_timeout", "global_costmap", "planner")
 
 # how each planner status is reported through GetPath
 EMPTY_STATUSES = (PlanStatus.NO_PATH, PlanStatus.START_BLOCKED, PlanStatus.GOAL_BLOCKED)
@@ -61,6 +62,7 @@ def warm_up(planner: GridPlanner) -> None:
 class GetPathServer:
     def __init__(self) -> None:
         self.name = rospy.get_name()
+        reject_unknown("~", PARAMETERS)
         self.map_timeout_s = param_float("~map_timeout", 1.0, 0.0, 60.0)
         self.transform_timeout_s = param_float("~transform_timeout", 0.2, 0.0, 10.0)
         self.planner = GridPlanner(planner_params())
@@ -103,11 +105,10 @@ class GetPathServer:
             return "FAILURE", f"robot pose unknown: {err}", None
         feedback = GetPathFeedback(location=pose_of_xy_yaw(*start), goal=pose_of_xy_yaw(*goal))
         self.server.feedback(ticket, feedback)
-        with self.costmap.lock:
-            if self.costmap.costmap is None:
-                return "FAILURE", "no costmap yet", None
-            costs = self.costmap.costmap.costs.copy()
-            geometry = dataclasses.replace(self.costmap.costmap.geometry)
+        snapshot = self.costmap.snapshot()
+        if snapshot is None:
+            return "FAILURE", "no costmap yet", None
+        costs, geometry = snapshot
         result: PlanResult = self.planner.plan(costs, geometry, start, tuple(float(v) for v in goal))
         code = plan_code(result.status)
         if not result.ok:

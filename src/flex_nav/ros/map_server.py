@@ -26,7 +26,7 @@ from flex_nav.exceptions import ConfigError
 from flex_nav.nav.map_io import load_map, save_map
 from flex_nav.ros.conversions import grid_map_of, map_msg
 from flex_nav.ros.node import init_node
-from flex_nav.ros.params import param_str
+from flex_nav.ros.params import param_str, reject_unknown
 
 EXIT_OK = 0
 EXIT_FAILED = 1
@@ -37,6 +37,7 @@ class MapServer:
     """Publishes one loaded map (latched) and answers ``static_map`` with it."""
 
     def __init__(self, yaml_path: str) -> None:
+        reject_unknown("~", ("frame_id",))
         grid = load_map(yaml_path)
         frame_id = param_str("~frame_id", "map")
         if not frame_id:

@@ -2,15 +2,18 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 from flex_nav.exceptions import ConfigError
 from flex_nav.nav.planner import PlannerParams
-from flex_nav.ros.params import param_bool, param_float, param_int
+from flex_nav.ros.params import param_bool, param_float, param_int, reject_unknown
 
 
 def planner_params(ns: str = "~planner/") -> PlannerParams:
     """:class:`PlannerParams` from ``<ns>``: ``neutral_cost``, ``cost_factor``, ``lethal_cost`` (1..255),
     ``allow_unknown``, ``unknown_cost`` (0..254), ``goal_tolerance`` [m], ``smooth``, ``smoothing_slack``,
     ``simplify``; defaults are PlannerParams' own."""
+    reject_unknown(ns, [f.name for f in dataclasses.fields(PlannerParams)])
     d = PlannerParams()
     try:
         return PlannerParams(

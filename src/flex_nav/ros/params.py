@@ -7,7 +7,7 @@ start with a clear message instead of misbehaving later.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from typing import Any
 
 import rospy
@@ -65,3 +65,22 @@ def _get(name: str, default: Any) -> Any:
     if value is _MISSING:
         raise ConfigError(f"required parameter {_resolved(name)} is not set")
     return value
+
+
+def reject_unknown(namespace: str, known: Iterable[str]) -> None:
+    """ConfigError if the parameter namespace (``"~"``, ``"~planner/"``, ...) holds a name not in ``known``.
+
+    A misspelt parameter would otherwise be ignored silently and its default used; this names it and the
+    valid names when the node starts.
+    """
+    key = namespace.rstrip("/") or namespace
+    values = rospy.get_param(key, {})
+    if not isinstance(values, dict):
+        raise ConfigError(f"parameter {_resolved(key)} must be a dictionary, got {values!r}")
+    valid = sorted(set(known))
+    for name in sorted(values):
+        if name not in valid:
+            raise ConfigError(
+                f"parameter {_resolved(key).rstrip('/')}/{name} is not a parameter of this node "
+                f"(valid: {', '.join(valid)})"
+            )

@@ -15,13 +15,14 @@ import rospy
 from geometry_msgs.msg import Twist, TwistStamped
 
 from flex_nav.follow.safety import CommandTimeout, twist_problem
-from flex_nav.ros.params import param_float
+from flex_nav.ros.params import param_float, reject_unknown
 
 CHECK_PERIOD_MIN_S = 0.01  # [s] fastest timeout check
 
 
 class TwistRelay:
     def __init__(self) -> None:
+        reject_unknown("~", ("timeout",))
         timeout_s = param_float("~timeout", 0.5, 0.0, 3600.0)
         self._timeout = CommandTimeout(timeout_s)
         self._lock = threading.Lock()

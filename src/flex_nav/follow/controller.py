@@ -1,0 +1,162 @@
+"""One goal of a path-following controller, with its safety rules, around regulated pure pursuit.
+
+:class:`SafeFollower` turns each control tick into a :class:`Decision`: the velocity to publish and whether
+the goal goes on, succeeded or must be aborted. Every decision other than RUNNING carries a zero command,
+and so does every failure:
+
+- stale sensors (no message for ``sensor_timeout`` [s], see :class:`~flex_nav.follow.safety.SensorWatchdog`)
+  -> ABORTED with the sensor named;
+- the robot pose cannot be had (``pose()`` raises a FlexNavError, e.g. NotReadyError) -> ABORTED with its
+  message;
+- pure pursuit reports INVALID_INPUT -> ABORTED; GOAL_REACHED -> SUCCEEDED;
+- COLLISION_AHEAD -> zero command while blocked; ABORTED once blocked for ``collision_timeout`` [s]
+  (0 aborts at once), so a person walking past does not end the goal but a wall does;
+- a non-finite command, or any exception raised while computing the tick -> ABORTED
+  ("internal error ..."), so a bug stops the robot instead of leaving it on its last command.
+
+Pure: the node passes times (one clock, [s]) and callables for the pose and the local costmap.
+"""
+
+from __future__ import annotations
+
+import enum
+import math
+from dataclasses import dataclass
+from typing import Callable, Optional, Sequence, Tuple
+
+import numpy as np
+
+from flex_nav.exceptions import ConfigError, FlexNavError
+from flex_nav.follow.safety import SensorWatchdog
+from flex_nav.nav.costmap_grid import CostmapGeometry
+from flex_nav.nav.pure_pursuit import Command, PurePursuitParams, PursuitStatus, RegulatedPurePursuit
+
+Pose2D = Tuple[float, float, float]  # (x [m], y [m], yaw [rad])
+LocalCostmap = Optional[Tuple[np.ndarray, CostmapGeometry]]
+
+
+class Outcome(enum.Enum):
+    RUNNING = 0
+    SUCCEEDED = 1
+    ABORTED = 2
+
+
+@dataclass(frozen=True)
+class Decision:
+    """What to publish now (``v`` [m/s], ``w`` [rad/s]) and what becomes of the goal."""
+
+    v: float
+    w: float
+    outcome: Outcome
+    reason: str = ""
+    command: Optional[Command] = None  # pure pursuit's output, when it ran
+
+    @property
+    def stops(self) -> bool:
+        return self.v == 0.0 and self.w == 0.0
+
+
+def _stop(outcome: Outcome, reason: str, command: Optional[Command] = None) -> Decision:
+    return Decision(0.0, 0.0, outcome, reason, command)
+
+
+class SafeFollower:
+    """Safety rules around one :class:`RegulatedPurePursuit`; see the module docstring."""
+
+    def __init__(
+        self,
+        params: PurePursuitParams,
+        *,
+        sensors: Sequence[str],
+        sensor_timeout_s: float,
+        collision_timeout_s: float,
+        nominal_period_s: float,
+        start_s: float,
+    ) -> None:
+        for name, value in (("collision_timeout_s", collision_timeout_s), ("nominal_period_s", nominal_period_s)):
+            if not math.isfinite(value) or value < 0.0:
+                raise ConfigError(f"{name} must be a finite number >= 0 [s], got {value!r}")
+        if nominal_period_s <= 0.0:
+            raise ConfigError(f"nominal_period_s must be > 0 [s], got {nominal_period_s!r}")
+        self.pursuit = RegulatedPurePursuit(params)
+        self.watchdog = SensorWatchdog(sensors, sensor_timeout_s, start_s)
+        self.collision_timeout_s = collision_timeout_s
+        self.nominal_period_s = nominal_period_s
+        self._last_tick_s: Optional[float] = None
+        self._blocked_since_s: Optional[float] = None
+
+    def set_path(self, poses: object) -> None:
+        """Follow ``poses`` ((N, 2|3) in the controller's frame); ConfigError if empty or not finite.
+
+        The previous command is kept, so a replaced path continues smoothly.
+        """
+        self.pursuit.set_path(poses)
+        self._blocked_since_s = None
+
+    def stop(self) -> None:
+        """The goal ended (or the robot was stopped): forget the path and the previous command."""
+        self.pursuit.clear()
+        self._last_tick_s = None
+        self._blocked_since_s = None
+
+    def tick(
+        self,
+        now_s: float,
+        pose: Callable[[], Pose2D],
+        velocity: Tuple[float, float],
+        local_costmap: Callable[[], LocalCostmap],
+    ) -> Decision:
+        """One control step at ``now_s``; never raises (an exception becomes an ABORTED decision)."""
+        try:
+            decision = self._tick(now_s, pose, velocity, local_costmap)
+        except FlexNavError as err:  # an expected failure with its own reason (no transform, bad input)
+            decision = _stop(Outcome.ABORTED, str(err))
+        except Exception as err:
+            decision = _stop(Outcome.ABORTED, f"internal error in the control step: {err!r}")
+        if decision.outcome is not Outcome.RUNNING:
+            self.stop()
+        return decision
+
+    def _tick(  # noqa: PLR0911 - one return per way a tick can end, read top to bottom
+        self,
+        now_s: float,
+        pose: Callable[[], Pose2D],
+        velocity: Tuple[float, float],
+        local_costmap: Callable[[], LocalCostmap],
+    ) -> Decision:
+        problem = self.watchdog.problem(now_s)
+        if problem is not None:
+            return _stop(Outcome.ABORTED, problem)
+        robot = pose()
+        dt = self.nominal_period_s if self._last_tick_s is None else now_s - self._last_tick_s
+        if dt <= 0.0:
+            dt = self.nominal_period_s
+        self._last_tick_s = now_s
+        costmap = local_costmap()
+        costs, geometry = costmap if costmap is not None else (None, None)
+        command = self.pursuit.step(robot, velocity, dt, costs, geometry)
+        status = command.status
+        if status is PursuitStatus.GOAL_REACHED:
+            return _stop(Outcome.SUCCEEDED, "goal reached", command)
+        if status is PursuitStatus.INVALID_INPUT:
+            return _stop(Outcome.ABORTED, command.reason, command)
+        if status is PursuitStatus.COLLISION_AHEAD:
+            if self._blocked_since_s is None:
+                self._blocked_since_s = now_s
+            blocked_s = now_s - self._blocked_since_s
+            if blocked_s >= self.collision_timeout_s:
+                return _stop(Outcome.ABORTED, f"{command.reason}; blocked for {blocked_s:.2f} s", command)
+            return _stop(Outcome.RUNNING, command.reason, command)
+        self._blocked_since_s = None
+        if not (math.isfinite(command.v) and math.isfinite(command.w)):
+            return _stop(Outcome.ABORTED, f"internal error: non-finite command ({command.v}, {command.w})", command)
+        return Decision(command.v, command.w, Outcome.RUNNING, command.reason, command)
+
+
+def warm_up(params: PurePursuitParams) -> None:
+    """Run pure pursuit once on a small made-up scene so its compiled kernels (closest point, arc collision
+    check) are loaded before the first goal, not during the first control period."""
+    geometry = CostmapGeometry(20, 20, 0.05, -0.5, -0.5)
+    pursuit = RegulatedPurePursuit(params)
+    pursuit.set_path(np.array([[0.0, 0.0, 0.0], [0.4, 0.0, 0.0], [0.8, 0.1, 0.0]]))
+    pursuit.step((0.0, 0.0, 0.0), (0.2, 0.0), 0.05, np.zeros(geometry.shape, dtype=np.uint8), geometry)

@@ -1,0 +1,336 @@
+#!/usr/bin/env python3
+"""rostest node: the pure pursuit controllers stop the robot (zero twist) on every failure path and on
+cancel, and the goal ends with the reason (controller_safety.test). This node plays the robot: it publishes
+odometry, tf and an empty scan, and can stop any of them or corrupt the odometry."""
+
+import math
+import sys
+import threading
+import unittest
+
+import actionlib
+import rospy
+import rostest
+import tf2_ros
+from actionlib_msgs.msg import GoalStatus
+from geometry_msgs.msg import PoseStamped, TransformStamped, TwistStamped
+from nav_msgs.msg import Odometry, Path
+from sensor_msgs.msg import LaserScan
+from std_msgs.msg import String
+
+from flex_nav.msg import (
+    FollowPathAction,
+    FollowPathActionResult,
+    FollowPathGoal,
+    FollowPathResult,
+    FollowTopicAction,
+    FollowTopicActionResult,
+    FollowTopicGoal,
+)
+from flex_nav.ros.node import init_node
+
+WAIT_S = 20.0  # [s] bound on servers appearing
+RESULT_WAIT_S = 5.0  # [s] bound on each answer
+PERIOD_S = 0.05  # [s] the controllers' control period (20 Hz, controller_safety.test)
+SENSOR_TIMEOUT_S = 0.3  # [s] (controller_safety.test)
+
+
+def straight_path(frame="map", length=5.0, yaw=0.0):
+    path = Path()
+    path.header.frame_id = frame
+    for k in range(int(length / 0.1) + 1):
+        pose = PoseStamped()
+        pose.header.frame_id = frame
+        pose.pose.position.x = 0.1 * k * math.cos(yaw)
+        pose.pose.position.y = 0.1 * k * math.sin(yaw)
+        pose.pose.orientation.z, pose.pose.orientation.w = math.sin(yaw / 2), math.cos(yaw / 2)
+        path.poses.append(pose)
+    return path
+
+
+class FakeRobot:
+    """Odometry + tf (map -> odom static, odom -> base_footprint) + an empty 360-beam scan at 20 Hz."""
+
+    def __init__(self):
+        self.odom_on = threading.Event()
+        self.scan_on = threading.Event()
+        self.odom_on.set()
+        self.scan_on.set()
+        self.bad_velocity = False
+        self.odom_frame = "odom"
+        self.odom_pub = rospy.Publisher("odom", Odometry, queue_size=1)
+        self.scan_pub = rospy.Publisher("scan", LaserScan, queue_size=1)
+        self.tf = tf2_ros.TransformBroadcaster()
+        static = TransformStamped()
+        static.header.stamp = rospy.Time.now()
+        static.header.frame_id, static.child_frame_id = "map", "odom"
+        static.transform.rotation.w = 1.0
+        self.static_tf = tf2_ros.StaticTransformBroadcaster()
+        self.static_tf.sendTransform(static)
+        self.thread = threading.Thread(target=self.loop, daemon=True)
+        self.thread.start()
+
+    def loop(self):
+        while not rospy.is_shutdown():
+            stamp = rospy.Time.now()
+            tf = TransformStamped()
+            tf.header.stamp = stamp
+            tf.header.frame_id, tf.child_frame_id = "odom", "base_footprint"
+            tf.transform.rotation.w = 1.0
+            self.tf.sendTransform(tf)
+            if self.odom_on.is_set():
+                odom = Odometry()
+                odom.header.stamp = stamp
+                odom.header.frame_id, odom.child_frame_id = self.odom_frame, "base_footprint"
+                odom.pose.pose.orientation.w = 1.0
+                if self.bad_velocity:
+                    odom.twist.twist.linear.x = float("nan")
+                self.odom_pub.publish(odom)
+            if self.scan_on.is_set():
+                scan = LaserScan()
+                scan.header.stamp = stamp
+                scan.header.frame_id = "base_footprint"
+                scan.angle_min, scan.angle_increment = -math.pi, 2 * math.pi / 360
+                scan.angle_max = scan.angle_min + 359 * scan.angle_increment
+                scan.range_min, scan.range_max = 0.05, 3.5
+                scan.ranges = [float("inf")] * 360
+                self.scan_pub.publish(scan)
+            rospy.sleep(0.05)
+
+    def healthy(self):
+        """Undo what a test broke; True if something was broken."""
+        broken = (self.odom_frame != "odom" or self.bad_velocity or not self.odom_on.is_set()
+                  or not self.scan_on.is_set())
+        self.odom_frame = "odom"
+        self.bad_velocity = False
+        self.odom_on.set()
+        self.scan_on.set()
+        return broken
+
+
+class Commands:
+    """Every TwistStamped a controller published, with a wait for one matching a condition."""
+
+    def __init__(self, topic):
+        self.cond = threading.Condition()
+        self.msgs = []
+        rospy.Subscriber(topic, TwistStamped, self.on_msg, queue_size=50)
+
+    def on_msg(self, msg):
+        with self.cond:
+            self.msgs.append(msg)
+            self.cond.notify_all()
+
+    def mark(self):
+        with self.cond:
+            return len(self.msgs)
+
+    def wait_for(self, condition, after, timeout_s=RESULT_WAIT_S):
+        deadline = rospy.get_time() + timeout_s
+        with self.cond:
+            while True:
+                for msg in self.msgs[after:]:
+                    if condition(msg):
+                        return msg
+                left = deadline - rospy.get_time()
+                if left <= 0:
+                    return None
+                self.cond.wait(min(left, 0.1))
+
+    def since(self, index):
+        with self.cond:
+            return list(self.msgs[index:])
+
+
+def is_zero(msg):
+    t = msg.twist
+    return (t.linear.x, t.linear.y, t.linear.z, t.angular.x, t.angular.y, t.angular.z) == (0.0,) * 6
+
+
+def moving(msg):
+    return not is_zero(msg)
+
+
+class Results:
+    """ActionResult messages of a server (their header stamps tell when the server ended each goal)."""
+
+    def __init__(self, topic, msg_type):
+        self.msgs = []
+        rospy.Subscriber(topic, msg_type, self.msgs.append, queue_size=50)
+
+    def for_goal(self, goal_id, timeout_s=RESULT_WAIT_S):
+        deadline = rospy.get_time() + timeout_s
+        while rospy.get_time() < deadline:
+            for msg in list(self.msgs):
+                if msg.status.goal_id.id == goal_id:
+                    return msg
+            rospy.sleep(0.01)
+        return None
+
+
+class TestControllerSafety(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.robot = FakeRobot()
+        cls.path_cmds = Commands("pp_path/cmd")
+        cls.topic_cmds = Commands("pp_topic/cmd")
+        cls.path_results = Results("pp_path/result", FollowPathActionResult)
+        cls.topic_results = Results("pp_topic/result", FollowTopicActionResult)
+        cls.path_client = actionlib.ActionClient("pp_path", FollowPathAction)
+        cls.topic_client = actionlib.ActionClient("pp_topic", FollowTopicAction)
+        assert cls.path_client.wait_for_server(rospy.Duration(WAIT_S)), "pp_path did not come up"
+        assert cls.topic_client.wait_for_server(rospy.Duration(WAIT_S)), "pp_topic did not come up"
+        cls.plan_pub = rospy.Publisher("test_plan", Path, queue_size=1, latch=True)
+
+    def setUp(self):
+        if self.robot.healthy():
+            rospy.sleep(2 * SENSOR_TIMEOUT_S)  # sensors fresh again after a test that stopped them
+
+    # ------------------------------------------------------------------ helpers
+    def send_path(self, path):
+        return self.path_client.send_goal(FollowPathGoal(path=path))
+
+    def wait_terminal(self, handle, timeout_s=RESULT_WAIT_S):
+        deadline = rospy.get_time() + timeout_s
+        while rospy.get_time() < deadline:
+            if handle.get_comm_state() == actionlib.CommState.DONE:
+                return handle.get_goal_status()
+            rospy.sleep(0.01)
+        self.fail(f"no result within {timeout_s} s")
+
+    def assert_aborted_and_stopped(self, handle, results, cmds, mark, reason_part):
+        self.assertEqual(self.wait_terminal(handle), GoalStatus.ABORTED)
+        result = handle.get_result()
+        self.assertEqual(result.code, FollowPathResult.FAILURE, result.message)
+        self.assertIn(reason_part, result.message)
+        ended = results.for_goal(handle.comm_state_machine.action_goal.goal_id.id)
+        self.assertIsNotNone(ended)
+        zero = cmds.wait_for(is_zero, mark)
+        self.assertIsNotNone(zero, "no zero twist published")
+        # the zero went out before the goal was reported aborted, and nothing moved the robot after it
+        self.assertLessEqual(zero.header.stamp, ended.header.stamp)
+        rospy.sleep(4 * PERIOD_S)
+        after = cmds.since(cmds.msgs.index(zero))
+        self.assertFalse(any(moving(m) for m in after), "a non-zero twist followed the stop")
+
+    def start_driving(self, path=None):
+        mark = self.path_cmds.mark()
+        handle = self.send_path(path or straight_path())
+        self.assertIsNotNone(self.path_cmds.wait_for(moving, mark), "the controller never drove")
+        return handle
+
+    # ------------------------------------------------------------------ bad goals
+    def test_empty_path(self):
+        mark = self.path_cmds.mark()
+        handle = self.send_path(Path())
+        self.assert_aborted_and_stopped(handle, self.path_results, self.path_cmds, mark, "the path is empty")
+
+    def test_path_in_unknown_frame(self):
+        mark = self.path_cmds.mark()
+        handle = self.send_path(straight_path(frame="nowhere"))
+        self.assert_aborted_and_stopped(handle, self.path_results, self.path_cmds, mark,
+                                        "'nowhere' cannot be transformed")
+
+    def test_path_with_nan(self):
+        path = straight_path()
+        path.poses[3].pose.position.y = float("nan")
+        mark = self.path_cmds.mark()
+        self.assert_aborted_and_stopped(self.send_path(path), self.path_results, self.path_cmds, mark,
+                                        "path pose 3")
+
+    # ------------------------------------------------------------------ sensors
+    def test_stale_odometry(self):
+        handle = self.start_driving()
+        mark = self.path_cmds.mark()
+        self.robot.odom_on.clear()
+        self.assert_aborted_and_stopped(handle, self.path_results, self.path_cmds, mark, "stale odom")
+
+    def test_stale_scan(self):
+        handle = self.start_driving()
+        mark = self.path_cmds.mark()
+        self.robot.scan_on.clear()
+        self.assert_aborted_and_stopped(handle, self.path_results, self.path_cmds, mark, "stale scan")
+
+    def test_odometry_in_unknown_frame(self):
+        handle = self.start_driving()
+        mark = self.path_cmds.mark()
+        self.robot.odom_frame = "lost_odom"
+        self.assert_aborted_and_stopped(handle, self.path_results, self.path_cmds, mark, "robot pose unknown")
+
+    def test_non_finite_velocity(self):
+        handle = self.start_driving()
+        mark = self.path_cmds.mark()
+        self.robot.bad_velocity = True
+        self.assert_aborted_and_stopped(handle, self.path_results, self.path_cmds, mark, "velocity is not finite")
+
+    # ------------------------------------------------------------------ cancel / replace
+    def test_cancel_stops_every_time(self):
+        for attempt in range(5):
+            handle = self.start_driving()
+            mark = self.path_cmds.mark()
+            handle.cancel()
+            self.assertEqual(self.wait_terminal(handle), GoalStatus.PREEMPTED, f"attempt {attempt}")
+            self.assertEqual(handle.get_result().code, FollowPathResult.PREEMPT)
+            ended = self.path_results.for_goal(handle.comm_state_machine.action_goal.goal_id.id)
+            zero = self.path_cmds.wait_for(is_zero, mark)
+            self.assertIsNotNone(zero, f"attempt {attempt}: no zero twist after cancel")
+            # published from the cancel callback itself, before the goal was reported preempted
+            self.assertLessEqual(zero.header.stamp, ended.header.stamp, f"attempt {attempt}")
+            rospy.sleep(4 * PERIOD_S)
+            after = self.path_cmds.since(self.path_cmds.msgs.index(zero))
+            self.assertFalse(any(moving(m) for m in after), f"attempt {attempt}: moved after the cancel")
+
+    def test_new_goal_replaces_old(self):
+        first = self.start_driving()
+        second = self.send_path(straight_path(yaw=0.3))
+        self.assertEqual(self.wait_terminal(first), GoalStatus.PREEMPTED)
+        self.assertIn("replaced by a newer goal", first.get_result().message)
+        mark = self.path_cmds.mark()
+        turning = self.path_cmds.wait_for(lambda m: m.twist.angular.z > 0.05, mark)
+        self.assertIsNotNone(turning, "the new path (to the left) is not being followed")
+        second.cancel()
+        self.assertEqual(self.wait_terminal(second), GoalStatus.PREEMPTED)
+
+    # ------------------------------------------------------------------ FollowTopic
+    def send_topic(self, topic):
+        goal = FollowTopicGoal(topic=String(data=topic))
+        return self.topic_client.send_goal(goal)
+
+    def test_topic_without_publisher_fails_with_reason(self):
+        mark = self.topic_cmds.mark()
+        handle = self.send_topic("nobody_publishes_this")
+        self.assert_aborted_and_stopped(handle, self.topic_results, self.topic_cmds, mark,
+                                        "no Path on /nobody_publishes_this within 0.5 s (0 publishers connected)")
+
+    def test_topic_follows_the_newest_path_and_cancels(self):
+        self.plan_pub.publish(straight_path(yaw=0.0))
+        mark = self.topic_cmds.mark()
+        handle = self.send_topic("/test_plan")
+        straight = self.topic_cmds.wait_for(moving, mark)
+        self.assertIsNotNone(straight)
+        self.assertAlmostEqual(straight.twist.angular.z, 0.0, places=6)
+        mark = self.topic_cmds.mark()
+        self.plan_pub.publish(straight_path(yaw=-0.4))  # newer path to the right
+        right = self.topic_cmds.wait_for(lambda m: m.twist.angular.z < -0.05, mark)
+        self.assertIsNotNone(right, "the newer path was not followed")
+        mark = self.topic_cmds.mark()
+        self.plan_pub.publish(Path(header=straight_path().header))  # an empty path on the topic
+        self.assert_aborted_and_stopped(handle, self.topic_results, self.topic_cmds, mark, "the path is empty")
+
+    def test_topic_goal_cancel_stops(self):
+        self.plan_pub.publish(straight_path())
+        mark = self.topic_cmds.mark()
+        handle = self.send_topic("/test_plan")
+        self.assertIsNotNone(self.topic_cmds.wait_for(moving, mark))
+        mark = self.topic_cmds.mark()
+        handle.cancel()
+        self.assertEqual(self.wait_terminal(handle), GoalStatus.PREEMPTED)
+        ended = self.topic_results.for_goal(handle.comm_state_machine.action_goal.goal_id.id)
+        zero = self.topic_cmds.wait_for(is_zero, mark)
+        self.assertIsNotNone(zero)
+        self.assertLessEqual(zero.header.stamp, ended.header.stamp)
+
+
+if __name__ == "__main__":
+    init_node("test_controller_safety", master_timeout_s=WAIT_S)
+    rostest.rosrun("flex_nav", "test_controller_safety", TestControllerSafety, sys.argv)

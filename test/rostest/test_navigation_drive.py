@@ -1,0 +1,163 @@
+#!/usr/bin/env python3
+"""rostest node: navigation.launch drives a kinematic robot to a goal through the whole chain, stops it on
+cancel, and its follow_topic_server replans along a path from a topic (navigation_drive.test)."""
+
+import math
+import os
+import sys
+import threading
+import unittest
+
+import actionlib
+import cv2
+import numpy as np
+import rospkg
+import rospy
+import rostest
+import tf2_ros
+from actionlib_msgs.msg import GoalStatus
+from geometry_msgs.msg import PoseStamped
+from nav_msgs.msg import Odometry, Path
+from std_msgs.msg import String
+
+from flex_nav.msg import (
+    FollowPathAction,
+    FollowPathGoal,
+    FollowTopicAction,
+    FollowTopicGoal,
+    FollowTopicResult,
+    GetPathAction,
+    GetPathGoal,
+)
+from flex_nav.nav.map_io import load_map
+from flex_nav.ros.conversions import path_msg
+from flex_nav.ros.node import init_node
+
+NS = "/robot1/"
+BASE = "robot1/base_footprint"
+WAIT_S = 40.0  # [s] bound on the servers appearing (eight nodes start on a shared 2-core machine)
+DRIVE_WAIT_S = 60.0  # [s] bound on reaching the goal
+RADIUS = 0.177  # [m] TurtleBot 2 (config/turtlebot2.yaml)
+MAP = os.path.join(rospkg.RosPack().get_path("flex_nav"), "test", "data", "maps", "test_rooms.yaml")
+
+
+def goal_pose(x, y):
+    msg = PoseStamped()
+    msg.header.frame_id = "map"
+    msg.pose.position.x, msg.pose.position.y = x, y
+    msg.pose.orientation.w = 1.0
+    return msg
+
+
+class TestNavigationDrive(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.clients = {}
+        for name, action in (("get_path_server", GetPathAction), ("follow_path_server", FollowPathAction),
+                             ("follow_topic_server", FollowTopicAction), ("pure_pursuit_path", FollowPathAction),
+                             ("pure_pursuit_topic", FollowTopicAction)):
+            client = actionlib.SimpleActionClient(NS + name, action)
+            assert client.wait_for_server(rospy.Duration(WAIT_S)), f"{NS + name} did not come up"
+            cls.clients[name] = client
+        cls.tf = tf2_ros.Buffer()
+        cls.listener = tf2_ros.TransformListener(cls.tf)
+        grid = load_map(MAP)
+        free = (grid.occupancy < 50).astype(np.uint8)
+        cls.clearance = cv2.distanceTransform(free, cv2.DIST_L2, 5) * grid.resolution  # [m] to occupied cells
+        cls.grid = grid
+        cls.odom = []
+        rospy.Subscriber(NS + "odom", Odometry, cls.odom.append, queue_size=100)
+        cls.global_plan = rospy.Publisher(NS + "test_global_plan", Path, queue_size=1, latch=True)
+
+    def robot_xy(self):
+        tf = self.tf.lookup_transform("map", BASE, rospy.Time(0), rospy.Duration(2.0))
+        return tf.transform.translation.x, tf.transform.translation.y
+
+    def plan_to(self, x, y):
+        client = self.clients["get_path_server"]
+        client.send_goal(GetPathGoal(pose=goal_pose(x, y)))
+        self.assertTrue(client.wait_for_result(rospy.Duration(10.0)))
+        self.assertEqual(client.get_state(), GoalStatus.SUCCEEDED, client.get_result().message)
+        return client.get_result().plan
+
+    def test_1_follow_topic_server_replans_along_a_topic_path(self):
+        start = self.robot_xy()
+        points = np.array([[start[0] + 0.1 * k, start[1]] for k in range(25)])  # 2.4 m east
+        self.global_plan.publish(path_msg(points, "map", rospy.Time.now()))
+        local = []
+        event = threading.Event()
+
+        def on_plan(msg):
+            local.append(msg)
+            event.set()
+
+        sub = rospy.Subscriber(NS + "follow_topic_server/plan", Path, on_plan)
+        client = self.clients["follow_topic_server"]
+        client.send_goal(FollowTopicGoal(topic=String(data=NS + "test_global_plan")))
+        self.assertTrue(event.wait(10.0), "no local plan published")
+        plan = local[-1]
+        first, last = plan.poses[0].pose.position, plan.poses[-1].pose.position
+        self.assertAlmostEqual(first.x, start[0], delta=0.05)
+        self.assertAlmostEqual(last.x, start[0] + 1.5, delta=0.06)  # lookahead_distance 1.5 m along the path
+        self.assertAlmostEqual(last.y, start[1], delta=0.06)
+        client.cancel_goal()
+        self.assertTrue(client.wait_for_result(rospy.Duration(5.0)))
+        self.assertEqual(client.get_state(), GoalStatus.PREEMPTED)
+        sub.unregister()
+
+    def test_2_follow_topic_server_without_publisher(self):
+        client = self.clients["follow_topic_server"]
+        client.send_goal(FollowTopicGoal(topic=String(data="silent_topic")))
+        self.assertTrue(client.wait_for_result(rospy.Duration(10.0)))
+        self.assertEqual(client.get_state(), GoalStatus.ABORTED)
+        self.assertEqual(client.get_result().code, FollowTopicResult.FAILURE)
+        self.assertIn(f"no Path on {NS}silent_topic within 2.0 s", client.get_result().message)
+
+    def test_3_drive_to_goal_through_the_chain(self):
+        goal = (3.0, 3.5)  # beside the block x 1.5..2.5, y 3..4: the plan bends around its corner
+        plan = self.plan_to(*goal)
+        planner, controller = self.clients["follow_path_server"], self.clients["pure_pursuit_topic"]
+        planner.send_goal(FollowPathGoal(path=plan))
+        controller.send_goal(FollowTopicGoal(topic=String(data=NS + "follow_path_server/plan")))
+        worst = math.inf
+        deadline = rospy.get_time() + DRIVE_WAIT_S
+        while rospy.get_time() < deadline and controller.get_state() in (GoalStatus.PENDING, GoalStatus.ACTIVE):
+            x, y = self.robot_xy()
+            row, col = self.grid.world_to_cell(x, y)
+            worst = min(worst, float(self.clearance[row, col]))
+            rospy.sleep(0.1)
+        self.assertEqual(controller.get_state(), GoalStatus.SUCCEEDED, controller.get_result())
+        self.assertTrue(planner.wait_for_result(rospy.Duration(10.0)))
+        self.assertEqual(planner.get_state(), GoalStatus.SUCCEEDED, planner.get_result().message)
+        x, y = self.robot_xy()
+        self.assertLess(math.hypot(x - goal[0], y - goal[1]), 0.25)
+        self.assertGreater(worst, RADIUS, f"the robot came within {worst:.3f} m of a wall")
+
+    def test_4_cancel_stops_the_robot(self):
+        plan = self.plan_to(1.0, 1.0)
+        controller = self.clients["pure_pursuit_path"]
+        start = self.robot_xy()
+        controller.send_goal(FollowPathGoal(path=plan))
+        deadline = rospy.get_time() + 20.0
+        while rospy.get_time() < deadline and math.dist(self.robot_xy(), start) < 0.3:
+            rospy.sleep(0.05)
+        self.assertGreaterEqual(math.dist(self.robot_xy(), start), 0.3, "the robot did not move")
+        mark = len(self.odom)
+        controller.cancel_goal()
+        self.assertTrue(controller.wait_for_result(rospy.Duration(5.0)))
+        self.assertEqual(controller.get_state(), GoalStatus.PREEMPTED)
+        deadline = rospy.get_time() + 5.0
+        stopped = None
+        while stopped is None and rospy.get_time() < deadline:
+            stopped = next((m for m in self.odom[mark:] if m.twist.twist.linear.x == 0.0
+                            and m.twist.twist.angular.z == 0.0), None)
+            rospy.sleep(0.02)
+        self.assertIsNotNone(stopped, "the robot kept moving after the cancel")
+        here = self.robot_xy()
+        rospy.sleep(0.5)
+        self.assertLess(math.dist(self.robot_xy(), here), 1e-3, "the robot moved after it stopped")
+
+
+if __name__ == "__main__":
+    init_node("test_navigation_drive", master_timeout_s=WAIT_S)
+    rostest.rosrun("flex_nav", "test_navigation_drive", TestNavigationDrive, sys.argv)

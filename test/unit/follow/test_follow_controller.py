@@ -1,0 +1,169 @@
+"""SafeFollower: every way a controller goal ends, and that each non-running decision stops the robot."""
+
+import math
+
+import numpy as np
+import pytest
+
+from flex_nav.exceptions import ConfigError, NotReadyError
+from flex_nav.follow.controller import Outcome, SafeFollower
+from flex_nav.nav.costmap_grid import LETHAL, CostmapGeometry
+from flex_nav.nav.pure_pursuit import PurePursuitParams
+
+STRAIGHT = np.array([[0.0, 0.0, 0.0], [3.0, 0.0, 0.0]])
+PARAMS = PurePursuitParams(desired_linear_vel=0.5, lookahead_dist=0.6, goal_dist_tol=0.1, use_final_heading=False)
+
+
+def follower(collision_timeout_s=1.0, sensors=("odom", "scan")):
+    f = SafeFollower(PARAMS, sensors=sensors, sensor_timeout_s=0.5, collision_timeout_s=collision_timeout_s,
+                     nominal_period_s=0.05, start_s=0.0)
+    return f
+
+
+def fresh(f, now_s):
+    for name in ("odom", "scan"):
+        f.watchdog.saw(name, now_s)
+
+
+def at(x, y=0.0, yaw=0.0):
+    return lambda: (x, y, yaw)
+
+
+def no_costmap():
+    return None
+
+
+def test_drives_forward_along_the_path():
+    f = follower()
+    f.set_path(STRAIGHT)
+    v = 0.0
+    for k in range(10):
+        now = 0.05 * (k + 1)
+        fresh(f, now)
+        d = f.tick(now, at(0.5), (v, 0.0), no_costmap)
+        assert d.outcome is Outcome.RUNNING
+        assert d.w == pytest.approx(0.0, abs=1e-9)
+        assert d.v > v or d.v == pytest.approx(0.5)
+        v = d.v
+    assert v == pytest.approx(0.5)
+
+
+def test_goal_reached_succeeds_with_zero():
+    f = follower()
+    f.set_path(STRAIGHT)
+    fresh(f, 1.0)
+    d = f.tick(1.0, at(2.95), (0.2, 0.0), no_costmap)
+    assert d.outcome is Outcome.SUCCEEDED and d.stops and d.reason == "goal reached"
+    assert f.pursuit.path is None  # forgotten after the goal ended
+
+
+@pytest.mark.parametrize("stale", ["odom", "scan"])
+def test_stale_sensor_aborts_with_zero_and_names_it(stale):
+    f = follower()
+    f.set_path(STRAIGHT)
+    fresh(f, 1.0)
+    assert f.tick(1.2, at(0.5), (0.3, 0.0), no_costmap).outcome is Outcome.RUNNING
+    f.watchdog.saw("odom" if stale == "scan" else "scan", 1.6)
+    d = f.tick(1.6, at(0.5), (0.3, 0.0), no_costmap)
+    assert d.outcome is Outcome.ABORTED and d.stops
+    assert d.reason.startswith(f"stale {stale}")
+
+
+def test_sensor_never_seen_aborts_after_grace():
+    f = follower()
+    f.set_path(STRAIGHT)
+    d = f.tick(0.6, at(0.5), (0.0, 0.0), no_costmap)
+    assert d.outcome is Outcome.ABORTED and d.stops and "since start" in d.reason
+
+
+def test_pose_failure_aborts_with_reason():
+    f = follower()
+    f.set_path(STRAIGHT)
+    fresh(f, 1.0)
+
+    def no_pose():
+        raise NotReadyError("no transform map -> base_footprint")
+
+    d = f.tick(1.0, no_pose, (0.0, 0.0), no_costmap)
+    assert d.outcome is Outcome.ABORTED and d.stops
+    assert "no transform map -> base_footprint" in d.reason
+
+
+def test_any_exception_aborts_with_zero():
+    f = follower()
+    f.set_path(STRAIGHT)
+    fresh(f, 1.0)
+
+    def broken_costmap():
+        raise ZeroDivisionError("bug")
+
+    d = f.tick(1.0, at(0.5), (0.3, 0.0), broken_costmap)
+    assert d.outcome is Outcome.ABORTED and d.stops
+    assert d.reason.startswith("internal error in the control step: ZeroDivisionError")
+
+
+def test_without_path_aborts():
+    f = follower()
+    fresh(f, 1.0)
+    d = f.tick(1.0, at(0.5), (0.0, 0.0), no_costmap)
+    assert d.outcome is Outcome.ABORTED and d.stops and "no path" in d.reason
+
+
+def test_nan_pose_aborts():
+    f = follower()
+    f.set_path(STRAIGHT)
+    fresh(f, 1.0)
+    d = f.tick(1.0, at(math.nan), (0.0, 0.0), no_costmap)
+    assert d.outcome is Outcome.ABORTED and d.stops and "not finite" in d.reason
+
+
+def blocked_costmap():
+    geometry = CostmapGeometry(80, 40, 0.05, -1.0, -1.0)
+    costs = np.zeros(geometry.shape, dtype=np.uint8)
+    _row, col = geometry.world_to_cell(0.6, 0.0)
+    costs[:, col : col + 2] = LETHAL  # a wall across the path 0.1 m ahead of x = 0.5 (one step's reach)
+    return costs, geometry
+
+
+def test_collision_waits_then_aborts():
+    f = follower(collision_timeout_s=1.0)
+    f.set_path(STRAIGHT)
+    fresh(f, 1.0)
+    d = f.tick(1.0, at(0.5), (0.3, 0.0), blocked_costmap)
+    assert d.outcome is Outcome.RUNNING and d.stops and "collision ahead" in d.reason
+    fresh(f, 1.5)
+    assert f.tick(1.5, at(0.5), (0.0, 0.0), blocked_costmap).outcome is Outcome.RUNNING
+    fresh(f, 2.0)
+    d = f.tick(2.0, at(0.5), (0.0, 0.0), blocked_costmap)
+    assert d.outcome is Outcome.ABORTED and d.stops and "blocked for 1.00 s" in d.reason
+
+
+def test_collision_clears_and_resets_patience():
+    f = follower(collision_timeout_s=1.0)
+    f.set_path(STRAIGHT)
+    fresh(f, 1.0)
+    assert f.tick(1.0, at(0.5), (0.0, 0.0), blocked_costmap).stops
+    fresh(f, 1.9)
+    d = f.tick(1.9, at(0.5), (0.0, 0.0), no_costmap)
+    assert d.outcome is Outcome.RUNNING and d.v > 0.0
+    fresh(f, 2.5)
+    assert f.tick(2.5, at(0.5), (0.0, 0.0), blocked_costmap).outcome is Outcome.RUNNING  # patience restarted
+
+
+def test_zero_collision_timeout_aborts_at_once():
+    f = follower(collision_timeout_s=0.0)
+    f.set_path(STRAIGHT)
+    fresh(f, 1.0)
+    d = f.tick(1.0, at(0.5), (0.3, 0.0), blocked_costmap)
+    assert d.outcome is Outcome.ABORTED and d.stops
+
+
+def test_bad_path_and_parameters_raise():
+    f = follower()
+    with pytest.raises(ConfigError, match="empty"):
+        f.set_path(np.empty((0, 3)))
+    with pytest.raises(ConfigError, match="collision_timeout_s"):
+        follower(collision_timeout_s=-1.0)
+    with pytest.raises(ConfigError, match="sensor timeout"):
+        SafeFollower(PARAMS, sensors=["odom"], sensor_timeout_s=0.0, collision_timeout_s=1.0,
+                     nominal_period_s=0.05, start_s=0.0)
