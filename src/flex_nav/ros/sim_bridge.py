@@ -70,6 +70,12 @@ from flex_nav_sim.world import load_world
 
 NODE_NAME = "sim"
 KOBUKI_CODES = {"left": BumperEvent.LEFT, "center": BumperEvent.CENTER, "right": BumperEvent.RIGHT}
+# Small high-rate messages (/clock, /tf, odom, ground truth) are written to the subscribers' sockets
+# in the stepping thread: 7-11 us a message, against about 90 us through rospy's queued publisher
+# (whose time.sleep(0) after every message hands the GIL to a writer thread). A subscriber that stops
+# reading altogether stalls the simulation once its socket buffer is full: the clock then stops
+# and every sim-time node with it. Scans, images and events go through queues.
+SYNCHRONOUS = None
 PACE_SLACK_S = 0.002  # [s] sleep only when this far ahead of the real-time schedule
 MAX_LAG_S = 0.25  # [s] further behind than this: re-anchor the schedule instead of bursting to catch up
 STATS_PERIOD_S = 30.0  # [s] wall time between log lines with the achieved real-time factor
@@ -117,8 +123,8 @@ class RobotIO:
         def topic(t: str) -> str:
             return f"{name}/{t}" if name else t
 
-        self.pub_odom = rospy.Publisher(topic("odom"), Odometry, queue_size=10)
-        self.pub_truth = rospy.Publisher(topic("ground_truth"), Odometry, queue_size=10)
+        self.pub_odom = rospy.Publisher(topic("odom"), Odometry, queue_size=SYNCHRONOUS)
+        self.pub_truth = rospy.Publisher(topic("ground_truth"), Odometry, queue_size=SYNCHRONOUS)
         self.lidar = sim.lidar_spec_of(name)
         self.pub_scan = rospy.Publisher(topic("scan"), LaserScan, queue_size=5) if self.lidar else None
         self.camera = sim.camera_spec_of(name)
@@ -231,8 +237,8 @@ class SimBridge:
         map_frame = options.map_frame
         self._lock = threading.Lock()
         self._pending: Dict[str, Tuple[float, float]] = {}
-        self.pub_clock = rospy.Publisher("/clock", Clock, queue_size=10)
-        self.pub_tf = rospy.Publisher("/tf", TFMessage, queue_size=100)
+        self.pub_clock = rospy.Publisher("/clock", Clock, queue_size=SYNCHRONOUS)
+        self.pub_tf = rospy.Publisher("/tf", TFMessage, queue_size=SYNCHRONOUS)
         self.pub_tf_static = rospy.Publisher("/tf_static", TFMessage, queue_size=10, latch=True)
         self.pub_world_events = rospy.Publisher("sim_events", SimEvent, queue_size=50)
         self.robots = {
