@@ -1,0 +1,60 @@
+"""flex_nav_states: the Flexible Navigation state library (FlexBE-style states for the flex_nav engine).
+
+Every state is a :class:`flex_nav.behavior.State` documented in its class docstring (``--`` parameters,
+``>#``/``#>`` userdata keys, ``<=`` outcomes; see :mod:`flex_nav.behavior.docstring`). States never import
+rospy: all ROS I/O goes through the behavior's proxies (``self.context.require_proxies()``, obtained in
+``on_start``; the interface is :mod:`flex_nav_states.proxy_types`) and time comes from the behavior's clock.
+
+Modules (one state or one small family each):
+
+- action clients (:mod:`~flex_nav_states.action_base`): :mod:`get_path_state` (GetPath),
+  :mod:`follow_path_state` (FollowPath: a controller, and FollowPlanner: a mid-level planner),
+  :mod:`follow_topic_state` (FollowTopic), :mod:`clear_costmaps_state` (several ClearCostmap servers at once);
+- input: :mod:`get_pose_state` (a PoseStamped goal from a topic, stale messages dropped);
+- motion (:mod:`~flex_nav_states.motion_base`; TwistStamped out, zero twist on every exit):
+  :mod:`move_distance_state`, :mod:`rotate_angle_state` (closed loop on odometry), :mod:`timed_twist_state`,
+  :mod:`timed_stop_state`, :mod:`pure_pursuit_state` (follows the ``plan`` in userdata);
+- monitors: :mod:`bumper_monitor_state` (bumper/cliff, configured by robot profile),
+  :mod:`stuck_monitor_state`, :mod:`sensor_freshness_state`;
+- operator: :mod:`operator_decision_state`, :mod:`log_state`, :mod:`wait_state`.
+
+:func:`state_classes` imports them all and lists the concrete states (for documentation checks and tools).
+"""
+
+from __future__ import annotations
+
+import importlib
+import inspect
+from typing import List
+
+STATE_MODULES = (
+    "get_pose_state",
+    "get_path_state",
+    "follow_path_state",
+    "follow_topic_state",
+    "clear_costmaps_state",
+    "move_distance_state",
+    "rotate_angle_state",
+    "timed_twist_state",
+    "timed_stop_state",
+    "pure_pursuit_state",
+    "bumper_monitor_state",
+    "stuck_monitor_state",
+    "sensor_freshness_state",
+    "operator_decision_state",
+    "log_state",
+    "wait_state",
+)
+
+
+def state_classes() -> List[type]:
+    """The concrete state classes of this package, in module order (imports every state module)."""
+    from flex_nav.behavior.state import State  # noqa: PLC0415 - keep `import flex_nav_states` light
+
+    found: List[type] = []
+    for name in STATE_MODULES:
+        module = importlib.import_module(f"{__name__}.{name}")
+        for _, obj in inspect.getmembers(module, inspect.isclass):
+            if issubclass(obj, State) and obj.__module__ == module.__name__ and obj.__name__.endswith("State"):
+                found.append(obj)
+    return found

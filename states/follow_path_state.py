@@ -1,0 +1,78 @@
+"""FollowPathState and FollowPlannerState: send the plan in userdata to a FollowPath server and wait."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from flex_nav.action_types import action_type
+from flex_nav.behavior.userdata import UserDataView, unwrap
+from flex_nav.exceptions import ConfigError
+from flex_nav.msg import FollowPathGoal
+from flex_nav_states.action_base import ActionClientBase
+from flex_nav_states.messages import describe
+
+FOLLOW_PATH = action_type("FollowPath")
+
+
+class FollowPathState(ActionClientBase):
+    """Sends the plan to a FollowPath server (a path-following controller, e.g. pure_pursuit_path) and waits.
+
+    -- action_name       str    FollowPath server name, relative to the behavior's namespace.
+    -- server_timeout_s  float  [s] Fail if the server is not connected this long after entry.
+    -- timeout_s         float  [s] Cancel and fail if no result this long after sending (0: no limit).
+
+    ># plan  Path  The path to follow (nav_msgs/Path, at least one pose).
+
+    <= done       The server reached the end of the path (code SUCCESS).
+    <= failed     The server failed (blocked, lost, bad path), is missing, or timed out; the reason is logged.
+    <= preempted  The server stopped the goal for someone else (code PREEMPT or cancelled by another client).
+    """
+
+    def __init__(self, action_name: str = "pure_pursuit_path", server_timeout_s: float = 5.0,
+                 timeout_s: float = 0.0) -> None:
+        super().__init__(
+            spec=FOLLOW_PATH,
+            action_name=action_name,
+            server_timeout_s=server_timeout_s,
+            timeout_s=timeout_s,
+            outcomes=["done", "failed", "preempted"],
+            success="done",
+            failure="failed",
+            cancelled="preempted",
+            code_outcomes={"FAILURE": "failed", "PREEMPT": "preempted"},
+            input_keys=["plan"],
+        )
+
+    def make_goal(self, userdata: UserDataView) -> Any:
+        path = unwrap(userdata.plan)
+        poses = getattr(path, "poses", None)
+        if poses is None or not hasattr(path, "header"):
+            raise ConfigError(f"userdata plan must be a nav_msgs/Path, got {type(path).__name__}")
+        if len(poses) == 0:
+            raise ConfigError("userdata plan is empty")
+        return FollowPathGoal(path=path)
+
+    def describe_goal(self, goal: Any) -> str:
+        return f"follow {describe(goal.path)}"
+
+
+class FollowPlannerState(FollowPathState):
+    """Sends the plan to a mid-level planner (a FollowPath server such as follow_path_server) and waits.
+
+    The mid-level planner replans locally along the plan and publishes the local plan that a controller
+    (e.g. FollowTopicState with pure_pursuit_topic) drives along; run the two in one concurrency container.
+
+    -- action_name       str    FollowPath server name of the mid-level planner.
+    -- server_timeout_s  float  [s] Fail if the server is not connected this long after entry.
+    -- timeout_s         float  [s] Cancel and fail if no result this long after sending (0: no limit).
+
+    ># plan  Path  The global plan to follow (nav_msgs/Path, at least one pose).
+
+    <= done       The planner reached the end of the plan (code SUCCESS).
+    <= failed     The planner failed (no local plan, bad path), is missing, or timed out; the reason is logged.
+    <= preempted  The planner stopped the goal for someone else.
+    """
+
+    def __init__(self, action_name: str = "follow_path_server", server_timeout_s: float = 5.0,
+                 timeout_s: float = 0.0) -> None:
+        super().__init__(action_name=action_name, server_timeout_s=server_timeout_s, timeout_s=timeout_s)

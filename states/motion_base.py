@@ -1,0 +1,164 @@
+"""The common part of the motion states: velocity commands out, odometry in, zero twist on every exit.
+
+:class:`MotionBase` publishes geometry_msgs/TwistStamped on ``cmd_topic`` (default ``cmd_vel_stamped``; a
+``twist_relay`` turns it into the base's Twist) and reads nav_msgs/Odometry on ``odom_topic``. Its
+guarantees, whatever the subclass does:
+
+- a zero twist is published in ``on_exit`` (own outcome, preemption, a monitor ending the concurrency,
+  a forced transition, a failure elsewhere) and in ``on_pause``;
+- odometry counts only while fresh (age <= ``odom_timeout_s`` by header stamp on the behavior's clock,
+  or by arrival time when unstamped); :meth:`odometry_lost` says when none was fresh for longer than that;
+- :meth:`elapsed_s` is the time since entry without the time spent paused, for timeouts.
+
+:class:`StallWatch` detects "no progress for a window" for the closed-loop states.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Optional, Sequence
+
+from geometry_msgs.msg import TwistStamped
+from nav_msgs.msg import Odometry
+
+from flex_nav.behavior.state import State
+from flex_nav.behavior.userdata import UserDataView
+from flex_nav.exceptions import ConfigError
+from flex_nav_states import validation
+from flex_nav_states.messages import OdomSample, message_age_s, odom_sample, sample_is_finite, twist_stamped
+from flex_nav_states.proxy_types import PublisherLike, SubscriptionLike, proxies_of
+
+MOTION_RATE_HZ = 20.0  # [Hz] default rate of the motion states (a twist_relay times out after 0.5 s)
+
+
+class StallWatch:
+    """True when a monotone progress measure has not grown by ``min_progress`` within ``window_s`` [s]."""
+
+    def __init__(self, window_s: float, min_progress: float) -> None:
+        self.window_s = window_s
+        self.min_progress = min_progress
+        self._best = 0.0
+        self._since_s = 0.0
+
+    def reset(self, progress: float, now_s: float) -> None:
+        self._best = progress
+        self._since_s = now_s
+
+    def restart_window(self, now_s: float) -> None:
+        """Keep the best progress but start the window again (e.g. after a pause)."""
+        self._since_s = now_s
+
+    def stalled(self, progress: float, now_s: float) -> bool:
+        if progress >= self._best + self.min_progress:
+            self._best = progress
+            self._since_s = now_s
+            return False
+        return now_s - self._since_s > self.window_s
+
+    @property
+    def best(self) -> float:
+        return self._best
+
+
+class MotionBase(State):
+    """Base of the motion states (not a state by itself; see the module docstring)."""
+
+    def __init__(
+        self,
+        outcomes: Sequence[str],
+        *,
+        cmd_topic: str,
+        frame_id: str,
+        odom_topic: str,
+        odom_timeout_s: float,
+        input_keys: Sequence[str] = (),
+        output_keys: Sequence[str] = (),
+    ) -> None:
+        super().__init__(outcomes=outcomes, input_keys=input_keys, output_keys=output_keys, rate_hz=MOTION_RATE_HZ)
+        owner = type(self).__name__
+        self._cmd_topic = validation.name(owner, "cmd_topic", cmd_topic)
+        self._frame_id = validation.name(owner, "frame_id", frame_id, allow_empty=True)
+        self._odom_topic = validation.name(owner, "odom_topic", odom_topic, allow_empty=True)
+        self._odom_timeout_s = validation.number(owner, "odom_timeout_s", odom_timeout_s, positive=True, unit="[s]")
+        self._cmd: Optional[PublisherLike] = None
+        self._odom: Optional[SubscriptionLike] = None
+        self._enter_s = 0.0
+        self._paused_total_s = 0.0
+        self._pause_start_s = 0.0
+        self._last_fresh_s = 0.0  # [s] when a fresh odometry sample was last seen (entry counts as one)
+
+    # --- lifecycle ---------------------------------------------------------------------------------
+    def on_start(self) -> None:
+        proxies = proxies_of(self)
+        self._cmd = proxies.publisher(self._cmd_topic, TwistStamped)
+        if self._odom_topic:
+            self._odom = proxies.subscription(self._odom_topic, Odometry)
+
+    def on_enter(self, userdata: UserDataView) -> None:
+        now = self.now_s()
+        self._enter_s = now
+        self._paused_total_s = 0.0
+        self._last_fresh_s = now
+
+    def on_exit(self, userdata: UserDataView) -> None:
+        self.stop()
+
+    def on_pause(self) -> None:
+        self.stop()
+        self._pause_start_s = self.now_s()
+
+    def on_resume(self, userdata: UserDataView) -> None:
+        now = self.now_s()
+        self._paused_total_s += now - self._pause_start_s
+        self._last_fresh_s = now  # odometry gets its grace again
+
+    # --- for subclasses ----------------------------------------------------------------------------
+    def send(self, v: float, w: float) -> None:
+        """Publish a velocity command: ``v`` [m/s] forward, ``w`` [rad/s] counter-clockwise."""
+        if not (math.isfinite(v) and math.isfinite(w)):  # never send NaN to a base; stop loudly instead
+            self.log_error(f"non-finite velocity command v={v!r} w={w!r} replaced by a stop")
+            v = w = 0.0
+        if self._cmd is None:
+            self._cmd = proxies_of(self).publisher(self._cmd_topic, TwistStamped)
+        self._cmd.publish(twist_stamped(v, w, self._frame_id, self.now_s()))
+
+    def stop(self) -> None:
+        self.send(0.0, 0.0)
+
+    def elapsed_s(self) -> float:
+        """[s] time since entry, without the paused time."""
+        return self.now_s() - self._enter_s - self._paused_total_s
+
+    def odometry(self) -> Optional[OdomSample]:
+        """The newest odometry sample if it is fresh and finite, else None."""
+        sub = self._odom
+        if sub is None:
+            if not self._odom_topic:
+                raise ConfigError(f"{type(self).__name__}: needs odometry but odom_topic is empty")
+            sub = self._odom = proxies_of(self).subscription(self._odom_topic, Odometry)
+        msg = sub.last()
+        if msg is None:
+            return None
+        now = self.now_s()
+        if message_age_s(msg, sub, now) > self._odom_timeout_s:
+            return None
+        sample = odom_sample(msg)
+        if not sample_is_finite(sample):
+            return None
+        self._last_fresh_s = now
+        return sample
+
+    def odometry_lost(self) -> bool:
+        """True when no fresh odometry was seen for longer than odom_timeout_s (entry and resume count as seen)."""
+        return self.now_s() - self._last_fresh_s > self._odom_timeout_s
+
+    def odometry_problem(self) -> str:
+        sub = self._odom
+        last = sub.last() if sub is not None else None
+        if last is None:
+            return f"no odometry on {self._odom_topic} within odom_timeout_s {self._odom_timeout_s:g} s"
+        age = message_age_s(last, sub, self.now_s()) if sub is not None else math.inf
+        return (
+            f"odometry on {self._odom_topic} is stale or invalid: newest is {age:.2f} s old "
+            f"(odom_timeout_s {self._odom_timeout_s:g} s)"
+        )

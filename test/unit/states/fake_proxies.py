@@ -1,0 +1,296 @@
+"""A test double of flex_nav.ros.proxies.RosProxies: no ROS, time from an injected clock.
+
+- :class:`FakePublisher` records every published message with the clock time (``published``).
+- :class:`FakeSubscription` takes messages from the test (``inject``); ``last``/``age_s``/``pop_buffered``
+  behave as the real one, with arrival ages on the injected clock instead of wall time.
+- :class:`FakeActionClient` is scripted: ``available_at_s`` says when its server "connects"; each sent goal
+  takes the next queued :class:`Response` (after its ``delay_s`` on the clock) or stays active until the test
+  calls ``finish``; ``cancel`` is recorded and, by default, ends the goal as PREEMPTED like a real server.
+
+Same method names and signatures as the real proxies (checked by test_fake_proxies_mirror_ros_proxies), and
+the same "one type per topic/action" rule.
+"""
+
+from __future__ import annotations
+
+import collections
+import math
+from dataclasses import dataclass
+from typing import Any, Callable, Deque, Dict, List, Optional, Tuple
+
+from actionlib_msgs.msg import GoalStatus
+
+from flex_nav.exceptions import ConfigError, NotReadyError
+
+
+class FakePublisher:
+    def __init__(self, topic: str, msg_type: type, clock: Any) -> None:
+        self.topic = topic
+        self.msg_type = msg_type
+        self._clock = clock
+        self.published: List[Tuple[float, Any]] = []
+
+    def publish(self, msg: Any) -> None:
+        if not isinstance(msg, self.msg_type):
+            raise TypeError(f"{self.topic}: published {type(msg).__name__}, expected {self.msg_type.__name__}")
+        self.published.append((self._clock.now(), msg))
+
+    @property
+    def messages(self) -> List[Any]:
+        return [m for _, m in self.published]
+
+    def last(self) -> Any:
+        return self.published[-1][1] if self.published else None
+
+    def unregister(self) -> None:
+        pass
+
+
+class FakeSubscription:
+    def __init__(self, topic: str, msg_type: type, clock: Any, buffer_size: int = 0) -> None:
+        self.topic = topic
+        self.msg_type = msg_type
+        self._clock = clock
+        self._last: Optional[Any] = None
+        self._last_arrival_s = 0.0
+        self._buffer: Deque[Any] = collections.deque(maxlen=max(1, buffer_size))
+        self._buffered = buffer_size > 0
+        self._callbacks: List[Callable[[Any], None]] = []
+
+    # --- test side ---
+    def inject(self, msg: Any) -> None:
+        """Deliver ``msg`` as the subscriber callback would, arriving now on the clock."""
+        if not isinstance(msg, self.msg_type):
+            raise TypeError(f"{self.topic}: injected {type(msg).__name__}, expected {self.msg_type.__name__}")
+        self._last = msg
+        self._last_arrival_s = self._clock.now()
+        if self._buffered:
+            self._buffer.append(msg)
+        for callback in list(self._callbacks):
+            callback(msg)
+
+    # --- RosProxies.Subscription interface ---
+    def add_callback(self, callback: Callable[[Any], None]) -> None:
+        self._callbacks.append(callback)
+
+    def remove_callback(self, callback: Callable[[Any], None]) -> None:
+        if callback in self._callbacks:
+            self._callbacks.remove(callback)
+
+    def disable_buffer(self) -> None:
+        self._buffered = False
+        self._buffer.clear()
+
+    def enable_buffer(self, size: int = 10) -> None:
+        if not self._buffered:
+            self._buffer = collections.deque(maxlen=max(1, size))
+            self._buffered = True
+
+    def has_msg(self) -> bool:
+        return self._last is not None
+
+    def last(self) -> Optional[Any]:
+        return self._last
+
+    def age_s(self) -> float:
+        return self._clock.now() - self._last_arrival_s if self._last is not None else math.inf
+
+    def remove_last(self) -> None:
+        self._last = None
+
+    def has_buffered(self) -> bool:
+        return bool(self._buffer)
+
+    def pop_buffered(self) -> Optional[Any]:
+        return self._buffer.popleft() if self._buffer else None
+
+    def unregister(self) -> None:
+        pass
+
+
+@dataclass
+class Response:
+    """How the fake server answers one goal: terminal ``status`` and ``result``, ``delay_s`` after the send."""
+
+    status: int
+    result: Any
+    delay_s: float = 0.0
+
+
+class FakeActionClient:
+    def __init__(self, name: str, action_type: type, clock: Any) -> None:
+        self.name = name
+        self.action_type = action_type
+        self._clock = clock
+        self.available_at_s = -math.inf  # [s] clock time from which the server is connected (inf: never)
+        self.responses: Deque[Response] = collections.deque()
+        self.preempt_on_cancel = True  # a cancel ends the goal as PREEMPTED (as flex_nav's servers do)
+        self.goals: List[Any] = []
+        self.sent_at: List[float] = []
+        self.cancels = 0
+        self.availability_checks: List[float] = []  # timeout_s of each is_available call (must be ~0)
+        self._state = GoalStatus.LOST
+        self._result: Any = None
+        self._feedback: Any = None
+        self._active = False
+        self._done = False
+        self._pending: Optional[Response] = None
+
+    # --- test side ---
+    def respond(self, status: int, result: Any, delay_s: float = 0.0) -> None:
+        """Queue the answer to the next goal sent."""
+        self.responses.append(Response(status, result, delay_s))
+
+    def finish(self, status: int, result: Any) -> None:
+        """End the current goal now."""
+        if not self._active:
+            raise AssertionError(f"{self.name}: no active goal to finish")
+        self._pending = None
+        self._state, self._result, self._done, self._active = status, result, True, False
+
+    def set_feedback(self, feedback: Any) -> None:
+        self._feedback = feedback
+
+    @property
+    def active_goal(self) -> Any:
+        return self.goals[-1] if self._active else None
+
+    # --- RosProxies.ActionClientProxy interface ---
+    def is_available(self, timeout_s: float = 0.0) -> bool:
+        self.availability_checks.append(timeout_s)
+        return self._clock.now() >= self.available_at_s
+
+    def wait_for_server(self, timeout_s: float) -> None:
+        if not self.is_available(timeout_s):
+            raise NotReadyError(f"action server {self.name} is not available after {timeout_s:.1f} s")
+
+    def send_goal(self, goal: Any, server_timeout_s: float = 5.0) -> None:
+        self.wait_for_server(server_timeout_s)
+        self.goals.append(goal)
+        self.sent_at.append(self._clock.now())
+        self._result, self._feedback, self._done, self._active = None, None, False, True
+        self._state = GoalStatus.ACTIVE
+        self._pending = self.responses.popleft() if self.responses else None
+
+    def _apply_due(self) -> None:
+        pending = self._pending
+        if pending is not None and self._active and self._clock.now() >= self.sent_at[-1] + pending.delay_s:
+            self.finish(pending.status, pending.result)
+
+    def has_result(self) -> bool:
+        self._apply_due()
+        return self._done
+
+    def result(self) -> Any:
+        self._apply_due()
+        return self._result
+
+    def state(self) -> int:
+        self._apply_due()
+        return self._state
+
+    def feedback(self) -> Any:
+        return self._feedback
+
+    def forget_result(self) -> None:
+        self._apply_due()
+        self._result, self._done = None, False
+
+    def forget_feedback(self) -> None:
+        self._feedback = None
+
+    def is_active(self) -> bool:
+        self._apply_due()
+        return self._active
+
+    def cancel(self) -> None:
+        self._apply_due()
+        if not self._active:
+            return
+        self.cancels += 1
+        if self.preempt_on_cancel:
+            result = self.action_type().action_result.result  # the action's default Result
+            if hasattr(result, "message"):
+                result.message = "cancelled"
+            self.finish(GoalStatus.PREEMPTED, result)
+
+
+class FakeProxies:
+    """The proxies of one behavior, with the test's clock; ``publishers``/``subscriptions``/``clients`` by name."""
+
+    def __init__(self, clock: Any) -> None:
+        self.clock = clock
+        self.publishers: Dict[str, FakePublisher] = {}
+        self.subscriptions: Dict[str, FakeSubscription] = {}
+        self.clients: Dict[str, FakeActionClient] = {}
+
+    def publisher(self, topic: str, msg_type: type, latch: bool = False, queue_size: int = 10) -> FakePublisher:
+        known = self.publishers.get(topic)
+        if known is not None:
+            _check_type("topic", topic, known.msg_type, msg_type)
+            return known
+        pub = self.publishers[topic] = FakePublisher(topic, msg_type, self.clock)
+        return pub
+
+    def subscription(self, topic: str, msg_type: type, buffer_size: int = 0) -> FakeSubscription:
+        known = self.subscriptions.get(topic)
+        if known is not None:
+            _check_type("topic", topic, known.msg_type, msg_type)
+            if buffer_size > 0:
+                known.enable_buffer(buffer_size)
+            return known
+        sub = self.subscriptions[topic] = FakeSubscription(topic, msg_type, self.clock, buffer_size)
+        return sub
+
+    def action_client(self, name: str, action_type: type) -> FakeActionClient:
+        known = self.clients.get(name)
+        if known is not None:
+            _check_type("action", name, known.action_type, action_type)
+            return known
+        client = self.clients[name] = FakeActionClient(name, action_type, self.clock)
+        return client
+
+    def service_caller(self, name: str, srv_type: type) -> Any:
+        raise NotImplementedError("FakeProxies has no service callers (no flex_nav state uses one)")
+
+    def get_publisher(self, topic: str) -> Optional[FakePublisher]:
+        return self.publishers.get(topic)
+
+    def get_subscription(self, topic: str) -> Optional[FakeSubscription]:
+        return self.subscriptions.get(topic)
+
+    def get_action_client(self, name: str) -> Optional[FakeActionClient]:
+        return self.clients.get(name)
+
+    def get_service_caller(self, name: str) -> Any:
+        return None
+
+    def shutdown(self) -> None:
+        for client in self.clients.values():
+            client.cancel()
+
+    # --- conveniences for tests ---
+    def sub(self, topic: str) -> FakeSubscription:
+        """The subscription a state made on ``topic`` (KeyError naming the known ones otherwise)."""
+        try:
+            return self.subscriptions[topic]
+        except KeyError:
+            raise KeyError(f"no subscription on {topic!r} (have: {', '.join(self.subscriptions)})") from None
+
+    def pub(self, topic: str) -> FakePublisher:
+        try:
+            return self.publishers[topic]
+        except KeyError:
+            raise KeyError(f"no publisher on {topic!r} (have: {', '.join(self.publishers)})") from None
+
+    def client(self, name: str, action_type: type) -> FakeActionClient:
+        """The client for ``name``, created now if no state asked for it yet (to script it before start)."""
+        return self.action_client(name, action_type)
+
+
+def _check_type(kind: str, name: str, known: type, wanted: type) -> None:
+    if known is not wanted:
+        raise ConfigError(
+            f"{kind} {name} is already used with type {known.__name__} in this behavior; cannot use it as "
+            f"{wanted.__name__}"
+        )

@@ -1,0 +1,166 @@
+"""Helpers for the state tests: run one state in the behavior executor on a ManualClock with fake proxies,
+and a kinematic robot that turns the published twists into odometry."""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Dict, List, Optional
+
+import genpy
+from geometry_msgs.msg import PoseStamped, TwistStamped
+from nav_msgs.msg import Odometry, Path
+from unit.states.fake_proxies import FakeProxies
+
+from flex_nav.behavior import BehaviorExecutor, BehaviorResult, LogEvent, ManualClock, State
+from flex_nav.nav.pose_checks import quaternion_of_yaw
+
+START_S = 1000.0  # [s] clock start: stamps are clearly non-zero
+
+
+class Harness:
+    """One state (or machine) as the root of a behavior, with its clock, fake proxies and recorded logs."""
+
+    def __init__(self, root: State, inputs: Optional[Dict[str, Any]] = None, **executor_kwargs: Any) -> None:
+        self.clock = ManualClock(START_S)
+        self.proxies = FakeProxies(self.clock)
+        self.root = root
+        self.executor = BehaviorExecutor(root, inputs=inputs, clock=self.clock, proxies=self.proxies,
+                                         **executor_kwargs)
+        self.logs: List[LogEvent] = []
+        self.executor.context.hooks.log.append(self.logs.append)
+        self.robot: Optional[KinematicRobot] = None
+
+    def start(self) -> Harness:
+        self.executor.start()
+        return self
+
+    def tick(self) -> bool:
+        """Run one due tick (applying commands first); True if the behavior ended."""
+        self.executor.spin_once()
+        return self.executor.status.is_terminal
+
+    def advance(self, dt_s: float) -> None:
+        """Move time on; the robot (if any) drives the last command for that long and publishes odometry."""
+        self.clock.advance(dt_s)
+        if self.robot is not None:
+            self.robot.step(dt_s)
+
+    def run(self, max_time_s: float = 60.0, step_s: Optional[float] = None) -> BehaviorResult:
+        """Tick at the root's due times (or every ``step_s``) until the behavior ends or ``max_time_s`` pass."""
+        end = self.clock.now() + max_time_s
+        while self.clock.now() <= end:
+            if self.tick():
+                return self.executor.result()
+            due = self.executor.root._due
+            if step_s is not None:
+                dt = step_s
+            else:
+                dt = due - self.clock.now() if math.isfinite(due) and due > self.clock.now() else 0.05
+            self.advance(dt)
+        raise AssertionError(f"behavior still {self.executor.status.value} after {max_time_s} s; logs: {self.texts()}")
+
+    def run_for(self, duration_s: float, step_s: float = 0.05) -> None:
+        """Tick for ``duration_s`` (the behavior must not end)."""
+        end = self.clock.now() + duration_s - 1e-9
+        while self.clock.now() < end:
+            assert not self.tick(), f"ended early: {self.executor.result()}; logs: {self.texts()}"
+            self.advance(step_s)
+
+    def texts(self, min_level: int = 0) -> List[str]:
+        return [e.message for e in self.logs if int(e.level) >= min_level]
+
+    def log_text(self) -> str:
+        return "\n".join(f"{e.level.name}: {e.message}" for e in self.logs)
+
+
+class KinematicRobot:
+    """A unicycle that follows the newest TwistStamped on ``cmd_topic`` and publishes odometry on ``odom``.
+
+    ``blocked``: commands are ignored (the robot stands, as against a wall); ``forced_velocity``: (v, w) it
+    keeps regardless of commands (a robot that does not stop). ``odom_every``: publish odometry only every
+    n-th step (0: never).
+    """
+
+    def __init__(self, harness: Harness, cmd_topic: str = "cmd_vel_stamped", odom_topic: str = "odom",
+                 frame: str = "odom", x: float = 0.0, y: float = 0.0, yaw: float = 0.0) -> None:
+        self.harness = harness
+        self.cmd_topic = cmd_topic
+        self.odom = harness.proxies.subscription(odom_topic, Odometry)
+        self.frame = frame
+        self.x, self.y, self.yaw = x, y, yaw
+        self.v = self.w = 0.0
+        self.blocked = False
+        self.forced_velocity: Optional[tuple] = None
+        self.odom_every = 1
+        self._steps = 0
+        self.traveled_m = 0.0
+        harness.robot = self
+        self.publish()
+
+    def command(self) -> tuple:
+        pub = self.harness.proxies.publishers.get(self.cmd_topic)
+        msg: Optional[TwistStamped] = pub.last() if pub is not None else None
+        if msg is None:
+            return 0.0, 0.0
+        return msg.twist.linear.x, msg.twist.angular.z
+
+    def step(self, dt_s: float) -> None:
+        if self.forced_velocity is not None:
+            self.v, self.w = self.forced_velocity
+        elif self.blocked:
+            self.v = self.w = 0.0
+        else:
+            self.v, self.w = self.command()
+        self.x += self.v * math.cos(self.yaw) * dt_s
+        self.y += self.v * math.sin(self.yaw) * dt_s
+        self.yaw = math.atan2(math.sin(self.yaw + self.w * dt_s), math.cos(self.yaw + self.w * dt_s))
+        self.traveled_m += abs(self.v) * dt_s
+        self._steps += 1
+        if self.odom_every and self._steps % self.odom_every == 0:
+            self.publish()
+
+    def publish(self) -> None:
+        self.odom.inject(odometry(self.x, self.y, self.yaw, self.v, self.w, self.harness.clock.now(), self.frame))
+
+
+def odometry(x: float, y: float, yaw: float, v: float, w: float, stamp_s: float, frame: str = "odom") -> Odometry:
+    msg = Odometry()
+    msg.header.stamp = genpy.Time.from_sec(stamp_s)
+    msg.header.frame_id = frame
+    msg.child_frame_id = "base_footprint"
+    msg.pose.pose.position.x, msg.pose.pose.position.y = x, y
+    qx, qy, qz, qw = quaternion_of_yaw(yaw)
+    o = msg.pose.pose.orientation
+    o.x, o.y, o.z, o.w = qx, qy, qz, qw
+    msg.twist.twist.linear.x = v
+    msg.twist.twist.angular.z = w
+    return msg
+
+
+def pose_stamped(x: float, y: float, yaw: float = 0.0, stamp_s: float = 0.0, frame: str = "map") -> PoseStamped:
+    msg = PoseStamped()
+    msg.header.stamp = genpy.Time.from_sec(stamp_s)
+    msg.header.frame_id = frame
+    msg.pose.position.x, msg.pose.position.y = x, y
+    qx, qy, qz, qw = quaternion_of_yaw(yaw)
+    o = msg.pose.orientation
+    o.x, o.y, o.z, o.w = qx, qy, qz, qw
+    return msg
+
+
+def path(points: List[tuple], frame: str = "map", stamp_s: float = START_S) -> Path:
+    """A nav_msgs/Path through (x, y) points, each pose facing the next point."""
+    msg = Path()
+    msg.header.frame_id = frame
+    msg.header.stamp = genpy.Time.from_sec(stamp_s)
+    for i, (x, y) in enumerate(points):
+        nx, ny = points[min(i + 1, len(points) - 1)]
+        px, py = points[max(i - 1, 0)]
+        yaw = math.atan2(ny - y, nx - x) if i + 1 < len(points) else math.atan2(y - py, x - px)
+        msg.poses.append(pose_stamped(x, y, yaw, stamp_s, frame))
+    return msg
+
+
+def twists(harness: Harness, topic: str = "cmd_vel_stamped") -> List[tuple]:
+    """(v, w) of every twist published on ``topic``."""
+    return [(m.twist.linear.x, m.twist.angular.z) for m in harness.proxies.pub(topic).messages]
