@@ -166,10 +166,6 @@ class ConcurrencyContainer(Container):
                 if resolved is None:
                     continue
                 outcome, route, forced = resolved
-                if forced:
-                    child._abort()
-                else:
-                    child._leave()
             else:
                 child_due = child._due
                 if child_due > now:

@@ -338,23 +338,26 @@ class Container(State):
                 f"register (valid: {_listed(child.outcomes)}; None keeps it running)"
             ) from None
 
-    def _must_wait(self, child: State, outcome: str, route: Route, forced: bool, now: float) -> bool:
+    def _must_wait(self, child: State, outcome: str, route: Route, by_operator: bool, now: float) -> bool:
         """Lock or autonomy says ``outcome`` of ``child`` cannot fire now: mark it pending and say so."""
         ctx = self._ctx
         assert ctx is not None
         reason = ""
         if ctx._lock_count and self._leaves_locked(child, route):
             reason = "lock"
-        elif not forced and ctx._gate and route[2] >= ctx._autonomy:
+        elif not by_operator and ctx._gate and route[2] >= ctx._autonomy:
             reason = "autonomy"
         if not reason:
             return False
         pending = child._pending
-        if pending is None or pending.outcome != outcome or pending.reason != reason:
-            if pending is not None:
-                child._drop_pending()
-            pending = Pending(outcome, reason, route[2], forced)
+        if pending is None:
+            pending = Pending(outcome, reason, route[2])
             child._pending = pending
+        elif pending.outcome != outcome or pending.reason != reason:
+            if pending.announced:  # withdraw what the operator saw before saying the new reason
+                ctx._emit_request(now, child._path, pending.outcome, pending.required, pending.reason, False)
+                pending.announced = False
+            pending.outcome, pending.reason, pending.required = outcome, reason, route[2]
         ctx._requests[child._path] = child
         if not pending.announced:
             pending.announced = True
@@ -363,14 +366,22 @@ class Container(State):
         return True
 
     def _resolve(self, child: State, now: float) -> Optional[Tuple[str, Route, bool]]:
-        """A child with a pending outcome was woken: (outcome, route, forced) if it may fire now."""
+        """A child with a pending outcome was woken: (outcome, route, by operator) if it fires now.
+
+        The child is exited here: aborted if the operator forced the outcome, left normally otherwise.
+        """
         pending = child._pending
         assert pending is not None
         route = child._routes[pending.outcome]
-        if self._must_wait(child, pending.outcome, route, pending.forced, now):
+        by_operator = pending.forced or pending.approved
+        if self._must_wait(child, pending.outcome, route, by_operator, now):
             return None
         child._drop_pending()
-        return pending.outcome, route, pending.forced
+        if pending.forced:
+            child._abort()
+        else:
+            child._leave()
+        return pending.outcome, route, by_operator
 
     def _leaves_locked(self, child: State, route: Route) -> bool:
         """Would firing ``route`` of ``child`` leave a locked state or container?"""

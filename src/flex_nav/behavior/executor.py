@@ -429,10 +429,14 @@ class BehaviorExecutor:
                 self._root._abort()
                 self._end(BehaviorStatus.FINISHED, outcome, "outcome forced by the operator", None, now)
                 return f"forced {path} -> {outcome} (behavior finished)"
-            level = node._routes[outcome][2]
-            if node._pending is not None:
+            pending = node._pending
+            if pending is not None and pending.reason in ("autonomy", "lock") and pending.outcome == outcome:
+                pending.approved = True  # forcing the requested outcome approves it
+                node._wake(now)
+                return f"approved {path} -> {outcome}"
+            if pending is not None:
                 node._drop_pending()
-            node._pending = Pending(outcome, "forced", level, True)
+            node._pending = Pending(outcome, "forced", node._routes[outcome][2], forced=True)
             node._wake(now)
             return f"forced {path} -> {outcome}"
 
@@ -455,7 +459,7 @@ class BehaviorExecutor:
                 )
             if pending.reason == "lock":
                 raise BehaviorCommandError(f"outcome {pending.outcome!r} of {path!r} waits for an unlock, not approval")
-            pending.forced = True
+            pending.approved = True
             node._wake(now)
             return f"approved {path} -> {pending.outcome}"
 

@@ -68,19 +68,26 @@ Route = Tuple[Optional["State"], Optional[str], int, str, str]
 
 class Pending:
     """An outcome of a state that waits: for the operator (``reason`` "autonomy"), for an unlock
-    ("lock"), or an outcome forced by the operator that has not been applied yet ("forced")."""
+    ("lock"), or an outcome forced by the operator that has not been applied yet ("forced").
 
-    __slots__ = ("announced", "forced", "outcome", "reason", "required")
+    ``forced``: the operator chose the outcome, the state is exited without finishing (a container
+    does not hand its outputs up). ``approved``: the operator let the state's own outcome fire.
+    Both bypass the autonomy check; neither bypasses a lock.
+    """
 
-    def __init__(self, outcome: str, reason: str, required: int, forced: bool) -> None:
+    __slots__ = ("announced", "approved", "forced", "outcome", "reason", "required")
+
+    def __init__(self, outcome: str, reason: str, required: int, forced: bool = False, approved: bool = False) -> None:
         self.outcome = outcome
         self.reason = reason
         self.required = required
         self.forced = forced
+        self.approved = approved
         self.announced = False  # a RequestEvent(pending=True) was sent
 
     def __repr__(self) -> str:
-        return f"Pending({self.outcome!r}, {self.reason}, required={self.required}, forced={self.forced})"
+        flags = "forced" if self.forced else "approved" if self.approved else "waiting"
+        return f"Pending({self.outcome!r}, {self.reason}, required={self.required}, {flags})"
 
 
 def _names(what: str, values: Iterable[str], owner: str) -> Tuple[str, ...]:

@@ -199,10 +199,6 @@ class StateMachine(Container):
                 self._due = math.inf
                 return None
             outcome, route, forced = resolved
-            if forced:
-                child._abort()
-            else:
-                child._leave()
         else:
             if child._due > now:
                 self._due = child._due

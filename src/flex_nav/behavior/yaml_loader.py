@@ -434,7 +434,7 @@ class _Loader:
             self.mark((cpath, label, None, None), label_node)
             self.mark((cpath, label, "label", label), label_node)
             entry = self.pairs(state_node, f"state {label!r}")
-            state = self.state(entry, label, path, state_node, in_concurrency=False)
+            state = self.state(entry, label, path, label_node, in_concurrency=False)
             transitions = self.links(entry, "transitions", cpath, label)
             autonomy = self.links(entry, "autonomy", cpath, label)
             remapping = self.links(entry, "remapping", cpath, label)
@@ -473,7 +473,7 @@ class _Loader:
             self.mark((cpath, label, None, None), label_node)
             self.mark((cpath, label, "label", label), label_node)
             entry = self.pairs(state_node, f"state {label!r}")
-            state = self.state(entry, label, child_path(cpath, label), state_node, in_concurrency=True)
+            state = self.state(entry, label, child_path(cpath, label), label_node, in_concurrency=True)
             autonomy = self.links(entry, "autonomy", cpath, label)
             remapping = self.links(entry, "remapping", cpath, label)
             try:
@@ -531,13 +531,13 @@ class _Loader:
             self.only(entry, ("behavior", "parameters", *links), f"state {label!r}")
             return self.sub_behavior(entry, label, path)
         self.only(entry, (kind, *links), f"state {label!r}")
-        body_node = entry[kind][1]
+        kind_node, body_node = entry[kind]
         body = self.pairs(body_node, f"{kind} of {label!r}")
         if kind == "concurrency":
-            return self.concurrency(body, path, body_node)
+            return self.concurrency(body, path, kind_node)
         cls: Type[StateMachine] = PriorityContainer if kind == "priority" else StateMachine
         self.only(body, _CONTAINER_KEYS, f"{kind} of {label!r}")
-        return self.machine(body, cls, path, body_node)
+        return self.machine(body, cls, path, kind_node)
 
     def leaf(self, entry: Dict[str, Tuple[Node, Node]], label: str, node: Node) -> State:
         class_node = entry["class"][1]

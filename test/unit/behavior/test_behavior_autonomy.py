@@ -229,3 +229,35 @@ def test_autonomy_parse():
     for bad in (True, 4, "none", 1.5):
         with pytest.raises(ConfigError, match="valid: off, low, high, full, 0, 1, 2, 3"):
             Autonomy.parse(bad)
+
+
+def nested_with_output(journal):
+    inner = StateMachine(outcomes=["finished", "failed"], output_keys=["result"])
+    inner.add(
+        "W",
+        ScriptedState(journal, output_keys=["result"], action=lambda ud, n: setattr(ud, "result", 42)),
+        transitions={"done": "finished", "failed": "failed"},
+    )
+    outer = StateMachine(outcomes=["ok", "bad"], output_keys=["result"])
+    outer.add("Inner", inner, transitions={"finished": "ok", "failed": "bad"}, autonomy={"finished": Autonomy.FULL})
+    return outer
+
+
+@pytest.mark.parametrize(
+    ("command", "outcome", "outputs"),
+    [("approve", "ok", {"result": 42}), ("force_same", "ok", {"result": 42}), ("force_other", "bad", {})],
+)
+def test_approving_a_finished_container_hands_outputs_up_forcing_another_outcome_does_not(command, outcome, outputs):
+    journal = Journal()
+    ex = executor(nested_with_output(journal))
+    ex.run(timeout_s=1.0, stop_on_timeout=False)
+    assert [(r.path, r.outcome) for r in ex.requested_outcomes()] == [("/Inner", "finished")]
+    if command == "approve":
+        message = ex.approve("/Inner")
+    elif command == "force_same":
+        message = ex.force_transition("/Inner", "finished")
+    else:
+        message = ex.force_transition("/Inner", "failed")
+    result = ex.run(timeout_s=1.0)
+    assert message.result(timeout=0).startswith("forced" if command == "force_other" else "approved")
+    assert (result.outcome, result.outputs) == (outcome, outputs)
