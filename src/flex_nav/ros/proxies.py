@@ -12,7 +12,7 @@ from __future__ import annotations
 import collections
 import threading
 import time
-from typing import Any, Deque, Dict, Generic, Optional, Tuple, TypeVar
+from typing import Any, Callable, Deque, Dict, Generic, List, Optional, Tuple, TypeVar
 
 import actionlib
 import rospy
@@ -36,6 +36,7 @@ class Subscription(Generic[MsgT]):
         self._last_wall_s = 0.0  # [s] time.monotonic() when the newest message arrived
         self._buffer: Deque[MsgT] = collections.deque(maxlen=max(1, buffer_size))
         self._buffered = buffer_size > 0
+        self._callbacks: List[Callable[[MsgT], None]] = []  # extra callbacks (FlexBE's subscribe(callback=...))
         self._subscriber = rospy.Subscriber(topic, msg_type, self._callback, queue_size=max(1, buffer_size))
 
     def _callback(self, msg: MsgT) -> None:
@@ -44,12 +45,31 @@ class Subscription(Generic[MsgT]):
             self._last_wall_s = time.monotonic()
             if self._buffered:
                 self._buffer.append(msg)
+            callbacks = list(self._callbacks)
+        for callback in callbacks:  # outside the lock: a callback may read this subscription
+            callback(msg)
+
+    def add_callback(self, callback: Callable[[MsgT], None]) -> None:
+        """Also call ``callback(msg)`` for every message (in rospy's thread, after caching it)."""
+        with self._lock:
+            self._callbacks.append(callback)
+
+    def remove_callback(self, callback: Callable[[MsgT], None]) -> None:
+        with self._lock:
+            if callback in self._callbacks:
+                self._callbacks.remove(callback)
 
     def enable_buffer(self, size: int = DEFAULT_BUFFER_SIZE) -> None:
         with self._lock:
             if not self._buffered:
                 self._buffer = collections.deque(maxlen=max(1, size))
                 self._buffered = True
+
+    def disable_buffer(self) -> None:
+        """Stop buffering and drop the buffered messages (the newest message stays cached)."""
+        with self._lock:
+            self._buffered = False
+            self._buffer.clear()
 
     def has_msg(self) -> bool:
         with self._lock:
@@ -156,6 +176,15 @@ class ActionClientProxy:
         with self._lock:
             return self._feedback
 
+    def forget_result(self) -> None:
+        """Drop the stored result, so :meth:`has_result` is False until the next goal finishes."""
+        with self._lock:
+            self._result, self._done = None, False
+
+    def forget_feedback(self) -> None:
+        with self._lock:
+            self._feedback = None
+
     def is_active(self) -> bool:
         with self._lock:
             return self._active
@@ -243,6 +272,24 @@ class RosProxies:
             caller = ServiceCallerProxy(name, srv_type)
             self._services[name] = caller
             return caller
+
+    def get_publisher(self, topic: str) -> Optional[rospy.Publisher]:
+        """The publisher some state of this behavior created for ``topic``, or None."""
+        with self._lock:
+            known = self._publishers.get(topic)
+            return known[1] if known is not None else None
+
+    def get_subscription(self, topic: str) -> Optional[Subscription[Any]]:
+        with self._lock:
+            return self._subscriptions.get(topic)
+
+    def get_action_client(self, name: str) -> Optional[ActionClientProxy]:
+        with self._lock:
+            return self._action_clients.get(name)
+
+    def get_service_caller(self, name: str) -> Optional[ServiceCallerProxy]:
+        with self._lock:
+            return self._services.get(name)
 
     def shutdown(self) -> None:
         """Cancel active goals and unregister every connection of this behavior."""

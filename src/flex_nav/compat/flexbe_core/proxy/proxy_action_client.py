@@ -1,0 +1,92 @@
+"""FlexBE's ProxyActionClient on the behavior's connection hub.
+
+``setupClient`` creates (or shares) the behavior's client and waits a bounded time for the server,
+logging an error if it is not there (as FlexBE does); ``send_goal`` waits at most
+``SEND_GOAL_SERVER_WAIT_S`` and raises :class:`~flex_nav.exceptions.NotReadyError` if the server is
+still missing. Results and feedback are kept per client: ``has_result`` / ``get_result`` /
+``remove_result``, ``has_feedback`` / ``get_feedback`` / ``remove_feedback``, ``get_state``
+(an ``actionlib_msgs/GoalStatus`` value), ``is_active``, ``cancel``.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Dict, Optional
+
+from flex_nav.compat.flexbe_core.logger import Logger
+from flex_nav.compat.flexbe_core.proxy.hub import ActionClientLike, Binding, ProxyHub
+from flex_nav.exceptions import NotReadyError
+
+SEND_GOAL_SERVER_WAIT_S = 1.0  # [s] longest wait for the server when sending a goal (setupClient waited already)
+
+
+class ProxyActionClient:
+    """Action clients of the current behavior, by action name (``ProxyActionClient({'move': MoveAction})``)."""
+
+    def __init__(self, topics: Optional[Dict[str, type]] = None, wait_duration: float = 10) -> None:
+        self._binding = Binding("ProxyActionClient")
+        self._topics: Dict[str, type] = {}
+        for topic, msg_type in (topics or {}).items():
+            self.setupClient(topic, msg_type, wait_duration)
+
+    def setupClient(self, topic: str, msg_type: type, wait_duration: float = 10) -> None:  # noqa: N802  (FlexBE's name)
+        """Create the client for ``topic``; wait at most ``wait_duration`` [s] for its server (log if absent)."""
+        self._topics[topic] = msg_type
+
+        def create(hub: ProxyHub) -> None:
+            client = hub.action_client(topic, msg_type)
+            if wait_duration > 0 and not client.is_available(float(wait_duration)):
+                Logger.logerr(f"Action client {topic} timed out: no server after {float(wait_duration):.1f} s")
+
+        self._binding.setup(create)
+
+    def send_goal(self, topic: str, goal: Any) -> None:
+        """Send ``goal`` (replacing the client's previous goal; its result and feedback are forgotten)."""
+        self._client(topic).send_goal(goal, server_timeout_s=SEND_GOAL_SERVER_WAIT_S)
+
+    def is_available(self, topic: str) -> bool:
+        """True if the client is set up in this behavior and its server is connected."""
+        hub = self._binding.peek()
+        if hub is None:
+            return False
+        client = hub.get_action_client(topic)
+        return client is not None and bool(client.is_available(0.0))
+
+    def has_result(self, topic: str) -> bool:
+        return self._client(topic).has_result()
+
+    def get_result(self, topic: str) -> Any:
+        return self._client(topic).result()
+
+    def remove_result(self, topic: str) -> None:
+        self._client(topic).forget_result()
+
+    def has_feedback(self, topic: str) -> bool:
+        return self._client(topic).feedback() is not None
+
+    def get_feedback(self, topic: str) -> Any:
+        return self._client(topic).feedback()
+
+    def remove_feedback(self, topic: str) -> None:
+        self._client(topic).forget_feedback()
+
+    def get_state(self, topic: str) -> int:
+        """actionlib_msgs/GoalStatus value of the last goal."""
+        return self._client(topic).state()
+
+    def is_active(self, topic: str) -> bool:
+        return self._client(topic).is_active()
+
+    def cancel(self, topic: str) -> None:
+        self._client(topic).cancel()
+
+    def _client(self, topic: str) -> ActionClientLike:
+        client = self._binding.hub().get_action_client(topic)
+        if client is None:
+            raise NotReadyError(
+                f"ProxyActionClient: action {topic!r} is not set up in this behavior; call setupClient(topic, type) "
+                f"first (this proxy set up: {', '.join(self._topics) or 'none'})"
+            )
+        return client
+
+
+__all__ = ["ProxyActionClient"]
