@@ -29,7 +29,9 @@ DOT_TIMEOUT_S = 30.0  # [s] bound on one `dot` run
 
 
 def _quote(text: str) -> str:
-    return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    """A dot string literal; a newline in ``text`` becomes a line break of the label."""
+    escaped = text.replace("\\", "\\\\").replace('"', '\\"').replace("\n", "\\n")
+    return f'"{escaped}"'
 
 
 class _DotWriter:
@@ -57,7 +59,7 @@ class _DotWriter:
         if not isinstance(state, Container):
             node = self.new_id("s")
             self.ids[id(state)] = node
-            label = f"{path.rsplit('/', 1)[-1] or '/'}\\n{type(state).__name__}"
+            label = f"{path.rsplit('/', 1)[-1] or '/'}\n{type(state).__name__}"
             self.lines.append(f"{indent}{node} [shape=box, style=rounded, label={_quote(label)}];")
             return {outcome: node for outcome in state.outcomes}
         cluster = self.new_id("cluster_")
