@@ -10,7 +10,8 @@ Modules (one state or one small family each):
 - action clients (:mod:`~flex_nav_states.action_base`): :mod:`get_path_state` (GetPath),
   :mod:`follow_path_state` (FollowPath: a controller, and FollowPlanner: a mid-level planner),
   :mod:`follow_topic_state` (FollowTopic), :mod:`clear_costmaps_state` (several ClearCostmap servers at once);
-- input: :mod:`get_pose_state` (a PoseStamped goal from a topic, stale messages dropped);
+- goals: :mod:`get_pose_state` (a PoseStamped goal from a topic, stale messages dropped),
+  :mod:`goal_list_state` (the goals of a fixed list in turn, e.g. the paper's intermediate goals);
 - motion (:mod:`~flex_nav_states.motion_base`; TwistStamped out, zero twist on every exit):
   :mod:`move_distance_state`, :mod:`rotate_angle_state` (closed loop on odometry), :mod:`timed_twist_state`,
   :mod:`timed_stop_state`, :mod:`pure_pursuit_state` (follows the ``plan`` in userdata);
@@ -29,6 +30,7 @@ from typing import List
 
 STATE_MODULES = (
     "get_pose_state",
+    "goal_list_state",
     "get_path_state",
     "follow_path_state",
     "follow_topic_state",

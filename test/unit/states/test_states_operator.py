@@ -7,6 +7,7 @@ from unit.states.states_testlib import Harness, path, pose_stamped
 
 from flex_nav.behavior import Autonomy, BehaviorStatus, LogLevel, StateMachine
 from flex_nav.exceptions import ConfigError
+from flex_nav_states.goal_list_state import GoalListState
 from flex_nav_states.log_state import LogState
 from flex_nav_states.operator_decision_state import OperatorDecisionState
 from flex_nav_states.wait_state import WaitState
@@ -99,3 +100,47 @@ def test_wait_waits_on_the_behavior_clock():
     start = h.clock.now()
     assert h.start().run(max_time_s=5.0).outcome == "done"
     assert 2.5 <= h.clock.now() - start <= 2.6
+
+
+def goal_loop(loops: int) -> StateMachine:
+    sm = StateMachine(outcomes=["finished"], output_keys=["goal", "goal_index"])
+    sm.add("Next", GoalListState(goals=[[1.0, 2.0, 90.0], [3.0, 4.0, -90.0]], frame_id="map", loops=loops),
+           transitions={"next": "Drive", "done": "finished"})
+    sm.add("Drive", WaitState(wait_time_s=1.0), transitions={"done": "Next"})
+    return sm
+
+
+def test_goal_list_hands_out_the_goals_in_order_then_done():
+    h = Harness(goal_loop(loops=2))
+    result = h.start().run(max_time_s=20.0)
+    assert result.outcome == "finished"
+    logged = [e.message for e in h.logs if e.message.startswith("goal ")]
+    assert logged == [
+        "goal 1/4: (1.00, 2.00, 90 deg) in map",
+        "goal 2/4: (3.00, 4.00, -90 deg) in map",
+        "goal 3/4: (1.00, 2.00, 90 deg) in map",
+        "goal 4/4: (3.00, 4.00, -90 deg) in map",
+    ]
+    assert result.outputs["goal_index"] == 4
+    goal = result.outputs["goal"]
+    assert goal.header.frame_id == "map"
+    handed_out_s = next(e.time_s for e in h.logs if e.message.startswith("goal 4/4"))
+    assert goal.header.stamp.to_sec() == pytest.approx(handed_out_s)  # stamped when handed out
+    assert handed_out_s >= 1003.0  # after three 1 s drives
+
+
+def test_goal_list_forever():
+    h = Harness(goal_loop(loops=0))
+    h.start()
+    h.run_for(30.0)
+    assert sum(e.message.startswith("goal ") for e in h.logs) >= 14
+
+
+@pytest.mark.parametrize(
+    ("params", "match"),
+    [({"goals": []}, "goals"), ({"goals": [[1.0, 2.0]]}, "goals\\[0\\]"), ({"goals": [[1.0, "a", 0.0]]}, "goals"),
+     ({"loops": -1}, "loops"), ({"loops": 1.5}, "loops"), ({"frame_id": ""}, "frame_id")],
+)
+def test_goal_list_parameters_are_validated(params, match):
+    with pytest.raises(ConfigError, match=match):
+        GoalListState(**params)

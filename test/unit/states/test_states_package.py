@@ -36,7 +36,7 @@ EXPECTED = {
     "GetPoseState", "GetPathState", "FollowPathState", "FollowPlannerState", "FollowTopicState",
     "ClearCostmapsState", "MoveDistanceState", "RotateAngleState", "TimedTwistState", "TimedStopState",
     "PurePursuitState", "BumperMonitorState", "StuckMonitorState", "SensorFreshnessState",
-    "OperatorDecisionState", "LogState", "WaitState",
+    "OperatorDecisionState", "LogState", "WaitState", "GoalListState",
 }
 
 
