@@ -22,7 +22,8 @@ class ClearCostmapsState(State):
     """Clears several costmaps concurrently: one ClearCostmap goal to each server, all within a time bound.
 
     Each goal is sent as soon as its server is connected; the state ends when every server answered or when
-    ``timeout_s`` has passed since entry (unanswered goals are cancelled, missing servers are named).
+    ``timeout_s`` has passed since entry, paused time excluded (unanswered goals are cancelled, missing
+    servers are named). Clearing is harmless, so goals are not cancelled while the behavior is paused.
 
     -- costmaps   list   ClearCostmap action names (e.g. get_path_server/clear_costmap), at least one.
     -- timeout_s  float  [s] Bound on the whole state: server connection and all results.
@@ -41,6 +42,7 @@ class ClearCostmapsState(State):
         self._finished: Dict[str, bool] = {}
         self._problems: List[str] = []
         self._enter_s = 0.0
+        self._pause_start_s = 0.0
 
     def on_start(self) -> None:
         proxies = proxies_of(self)
@@ -74,6 +76,12 @@ class ClearCostmapsState(State):
                     self._finished[name] = True
             return "failed"
         return None
+
+    def on_pause(self) -> None:
+        self._pause_start_s = self.now_s()
+
+    def on_resume(self, userdata: UserDataView) -> None:
+        self._enter_s += self.now_s() - self._pause_start_s  # paused time does not count against timeout_s
 
     def on_exit(self, userdata: UserDataView) -> None:
         for name, client in self._clients.items():

@@ -348,3 +348,19 @@ def test_clear_costmaps_preempt_cancels_active_goals():
 def test_clear_costmaps_validates_the_list(costmaps):
     with pytest.raises(ConfigError, match="costmaps"):
         ClearCostmapsState(costmaps=costmaps)
+
+
+def test_clear_costmaps_paused_time_does_not_count():
+    h, clients = clear_harness(timeout_s=2.0)
+    clients[0].respond(SUCCEEDED, ok())
+    clients[1].respond(SUCCEEDED, ok())
+    h.start()
+    h.run_for(1.0)
+    h.executor.pause()
+    h.tick()
+    h.advance(10.0)
+    h.executor.resume()
+    h.tick()
+    h.run_for(0.8)  # 1.8 s of unpaused time: still waiting for the third server
+    clients[2].finish(SUCCEEDED, ok())
+    assert h.run(max_time_s=1.0).outcome == "done"
