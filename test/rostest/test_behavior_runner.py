@@ -1,0 +1,112 @@
+#!/usr/bin/env python3
+"""rostest node: a behavior run by behavior_runner at autonomy Low waits for the operator; the operator tool
+approves it, preempts it, starts it again by name, and the status / activity / transition topics report it."""
+
+import os
+import subprocess
+import sys
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+
+from flex_nav.msg import BehaviorActivity, BehaviorStatus, BehaviorTransition
+from flex_nav.ros.node import init_node
+
+WAIT_S = 20.0  # [s]
+RUNNER = "/behavior_runner"
+
+
+def operator(*args, timeout_s=30.0):
+    """Run the operator tool as a user would; returns (exit code, output)."""
+    proc = subprocess.run(
+        ["rosrun", "flex_nav", "operator", "--runner", RUNNER, *args],
+        capture_output=True, text=True, timeout=timeout_s, env=dict(os.environ), check=False,
+    )
+    return proc.returncode, proc.stdout + proc.stderr
+
+
+class Recorder:
+    def __init__(self):
+        self.lock = threading.Lock()
+        self.status = []
+        self.activity = []
+        self.transitions = []
+        rospy.Subscriber(f"{RUNNER}/status", BehaviorStatus, self._add, callback_args=self.status)
+        rospy.Subscriber(f"{RUNNER}/activity", BehaviorActivity, self._add, callback_args=self.activity)
+        rospy.Subscriber(f"{RUNNER}/transitions", BehaviorTransition, self._add, callback_args=self.transitions)
+
+    def _add(self, msg, into):
+        with self.lock:
+            into.append(msg)
+
+    def wait_for(self, what, predicate, timeout_s=WAIT_S):
+        deadline = time.monotonic() + timeout_s
+        while time.monotonic() < deadline:
+            with self.lock:
+                found = [m for m in getattr(self, what) if predicate(m)]
+            if found:
+                return found[-1]
+            time.sleep(0.02)
+        with self.lock:
+            seen = getattr(self, what)[-5:]
+        raise AssertionError(f"no matching {what} message within {timeout_s} s; last seen: {seen}")
+
+
+class TestBehaviorRunner(unittest.TestCase):
+    def test_operator_approves_preempts_and_restarts(self):
+        rec = Recorder()
+        # 1. At autonomy Low, /Ask's transition (needs High) waits for the operator; /Hold is not entered.
+        activity = rec.wait_for("activity", lambda m: any(r.path == "/Ask" for r in m.requests))
+        request = next(r for r in activity.requests if r.path == "/Ask")
+        self.assertEqual((request.outcome, request.required, request.reason), ("done", 2, "autonomy"))
+        self.assertNotIn("/Hold", activity.active_paths)
+        code, out = operator("status")
+        self.assertEqual(code, 0, out)
+        self.assertIn("waits for operator: /Ask -> done", out)
+
+        # 2. A wrong command is refused with the valid choices; nothing changes.
+        code, out = operator("approve", "/Nowhere")
+        self.assertEqual(code, 1, out)
+        self.assertIn("refused", out)
+
+        # 3. The operator tool approves: the transition fires and /Hold becomes active.
+        code, out = operator("approve-next", "--timeout", "10")
+        self.assertEqual(code, 0, out)
+        transition = rec.wait_for("transitions", lambda m: m.path == "/Ask")
+        self.assertEqual((transition.outcome, transition.target), ("done", "Hold"))
+        rec.wait_for("activity", lambda m: "/Hold" in m.active_paths)
+
+        # 4. Preempt: status PREEMPTED.
+        code, out = operator("preempt")
+        self.assertEqual(code, 0, out)
+        status = rec.wait_for("status", lambda m: m.code == BehaviorStatus.PREEMPTED)
+        self.assertEqual(status.behavior, "operator_test")
+        code, out = operator("pause")
+        self.assertEqual(code, 1, out)
+        self.assertIn("no behavior is running", out)
+
+        # 5. Start it again by name at runtime (full autonomy, short hold): it finishes by itself.
+        code, out = operator("start", "../operator_test.yaml")
+        self.assertEqual(code, 1, out)
+        self.assertIn("not a file", out)
+        code, out = operator("start", "operator_test", "hold_s")
+        self.assertEqual(code, 1, out)
+        self.assertIn("is not KEY=VALUE", out)
+        code, out = operator("start", "operator_test", "no_such_parameter=1")
+        self.assertEqual(code, 1, out)
+        self.assertIn("no_such_parameter", out)
+        code, out = operator("start", "operator_test", "autonomy=full", "hold_s=0.2")
+        self.assertEqual(code, 0, out)
+        status = rec.wait_for("status", lambda m: m.code == BehaviorStatus.FINISHED)
+        self.assertEqual(status.outcome, "finished")
+        with rec.lock:
+            codes = [m.code for m in rec.status]
+        self.assertIn(BehaviorStatus.RUNNING, codes)
+
+
+if __name__ == "__main__":
+    init_node("test_behavior_runner", master_timeout_s=WAIT_S)
+    rostest.rosrun("flex_nav", "test_behavior_runner", TestBehaviorRunner, sys.argv)
