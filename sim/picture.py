@@ -201,7 +201,7 @@ def picture(
     with Simulation(world, spawns, seed=seed, sensors=SensorOptions(camera=False)) as sim:
         scans = simulate(sim, seconds)
         image = render(sim, scans, px_per_cell)
-    if not cv2.imwrite(str(out), image):
+    if not cv2.imwrite(str(out), image, [cv2.IMWRITE_PNG_COMPRESSION, 9]):
         raise ConfigError(f"cannot write the picture to {out} (does the folder exist? valid suffixes: .png, .jpg)")
     return out
 

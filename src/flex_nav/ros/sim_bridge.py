@@ -38,6 +38,7 @@ import math
 import sys
 import threading
 import time
+import warnings
 from dataclasses import dataclass
 from typing import Any, Callable, Dict, List, Optional, Tuple
 
@@ -75,7 +76,6 @@ KOBUKI_CODES = {"left": BumperEvent.LEFT, "center": BumperEvent.CENTER, "right":
 # (whose time.sleep(0) after every message hands the GIL to a writer thread). A subscriber that stops
 # reading altogether stalls the simulation once its socket buffer is full: the clock then stops
 # and every sim-time node with it. Scans, images and events go through queues.
-SYNCHRONOUS = None
 PACE_SLACK_S = 0.002  # [s] sleep only when this far ahead of the real-time schedule
 MAX_LAG_S = 0.25  # [s] further behind than this: re-anchor the schedule instead of bursting to catch up
 STATS_PERIOD_S = 30.0  # [s] wall time between log lines with the achieved real-time factor
@@ -86,6 +86,15 @@ def stamp_of(t: float) -> genpy.Time:
     """ROS time of simulated time ``t`` [s]."""
     nanoseconds = round(t * 1e9)
     return genpy.Time(nanoseconds // 1_000_000_000, nanoseconds % 1_000_000_000)
+
+
+def synchronous_publisher(topic: str, msg_type: type) -> rospy.Publisher:
+    """A publisher without a queue (see above); rospy's warning about the missing queue_size is silenced."""
+    with warnings.catch_warnings():
+        warnings.filterwarnings(
+            "ignore", message="The publisher should be created with an explicit", category=SyntaxWarning
+        )
+        return rospy.Publisher(topic, msg_type, queue_size=None)
 
 
 def set_yaw(q: Any, yaw: float) -> None:
@@ -123,8 +132,8 @@ class RobotIO:
         def topic(t: str) -> str:
             return f"{name}/{t}" if name else t
 
-        self.pub_odom = rospy.Publisher(topic("odom"), Odometry, queue_size=SYNCHRONOUS)
-        self.pub_truth = rospy.Publisher(topic("ground_truth"), Odometry, queue_size=SYNCHRONOUS)
+        self.pub_odom = synchronous_publisher(topic("odom"), Odometry)
+        self.pub_truth = synchronous_publisher(topic("ground_truth"), Odometry)
         self.lidar = sim.lidar_spec_of(name)
         self.pub_scan = rospy.Publisher(topic("scan"), LaserScan, queue_size=5) if self.lidar else None
         self.camera = sim.camera_spec_of(name)
@@ -237,8 +246,8 @@ class SimBridge:
         map_frame = options.map_frame
         self._lock = threading.Lock()
         self._pending: Dict[str, Tuple[float, float]] = {}
-        self.pub_clock = rospy.Publisher("/clock", Clock, queue_size=SYNCHRONOUS)
-        self.pub_tf = rospy.Publisher("/tf", TFMessage, queue_size=SYNCHRONOUS)
+        self.pub_clock = synchronous_publisher("/clock", Clock)
+        self.pub_tf = synchronous_publisher("/tf", TFMessage)
         self.pub_tf_static = rospy.Publisher("/tf_static", TFMessage, queue_size=10, latch=True)
         self.pub_world_events = rospy.Publisher("sim_events", SimEvent, queue_size=50)
         self.robots = {
@@ -246,6 +255,7 @@ class SimBridge:
             for name in sim.robot_names
         }
         self.publish_cost = 0.0  # [s] wall time spent building and publishing messages
+        self.lag_resets = 0  # times the simulation fell more than MAX_LAG_S behind the requested rtf
         self._handlers: Dict[type, Callable] = {
             OdometryReading: self._on_odometry,
             ScanReading: self._on_scan,
@@ -306,6 +316,7 @@ class SimBridge:
                     time.sleep(ahead)
                 elif ahead < -MAX_LAG_S:
                     anchor_wall, anchor_sim = now, t
+                    self.lag_resets += 1
             if now >= next_stats:
                 next_stats = now + STATS_PERIOD_S
                 rospy.loginfo(self.stats(now - wall_start))
@@ -316,7 +327,8 @@ class SimBridge:
         costs = dict(self.sim.costs, ros_publishing=self.publish_cost)
         parts = ", ".join(f"{k} {v:.2f} s" for k, v in costs.items())
         rtf = self.sim.time / wall if wall > 0 else 0.0
-        return f"sim: t = {self.sim.time:.1f} s in {wall:.1f} s wall, real-time factor {rtf:.2f}; cost: {parts}"
+        behind = f"; fell behind the requested rtf {self.lag_resets} times" if self.lag_resets else ""
+        return f"sim: t = {self.sim.time:.1f} s in {wall:.1f} s wall, real-time factor {rtf:.2f}; cost: {parts}{behind}"
 
     # -- publishing ---------------------------------------------------------------------------------
     def _publish_clock(self, t: float) -> None:
