@@ -50,14 +50,14 @@ WANDER_BLOCKED = 0.6  # [m] turn away when something is this close ahead
 class Canvas:
     """Map-frame drawing on an image whose pixels follow a GridMap scaled by ``scale`` px per cell."""
 
-    def __init__(self, grid: GridMap, px_per_cell: int, margin_top: int, margin_bottom: int) -> None:
+    def __init__(self, grid: GridMap, px_per_cell: int, margin_top: int, margin_bottom: int, min_width: int) -> None:
         self.grid = grid
         self.k = px_per_cell
         self.top = margin_top
         occupancy = np.flipud(grid.occupancy)  # image rows top-down (+y up)
         base = np.where(occupancy[..., None] >= 50, OCCUPIED_COLOR, FREE_COLOR).astype(np.uint8)
         base = np.repeat(np.repeat(base, px_per_cell, axis=0), px_per_cell, axis=1)
-        width = max(base.shape[1], LEGEND_WIDTH)
+        width = max(base.shape[1], min_width)
         self.image = np.full((base.shape[0] + margin_top + margin_bottom, width, 3), 255, dtype=np.uint8)
         self.image[margin_top : margin_top + base.shape[0], : base.shape[1]] = base
 
@@ -107,7 +107,11 @@ def simulate(sim: Simulation, seconds: float) -> Dict[str, ScanReading]:
 def render(sim: Simulation, scans: Dict[str, ScanReading], px_per_cell: int = 4) -> np.ndarray:
     """The picture (BGR uint8) of ``sim`` in its current state with the given scans."""
     world = sim.world
-    canvas = Canvas(static_map(world), px_per_cell, margin_top=28, margin_bottom=30)
+    title = f"{world.name}: {world.description}  (t = {sim.time:.1f} s)"
+    title_width = cv2.getTextSize(title, cv2.FONT_HERSHEY_SIMPLEX, 0.5, 1)[0][0] + 16
+    canvas = Canvas(
+        static_map(world), px_per_cell, margin_top=28, margin_bottom=30, min_width=max(LEGEND_WIDTH, title_width)
+    )
     for solid in world.solids:
         pose = sim.object_pose(solid.name)
         if solid.kind == "door":
@@ -136,7 +140,6 @@ def render(sim: Simulation, scans: Dict[str, ScanReading], px_per_cell: int = 4)
         canvas.text(name, (centre[0] + 6, centre[1] - 6), GOAL_COLOR)
     for i, robot_name in enumerate(sim.robot_names):
         _draw_robot(canvas, sim, robot_name, scans.get(robot_name), ROBOT_COLORS[i % len(ROBOT_COLORS)])
-    title = f"{world.name}: {world.description}  (t = {sim.time:.1f} s)"
     canvas.text(title, (8, 19), size=0.5)
     _legend(canvas)
     return canvas.image

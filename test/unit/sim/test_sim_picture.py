@@ -22,7 +22,8 @@ def test_lab_picture(tmp_path: Path) -> None:
     image = cv2.imread(str(out))
     assert image is not None
     grid = static_map(load_world("lab"))  # 4 px per cell, plus title and legend rows
-    assert image.shape[:2] == (grid.height * 4 + 28 + 30, max(grid.width * 4, 760))
+    assert image.shape[0] == grid.height * 4 + 28 + 30
+    assert image.shape[1] >= grid.width * 4 and image.shape[1] >= 760
     assert _has_color(image, ROBOT_COLORS[0])  # the robot
     assert _has_color(image, BOX_COLOR) and _has_color(image, LOW_COLOR)
     assert _has_color(image, RAY_COLOR, tolerance=60)  # rays, blended
