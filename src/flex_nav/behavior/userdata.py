@@ -57,31 +57,33 @@ def readonly(value: Any) -> Any:
 
 
 def _readonly_other(value: Any) -> Any:  # noqa: PLR0911  (one return per kind of value)
-    if isinstance(value, (enum.Enum, *_CALLABLE_TYPES)):
+    kind = type(value)
+    if kind in _VIEW_TYPES:
         return value
-    if isinstance(value, (ReadOnlyObject, ReadOnlySequence, ReadOnlyMapping, ReadOnlySet)):
+    mro = kind.__mro__
+    if _SPECIAL_BASES_SET.isdisjoint(mro):  # the common case: a message or other plain object
+        numpy = sys.modules.get("numpy")  # a value can only be an ndarray if numpy is imported
+        if numpy is not None and numpy.ndarray in mro:
+            view = value.view()
+            view.flags.writeable = False
+            return view
+        return ReadOnlyObject(value)
+    if isinstance(value, _PASS_THROUGH):  # enums, callables, subclasses of immutable builtins
         return value
-    numpy = sys.modules.get("numpy")  # a value can only be an ndarray if numpy is imported
-    if numpy is not None and isinstance(value, numpy.ndarray):
-        view = value.view()
-        view.flags.writeable = False
-        return view
+    if isinstance(value, tuple) and hasattr(value, "_fields"):  # a named tuple: keep its field attributes
+        return ReadOnlyObject(value)
     if isinstance(value, (list, tuple)):
         return ReadOnlySequence(value)
     if isinstance(value, dict):
         return ReadOnlyMapping(value)
     if isinstance(value, (set, frozenset)):
         return ReadOnlySet(value)
-    if isinstance(value, (bytearray, memoryview)):
-        return memoryview(value).toreadonly()
-    if isinstance(value, (int, float, str, bytes)):  # subclasses of immutable builtins
-        return value
-    return ReadOnlyObject(value)
+    return memoryview(value).toreadonly()  # bytearray, memoryview
 
 
 def unwrap(value: Any) -> Any:
     """The real object behind a read-only view (identity for anything else). Breaks the protection."""
-    if isinstance(value, (ReadOnlyObject, ReadOnlySequence, ReadOnlyMapping, ReadOnlySet)):
+    if type(value) in _VIEW_TYPES:
         return object.__getattribute__(value, "_ro_target")
     return value
 
@@ -123,7 +125,7 @@ class ReadOnlyObject:
     def __class__(self) -> type:  # makes isinstance(view, OriginalType) true
         return type(object.__getattribute__(self, "_ro_target"))
 
-    def __getattr__(self, name: str) -> Any:
+    def __getattribute__(self, name: str) -> Any:  # every attribute read comes back read-only
         return readonly(getattr(object.__getattribute__(self, "_ro_target"), name))
 
     def __setattr__(self, name: str, value: object) -> None:
@@ -298,6 +300,10 @@ class ReadOnlySet(AbstractSet[Any]):
     def __repr__(self) -> str:
         return repr(object.__getattribute__(self, "_ro_target"))
 
+
+_VIEW_TYPES = frozenset({ReadOnlyObject, ReadOnlySequence, ReadOnlyMapping, ReadOnlySet})
+_PASS_THROUGH = (enum.Enum, int, float, complex, str, bytes, *_CALLABLE_TYPES)
+_SPECIAL_BASES_SET = frozenset({*_PASS_THROUGH, list, tuple, dict, set, frozenset, bytearray, memoryview})
 
 for _view_class, _mutators in (
     (ReadOnlySequence, _LIST_MUTATORS),

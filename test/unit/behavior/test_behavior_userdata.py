@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import copy
+import enum
+from typing import NamedTuple
 
 import numpy as np
 import pytest
@@ -278,6 +280,22 @@ def test_numpy_inputs_are_non_writeable_views():
     )
     assert seen == {"shares": True, "write": "refused"}
     assert cloud.flags.writeable  # the caller's array is untouched
+
+
+def test_readonly_named_tuples_keep_fields_and_enums_and_functions_pass():
+    class Pose(NamedTuple):
+        x: float
+        tags: list
+
+    class Mode(enum.Enum):
+        FAST = 1
+
+    view = readonly(Pose(1.0, [1]))
+    assert (view.x, view[0], len(view), isinstance(view, Pose)) == (1.0, 1.0, 2, True)
+    with pytest.raises(ReadOnlyUserDataError):
+        view.tags.append(2)
+    assert readonly(Mode.FAST) is Mode.FAST
+    assert readonly(len) is len
 
 
 def test_readonly_of_immutables_is_identity_and_views_compare_equal():
