@@ -19,14 +19,16 @@ Modules (one state or one small family each):
   :mod:`stuck_monitor_state`, :mod:`sensor_freshness_state`;
 - operator: :mod:`operator_decision_state`, :mod:`log_state`, :mod:`wait_state`.
 
-:func:`state_classes` imports them all and lists the concrete states (for documentation checks and tools).
+:func:`state_classes` imports them all and lists the concrete states (for documentation checks and tools);
+``EXAMPLE_PARAMS`` gives constructor arguments for the states that have required parameters (every other
+state can be built with its defaults).
 """
 
 from __future__ import annotations
 
 import importlib
 import inspect
-from typing import List
+from typing import Any, Dict, List
 
 STATE_MODULES = (
     "get_pose_state",
@@ -47,6 +49,13 @@ STATE_MODULES = (
     "log_state",
     "wait_state",
 )
+
+# Constructor arguments for the states whose constructor has required parameters (for tools and checks).
+EXAMPLE_PARAMS: Dict[str, Dict[str, Any]] = {
+    "MoveDistanceState": {"distance_m": -0.25},
+    "RotateAngleState": {"angle_rad": 1.57},
+    "WaitState": {"wait_time_s": 1.0},
+}
 
 
 def state_classes() -> List[type]:

@@ -23,13 +23,11 @@ REPO = Path(__file__).resolve().parents[3]
 STATES_DIR = REPO / "states"
 PROXIES_SRC = REPO / "src" / "flex_nav" / "ros" / "proxies.py"
 
-# Parameters for states whose constructor needs some (the others are built with their defaults).
+# Parameters for the states that need some, plus non-default ones that exercise the docstring checks.
 EXAMPLE_PARAMS: Dict[str, dict] = {
-    "MoveDistanceState": {"distance_m": -0.25},
-    "RotateAngleState": {"angle_rad": 1.57},
+    **flex_nav_states.EXAMPLE_PARAMS,
     "OperatorDecisionState": {"outcomes": ["yes", "no", "later"], "suggestion": "yes"},
     "LogState": {"text": "hello"},
-    "WaitState": {"wait_time_s": 1.0},
 }
 
 EXPECTED = {
@@ -46,6 +44,11 @@ def classes() -> List[type]:
 
 def test_the_library_has_every_state_of_the_issue():
     assert {c.__name__ for c in classes()} == EXPECTED
+
+
+@pytest.mark.parametrize("cls", classes(), ids=lambda c: c.__name__)
+def test_every_state_builds_from_defaults_or_the_package_examples(cls):
+    cls(**flex_nav_states.EXAMPLE_PARAMS.get(cls.__name__, {}))
 
 
 @pytest.mark.parametrize("cls", classes(), ids=lambda c: c.__name__)
