@@ -401,3 +401,20 @@ def test_shipped_worlds_run(tmp_path: Path) -> None:
             for r in drive(sim, sim.robot_names[0], 0.2, 0.1, 0.5):
                 kinds[type(r).__name__] = kinds.get(type(r).__name__, 0) + 1
             assert {"OdometryReading", "ScanReading", "BumperReading"} <= set(kinds)
+
+
+def test_door_events_open_and_close(tmp_path: Path) -> None:
+    world = make_world(
+        tmp_path,
+        "walls:\n  - {name: divider, from: [1.0, -2.0], to: [1.0, 2.0]}\n"
+        "doors:\n  - {name: door, at: [1.0, 0.0], width: 0.9, state: closed}\n"
+        "events:\n  - {at: 0.5, action: open, target: door}\n  - {at: 1.0, action: close, target: door}\n",
+    )
+    with Simulation(world, [spawn()], seed=0, sensors=NO_CAMERA) as sim:
+        scans = [r for r in sim.run(1.5) if isinstance(r, ScanReading)]
+        ahead = len(scans[0].ranges) // 2
+        door_face = 1.0 - world.solid("door").size[1] / 2.0 - 0.05  # lidar 5 cm ahead of the centre
+        by_time = {round(s.stamp, 1): float(s.ranges[ahead]) for s in scans}
+        assert by_time[0.0] == pytest.approx(door_face, abs=0.03)  # closed: the panel
+        assert by_time[0.7] == pytest.approx(1.95 - 0.05, abs=0.03)  # open: the far wall
+        assert by_time[1.4] == pytest.approx(door_face, abs=0.03)  # closed again
