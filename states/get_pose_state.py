@@ -22,7 +22,8 @@ class GetPoseState(State):
     A message counts only if it is fresh when the state looks at it: a stamped message must be at most
     ``max_age_s`` old (so a goal left over from an earlier run or latched long ago is ignored); an
     unstamped message (stamp 0) must have arrived after the state was entered. Messages with an empty
-    frame_id, non-finite values or an unnormalised orientation are dropped with a warning.
+    frame_id, non-finite values or an unnormalised orientation are dropped with a warning. Goals are taken
+    in arrival order (a goal that came while the state was inactive and is still fresh is used first).
 
     -- topic      str    geometry_msgs/PoseStamped topic, relative to the behavior's namespace.
     -- max_age_s  float  [s] Largest accepted age of a stamped message (> 0).
@@ -50,7 +51,7 @@ class GetPoseState(State):
     def on_enter(self, userdata: UserDataView) -> None:
         self._enter_s = self.now_s()
         sub = self._subscription()
-        # Messages that arrived before entry: keep only stamped ones that are still fresh.
+        # Messages from before entry: stamped ones are judged by age in execute; unstamped ones cannot be dated.
         kept: List[Any] = []
         while True:
             msg = sub.pop_buffered()
