@@ -11,8 +11,9 @@ The first state added is the initial state unless :meth:`StateMachine.set_initia
 otherwise. Every registered outcome of every state needs a transition, to a state label or to an
 outcome of the machine; the machine leaves with that outcome. One tick executes the active state
 once; a new state is entered (``on_enter`` + first ``execute``) at the next tick, which is due at
-once. A state machine nested in another receives its input keys from the parent (through its own
-remapping) and hands its output keys back when it finishes.
+once -- unless that state executed less than one period (``1 / rate_hz``) ago, so a loop never runs
+a state faster than its rate. A state machine nested in another receives its input keys from the
+parent (through its own remapping) and hands its output keys back when it finishes.
 """
 
 from __future__ import annotations
