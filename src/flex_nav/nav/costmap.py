@@ -23,6 +23,7 @@ from typing import Optional, Tuple
 import numpy as np
 
 from flex_nav.exceptions import ConfigError
+from flex_nav.nav.bumper_layer import DEFAULT_MEMORY_S, BumperLayer
 from flex_nav.nav.costmap_grid import FREE, NO_INFORMATION, CostmapGeometry, costs_to_occupancy
 from flex_nav.nav.grid_map import GridMap
 from flex_nav.nav.inflation import InflationParams, Inflator
@@ -45,8 +46,10 @@ class Costmap:
         inflation: Optional[InflationParams] = None,
         rolling_window: bool = False,
         track_unknown_space: bool = False,
+        bumper_memory_s: float = DEFAULT_MEMORY_S,
     ) -> None:
         self.geometry = geometry
+        self.bumper_layer = BumperLayer(bumper_memory_s)
         self.rolling_window = rolling_window
         self.default_value = NO_INFORMATION if track_unknown_space else FREE
         self.static_layer = StaticLayer(static_map, static_params) if static_map is not None else None
@@ -95,6 +98,7 @@ class Costmap:
         static_params: StaticLayerParams = StaticLayerParams(),  # noqa: B008
         centre: Tuple[float, float] = (0.0, 0.0),
         track_unknown_space: bool = False,
+        bumper_memory_s: float = DEFAULT_MEMORY_S,
     ) -> Costmap:
         """A rolling-window (local) costmap of ``width_m`` x ``height_m`` [m] centred on ``centre`` (x, y) [m]."""
         for name, value in (("width_m", width_m), ("height_m", height_m), ("resolution", resolution)):
@@ -112,6 +116,7 @@ class Costmap:
             inflation=inflation,
             rolling_window=True,
             track_unknown_space=track_unknown_space,
+            bumper_memory_s=bumper_memory_s,
         )
 
     # ------------------------------------------------------------------ observations
@@ -120,10 +125,25 @@ class Costmap:
         layer = self._obstacles("add_scan")
         self._grow_dirty(layer.add_scan(scan))
 
-    def add_bumper_hits(self, xs: np.ndarray, ys: np.ndarray) -> None:
-        """Mark LETHAL where the bumpers touched something (points in this costmap's frame [m])."""
-        layer = self._obstacles("add_bumper_hits")
+    def mark_obstacles(self, xs: np.ndarray, ys: np.ndarray) -> None:
+        """Mark LETHAL obstacle points (x [m], y [m]) in the obstacle layer: later scans may clear them."""
+        layer = self._obstacles("mark_obstacles")
         self._grow_dirty(layer.mark_points(xs, ys))
+
+    def add_bumper_hits(self, xs: np.ndarray, ys: np.ndarray, now_s: float = 0.0) -> None:
+        """Mark LETHAL where the bumpers touched something (points in this costmap's frame [m]) at ``now_s`` [s].
+
+        The marks survive lidar clearing and :meth:`reset`; :meth:`expire_bumper_hits` forgets old ones.
+        """
+        self.bumper_layer.add(xs, ys, now_s)
+        points = [(float(x), float(y)) for x, y in zip(np.atleast_1d(xs), np.atleast_1d(ys))]
+        self._grow_dirty(self.bumper_layer.box(self.geometry, points))
+
+    def expire_bumper_hits(self, now_s: float) -> int:
+        """Forget bumper marks older than the layer's memory; returns how many were forgotten."""
+        gone = self.bumper_layer.expire(now_s)
+        self._grow_dirty(self.bumper_layer.box(self.geometry, gone))
+        return len(gone)
 
     def set_static_map(self, grid: GridMap) -> None:
         """Replace the static map (a new ``map`` message); the whole costmap is rebuilt on the next update."""
@@ -150,10 +170,15 @@ class Costmap:
             self.obstacle_layer.shift(d_rows, d_cols)
         self._dirty = (0, geo.height, 0, geo.width)
 
-    def reset(self) -> None:
-        """Full clear: forget every observation and rebuild from the static map (ClearCostmap)."""
+    def reset(self, forget_contacts: bool = False) -> None:
+        """Full clear (ClearCostmap): forget every sensor observation and rebuild from the static map.
+
+        Bumper contacts are kept (they are what a bumper recovery must avoid next) unless ``forget_contacts``.
+        """
         if self.obstacle_layer is not None:
             self.obstacle_layer.reset()
+        if forget_contacts:
+            self.bumper_layer.forget()
         self._dirty = (0, self.geometry.height, 0, self.geometry.width)
         self.update()
 
@@ -182,6 +207,7 @@ class Costmap:
             layer = self.obstacle_layer.costs[rows, cols]
             take = (layer != NO_INFORMATION) & ((work == NO_INFORMATION) | (work < layer))
             work[take] = layer[take]
+        self.bumper_layer.stamp(work, geo, outer[0], outer[2])
         if self.inflator is not None:
             self.inflator.apply(work)
         r_off, c_off = inner[0] - outer[0], inner[2] - outer[2]

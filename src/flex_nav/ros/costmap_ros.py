@@ -8,7 +8,8 @@ Parameters (private, under ``~<name>/``; units in brackets):
   (0.05; a static costmap takes the map's)
 - ``static_map`` (bool, true): static layer from ``map_topic`` (str, "map", latched OccupancyGrid)
 - ``scan_topic`` (str, "scan"; "" for none), ``obstacle_range`` [m] (2.5), ``raytrace_range`` [m] (3.0)
-- ``bumper_topic`` (str, "bumper_hits"; geometry_msgs/PointStamped contact points; "" for none)
+- ``bumper_topic`` (str, "bumper_hits"; geometry_msgs/PointStamped contact points; "" for none) and
+  ``bumper_memory`` [s] (60.0): contacts stay lethal this long, through lidar clearing and clear_costmap
 - ``robot_radius`` [m] (inscribed radius, 0.18), ``inflation_radius`` [m] (0.5), ``cost_scaling_factor`` [1/m] (5.0)
 - ``track_unknown_space`` (bool, false), ``update_frequency`` [Hz] (5.0), ``publish_frequency`` [Hz] (1.0)
 - ``transform_tolerance`` [s] (0.5)
@@ -50,7 +51,7 @@ PARAMETERS = (
     "global_frame", "robot_base_frame", "rolling_window", "static_map", "map_topic", "width", "height",
     "resolution", "scan_topic", "bumper_topic", "obstacle_range", "raytrace_range", "track_unknown_space",
     "robot_radius", "inflation_radius", "cost_scaling_factor", "update_frequency", "publish_frequency",
-    "transform_tolerance",
+    "transform_tolerance", "bumper_memory",
 )  # the names under ~<name>/ (anything else is a ConfigError)
 
 
@@ -98,6 +99,7 @@ class CostmapROS:
         self.track_unknown_space = param_bool(ns + "track_unknown_space", False)
         update_hz = param_float(ns + "update_frequency", 5.0, 0.1, 100.0)
         publish_hz = param_float(ns + "publish_frequency", 1.0, 0.0, 100.0)
+        self.bumper_memory_s = param_float(ns + "bumper_memory", 60.0, 0.1, 1e6)
         self.robot_pose = RobotPoseSource(
             tf_buffer, self.global_frame, self.robot_base_frame, param_float(ns + "transform_tolerance", 0.5, 0.0, 10.0)
         )
@@ -111,7 +113,7 @@ class CostmapROS:
         if self.rolling_window:
             self.costmap = Costmap.rolling(
                 self.width_m, self.height_m, self.resolution, obstacles=self.obstacles, inflation=self.inflation,
-                track_unknown_space=self.track_unknown_space,
+                track_unknown_space=self.track_unknown_space, bumper_memory_s=self.bumper_memory_s,
             )
         self.publisher = rospy.Publisher(f"~{name}/costmap", OccupancyGrid, queue_size=1, latch=True)
         self._subscribers = []
@@ -156,6 +158,7 @@ class CostmapROS:
             obstacles=self.obstacles,
             inflation=self.inflation,
             track_unknown_space=self.track_unknown_space,
+            bumper_memory_s=self.bumper_memory_s,
         )
 
     def _sensor_pose(self, frame_id: str, stamp: rospy.Time) -> tuple[float, float, float]:
@@ -200,7 +203,7 @@ class CostmapROS:
         y = t.y + math.sin(yaw) * px + math.cos(yaw) * py
         with self.lock:
             if self.costmap is not None:
-                self.costmap.add_bumper_hits(np.array([x]), np.array([y]))
+                self.costmap.add_bumper_hits(np.array([x]), np.array([y]), now_s=rospy.get_time())
                 self.costmap.update()
         rospy.loginfo(f"{self.name}: bumper hit marked at ({x:.2f}, {y:.2f}) in {self.global_frame}")
 
@@ -209,6 +212,7 @@ class CostmapROS:
         with self.lock:
             if self.costmap is None:
                 return
+            self.costmap.expire_bumper_hits(rospy.get_time())
             if self.rolling_window:
                 try:
                     x, y, _yaw = self.robot_pose.pose(timeout_s=0.05)

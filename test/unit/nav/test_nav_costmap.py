@@ -161,7 +161,7 @@ def test_raytrace_matches_reference_lines():
 def test_scan_marks_hit_and_clears_old_marks():
     geo = CostmapGeometry(100, 100, RES, -2.5, -2.5)
     cm = Costmap(geo, obstacles=ObstacleLayerParams())
-    cm.add_bumper_hits(np.array([0.52, 1.0]), np.array([0.02, 1.0]))
+    cm.mark_obstacles(np.array([0.52, 1.0]), np.array([0.02, 1.0]))
     cm.update()
     assert cm.cost_at(0.52, 0.02) == LETHAL and cm.cost_at(1.0, 1.0) == LETHAL
     # beam along +x hitting at 1.5 m: the old mark at 0.52 m is cleared, the hit is marked
@@ -175,7 +175,7 @@ def test_scan_marks_hit_and_clears_old_marks():
 def test_far_hits_not_marked_and_no_return_clears():
     geo = CostmapGeometry(200, 200, RES, -5.0, -5.0)
     cm = Costmap(geo, obstacles=ObstacleLayerParams(obstacle_range=2.0, raytrace_range=3.0))
-    cm.add_bumper_hits(np.array([-2.0, -2.9]), np.array([0.0, 0.0]))
+    cm.mark_obstacles(np.array([-2.0, -2.9]), np.array([0.0, 0.0]))
     cm.add_scan(_scan([2.4], angle_min=0.0))  # beyond obstacle_range: clears, no mark
     cm.add_scan(_scan([3.5], angle_min=math.pi))  # range_max: no return, clears to 3.0 m
     cm.update()
@@ -183,7 +183,7 @@ def test_far_hits_not_marked_and_no_return_clears():
     assert cm.cost_at(-2.0, 0.0) == FREE
     assert cm.cost_at(-2.9, 0.0) == FREE
     quiet = Costmap(geo, obstacles=ObstacleLayerParams(clear_on_no_return=False))
-    quiet.add_bumper_hits(np.array([-2.0]), np.array([0.0]))
+    quiet.mark_obstacles(np.array([-2.0]), np.array([0.0]))
     quiet.add_scan(_scan([float("inf")], angle_min=math.pi))
     quiet.update()
     assert quiet.cost_at(-2.0, 0.0) == LETHAL
@@ -197,9 +197,9 @@ def test_bad_scans_and_points_raise():
     with pytest.raises(ConfigError, match="range_min"):
         cm.add_scan(_scan([1.0], rmin=2.0, rmax=1.0))
     with pytest.raises(ConfigError, match="non-finite"):
-        cm.add_bumper_hits(np.array([float("inf")]), np.array([0.0]))
+        cm.mark_obstacles(np.array([float("inf")]), np.array([0.0]))
     with pytest.raises(ConfigError, match="as many"):
-        cm.add_bumper_hits(np.array([0.1, 0.2]), np.array([0.0]))
+        cm.mark_obstacles(np.array([0.1, 0.2]), np.array([0.0]))
     with pytest.raises(ConfigError, match="no obstacle layer"):
         Costmap(geo).add_scan(_scan([1.0]))
     with pytest.raises(ConfigError, match="obstacle_range"):
@@ -208,7 +208,7 @@ def test_bad_scans_and_points_raise():
 
 def test_sensor_off_grid_marks_but_does_not_clear():
     cm = Costmap(CostmapGeometry(20, 20, RES), obstacles=ObstacleLayerParams(obstacle_range=4.0, raytrace_range=5.0))
-    cm.add_bumper_hits(np.array([0.02]), np.array([0.52]))
+    cm.mark_obstacles(np.array([0.02]), np.array([0.52]))
     cm.update()
     before = cm.costs.copy()
     cm.add_scan(_scan([0.5], x=-3.0))  # hit at x=-2.5, off the grid too: nothing changes
@@ -259,7 +259,7 @@ def test_reset_forgets_observations_keeps_static():
     grid = _static_grid()
     cm = Costmap.from_map(grid, obstacles=ObstacleLayerParams(), inflation=PARAMS)
     static_costs = cm.costs.copy()
-    cm.add_bumper_hits(np.array([1.0]), np.array([1.0]))
+    cm.mark_obstacles(np.array([1.0]), np.array([1.0]))
     cm.update()
     assert cm.cost_at(1.0, 1.0) == LETHAL
     cm.reset()
@@ -270,7 +270,7 @@ def test_rolling_window_recentres_and_keeps_what_it_saw():
     cm = Costmap.rolling(4.0, 4.0, RES, obstacles=ObstacleLayerParams(), inflation=PARAMS)
     assert cm.geometry.shape == (80, 80)
     assert cm.geometry.origin_x == pytest.approx(-2.0) and cm.geometry.origin_y == pytest.approx(-2.0)
-    cm.add_bumper_hits(np.array([1.01, -1.91]), np.array([0.51, 0.01]))
+    cm.mark_obstacles(np.array([1.01, -1.91]), np.array([0.51, 0.01]))
     cm.update()
     assert cm.cost_at(1.01, 0.51) == LETHAL
     cm.recentre(0.73, 0.21)
@@ -320,7 +320,41 @@ def test_bad_geometry():
 
 def test_to_occupancy_of_costmap():
     cm = Costmap(CostmapGeometry(10, 10, RES), obstacles=ObstacleLayerParams(), inflation=PARAMS)
-    cm.add_bumper_hits(np.array([0.26]), np.array([0.26]))
+    cm.mark_obstacles(np.array([0.26]), np.array([0.26]))
     cm.update()
     occ = cm.to_occupancy()
     assert occ.dtype == np.int8 and occ[5, 5] == 100 and occ[5, 6] == 99
+
+
+def test_bumper_contacts_survive_lidar_clearing_and_reset_until_they_expire():
+    geo = CostmapGeometry(100, 100, RES, -2.5, -2.5)
+    cm = Costmap(geo, obstacles=ObstacleLayerParams(), inflation=PARAMS, bumper_memory_s=30.0)
+    cm.add_bumper_hits(np.array([0.52]), np.array([0.02]), now_s=100.0)
+    cm.update()
+    assert cm.cost_at(0.52, 0.02) == LETHAL
+    assert cm.cost_at(0.52 + PARAMS.inscribed_radius * 0.9, 0.02) == INSCRIBED  # inflated like any obstacle
+    cm.add_scan(_scan([1.5], x=0.02, y=0.02))  # a beam over the low obstacle: an obstacle mark would go
+    cm.update()
+    assert cm.cost_at(0.52, 0.02) == LETHAL
+    cm.reset()  # ClearCostmap keeps what the bumper felt
+    assert cm.cost_at(0.52, 0.02) == LETHAL
+    assert cm.expire_bumper_hits(now_s=129.0) == 0
+    assert cm.expire_bumper_hits(now_s=131.0) == 1
+    cm.update()
+    assert cm.cost_at(0.52, 0.02) == FREE
+    cm.add_bumper_hits(np.array([0.52]), np.array([0.02]), now_s=200.0)
+    cm.reset(forget_contacts=True)
+    assert cm.cost_at(0.52, 0.02) == FREE
+
+
+def test_bumper_contacts_stay_at_their_world_place_in_a_rolling_window():
+    cm = Costmap.rolling(4.0, 4.0, RES, obstacles=ObstacleLayerParams())
+    cm.add_bumper_hits(np.array([1.01]), np.array([0.51]), now_s=0.0)
+    cm.recentre(5.0, 5.0)
+    cm.update()
+    assert cm.cost_at(1.01, 0.51) == NO_INFORMATION  # off the window
+    cm.recentre(0.5, 0.5)
+    cm.update()
+    assert cm.cost_at(1.01, 0.51) == LETHAL  # back in view: still remembered
+    with pytest.raises(ConfigError, match="memory_s"):
+        Costmap.rolling(4.0, 4.0, RES, bumper_memory_s=0.0)
