@@ -18,6 +18,6 @@ setup(
     package_data={
         "flex_nav": ["py.typed"],
         "flex_nav_states": ["py.typed"],
-        "flex_nav_sim": ["py.typed", "worlds/*", "robots/*", "models/*"],
+        "flex_nav_sim": ["py.typed", "worlds/*.yaml", "worlds/maps/*", "robots/*", "models/*"],
     },
 )
