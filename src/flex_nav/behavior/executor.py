@@ -233,10 +233,13 @@ class BehaviorExecutor:
                     return False
                 self._tick(now)
                 return True
+            except BaseException as err:
+                self._interrupted(err)
+                raise
             finally:
                 _CURRENT.reset(token)
 
-    def run(  # noqa: PLR0915  (the tick loop, kept in one piece for speed)
+    def run(  # noqa: PLR0912, PLR0915  (the tick loop, kept in one piece for speed)
         self, timeout_s: Optional[float] = None, *, stop_on_timeout: bool = True
     ) -> BehaviorResult:
         """Tick until the behavior ends, or ``timeout_s`` [s] of clock time pass.
@@ -290,9 +293,17 @@ class BehaviorExecutor:
                 if should_stop is not None and not ticks & 255 and should_stop():
                     with lock:
                         self._preempt("stopped: shutdown requested", clock.now())
+        except BaseException as err:  # KeyboardInterrupt, SystemExit: stop the states, then let it go
+            self._interrupted(err)
+            raise
         finally:
             _CURRENT.reset(token)
         return self.result()
+
+    def _interrupted(self, err: BaseException) -> None:
+        with self._lock:
+            if not self._terminal:
+                self._preempt(f"interrupted by {type(err).__name__}", self._ctx.clock.now())
 
     def _tick(self, now: float) -> None:
         ctx = self._ctx

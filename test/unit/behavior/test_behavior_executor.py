@@ -324,3 +324,22 @@ def test_current_context_and_proxies_are_per_behavior():
         BehaviorContext("x").require_proxies()
     with pytest.raises(ConfigError, match="either a context or"):
         BehaviorExecutor(build(), context=BehaviorContext("y"), autonomy=Autonomy.LOW)
+
+
+def test_keyboard_interrupt_in_a_state_exits_states_before_propagating():
+    journal = Journal()
+
+    def interrupt(ud, n):
+        if n == 3:
+            raise KeyboardInterrupt
+
+    sm = StateMachine(outcomes=["finished", "failed"])
+    sm.add(
+        "A", ScriptedState(journal, script=[], action=interrupt), transitions={"done": "finished", "failed": "failed"}
+    )
+    ex = executor(sm)
+    with pytest.raises(KeyboardInterrupt):
+        ex.run(timeout_s=10.0)
+    result = ex.result()
+    assert (result.status, result.reason) == (BehaviorStatus.PREEMPTED, "interrupted by KeyboardInterrupt")
+    assert journal.of("A")[-2:] == ["exit", "stop"]
