@@ -12,6 +12,8 @@ import collections
 from pathlib import Path
 from typing import Any, Callable, Deque, Dict, List, Optional
 
+from flex_nav.exceptions import NotReadyError
+
 DATA_DIR = Path(__file__).resolve().parents[2] / "data" / "compat"
 
 # GoalStatus values (actionlib_msgs/GoalStatus), without importing actionlib
@@ -98,8 +100,6 @@ class FakeActionClient:
 
     def send_goal(self, goal: Any, server_timeout_s: float = 5.0) -> None:
         if not self.server_up:
-            from flex_nav.exceptions import NotReadyError  # noqa: PLC0415
-
             raise NotReadyError(f"action server {self.name} is not available after {server_timeout_s:.1f} s")
         self.goals.append(goal)
         self._state, self._result, self._done, self._feedback = ACTIVE, None, False, None
@@ -149,8 +149,6 @@ class FakeServiceCaller:
 
     def call(self, request: Any, timeout_s: float = 5.0) -> Any:
         if self.handler is None:
-            from flex_nav.exceptions import NotReadyError  # noqa: PLC0415
-
             raise NotReadyError(f"service {self.name} is not available after {timeout_s:.1f} s")
         self.requests.append(request)
         return self.handler(request)
