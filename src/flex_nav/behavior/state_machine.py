@@ -19,10 +19,13 @@ parent (through its own remapping) and hands its output keys back when it finish
 from __future__ import annotations
 
 import math
-from typing import Any, Dict, List, Mapping, Optional, Sequence
+from typing import TYPE_CHECKING, Any, Dict, List, Mapping, Optional, Sequence
 
 from flex_nav.behavior.container import Container, _listed, child_path
 from flex_nav.behavior.state import Route, State
+
+if TYPE_CHECKING:
+    from flex_nav.behavior.context import BehaviorContext
 from flex_nav.exceptions import (
     LabelClashError,
     MissingInitialStateError,
@@ -192,9 +195,10 @@ class StateMachine(Container):
         return [current] if current is not None and current._active else []
 
     def _tick(self, now: float) -> Optional[str]:
-        child = self._current
-        assert child is not None
-        if child._pending is not None:
+        ctx: BehaviorContext = self._ctx  # type: ignore[assignment]  # attached before any tick
+        child: State = self._current  # type: ignore[assignment]  # activated before any tick
+        outcome: Optional[str]
+        if child._pending is not None:  # an outcome waits (autonomy, lock) or was forced
             resolved = self._resolve(child, now)
             if resolved is None:
                 self._due = math.inf
@@ -204,7 +208,7 @@ class StateMachine(Container):
             if child._due > now:
                 self._due = child._due
                 return None
-            outcome = child._tick(now)  # type: ignore[assignment]
+            outcome = child._tick(now)
             if outcome is None:
                 self._due = child._due
                 return None
@@ -212,28 +216,25 @@ class StateMachine(Container):
                 route = child._routes[outcome]
             except (KeyError, TypeError):
                 route = self._route(child, outcome)  # raises with the valid outcomes
-            ctx = self._ctx
-            if (ctx._lock_count or (ctx._gate and route[2] >= ctx._autonomy)) and self._must_wait(  # type: ignore[union-attr]
-                child, outcome, route, False, now
-            ):
+            needs_check = ctx._lock_count or (ctx._gate and route[2] >= ctx._autonomy)
+            if needs_check and self._must_wait(child, outcome, route, False, now):
                 self._due = math.inf
                 return None
             forced = False
             child._leave()
         # the transition fires
-        ctx = self._ctx
-        ctx._changed = True  # type: ignore[union-attr]
+        ctx._changed = True
         nxt = route[0]
         if nxt is not None:
             self._current = nxt
             nxt._activate(now)
             self._due = nxt._due
-            if ctx.hooks.transition:  # type: ignore[union-attr]
-                ctx._emit_transition(now, child._path, outcome, route[3], route[4], route[2], forced)  # type: ignore[union-attr]
+            if ctx.hooks.transition:
+                ctx._emit_transition(now, child._path, outcome, route[3], route[4], route[2], forced)
             return None
         self._due = math.inf
-        if ctx.hooks.transition:  # type: ignore[union-attr]
-            ctx._emit_transition(now, child._path, outcome, route[3], "", route[2], forced)  # type: ignore[union-attr]
+        if ctx.hooks.transition:
+            ctx._emit_transition(now, child._path, outcome, route[3], "", route[2], forced)
         return route[1]
 
 
