@@ -160,6 +160,9 @@ class ConcurrencyContainer(Container):
         assert ctx is not None
         finished: Optional[List[State]] = None
         due = math.inf
+        # a child may be woken during this tick (a priority container finishing in a later child
+        # releases an earlier one): _wake lowers self._due, which is folded in at the end
+        self._due = math.inf
         for child in self._running:
             if child._pending is not None:
                 resolved = self._resolve(child, now)
@@ -206,7 +209,7 @@ class ConcurrencyContainer(Container):
                     f"{self.kind} {self._path}: all states finished ({seen}) and no condition holds "
                     f"(conditions: {self._describe_conditions()})"
                 )
-        self._due = due
+        self._due = min(self._due, due)
         return None
 
     def _match(self) -> Optional[str]:

@@ -177,3 +177,31 @@ def test_priority_container_release_on_preempt_exits_paused_states():
     assert result.status is BehaviorStatus.PREEMPTED
     assert journal.of("Follow")[-3:] == ["pause", "exit", "stop"]
     assert ex.context._priority == []
+
+
+@pytest.mark.parametrize("guard_first", [True, False])
+def test_a_sibling_held_by_a_priority_container_resumes_whatever_its_position(guard_first):
+    """Work is held while Guard's priority container runs; it resumes when the container finishes,
+    also when it is listed before the guard (woken during the same concurrency tick)."""
+    journal = Journal()
+    guard = PriorityContainer(outcomes=["finished"])
+    guard.add(
+        "Stop", ScriptedState(journal, script=[None, None, "done"], outcomes=["done"]), transitions={"done": "finished"}
+    )
+    work = ScriptedState(journal, script=[None, None, None, "done"], outcomes=["done"])
+    cc = ConcurrencyContainer(
+        outcomes=["finished"], conditions=[("finished", [("Work", "done"), ("Guard", "finished")])]
+    )
+    if guard_first:
+        cc.add("Guard", guard)
+    cc.add("Work", work)
+    if not guard_first:
+        cc.add("Guard", guard)
+    sm = StateMachine(outcomes=["finished"])
+    sm.add("CC", cc, transitions={"finished": "finished"})
+    result = executor(sm).run(timeout_s=10.0)
+    assert result.status is BehaviorStatus.FINISHED, result.reason
+    # the guard claims priority when the concurrency starts, before Work is ever entered
+    executes = [who for who, call in journal.calls if call == "execute"]
+    assert executes == ["Stop"] * 3 + ["Work"] * 4
+    assert work.execute_times[-1] == pytest.approx(0.5)

@@ -229,11 +229,6 @@ def test_priority_container_holds_the_other_branch_while_it_runs(aliases):
     assert journal.index(("stop", "execute")) < journal.index(("work", "enter"))  # held before it even started
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="engine bug (reported): ConcurrencyContainer._tick recomputes its due time from the children it looked "
-    "at BEFORE a finishing PriorityContainer woke a held sibling, so a sibling listed first is never ticked again",
-)
 def test_priority_container_releases_a_sibling_listed_before_it(aliases):
     root, journal = priority_behavior(guard_first=False)
     ctx, _ = context()
