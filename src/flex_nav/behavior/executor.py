@@ -32,7 +32,7 @@ import concurrent.futures
 import contextlib
 import math
 import threading
-from typing import Any, Callable, Deque, Dict, List, NamedTuple, Optional, Tuple, Union
+from typing import Any, Callable, Deque, Dict, Iterator, List, NamedTuple, Optional, Tuple, Union
 
 from flex_nav.behavior.autonomy import Autonomy
 from flex_nav.behavior.behavior import Behavior
@@ -110,6 +110,7 @@ class BehaviorExecutor:
         self._should_stop = should_stop
         self._idle_wait_s = float(idle_wait_s)
         self._lock = threading.RLock()  # held by the executor thread while it ticks or applies commands
+        self._driver = threading.Lock()  # held by the one thread in run() / spin_once()
         self._wake = threading.Event()
         self._done = threading.Event()
         self._commands: Deque[_Command] = collections.deque()
@@ -219,6 +220,22 @@ class BehaviorExecutor:
 
     def spin_once(self) -> bool:
         """Apply queued commands and tick the root if it is due now; True if it ticked. Never waits."""
+        with self._driving("spin_once"):
+            return self._spin_once()
+
+    @contextlib.contextmanager
+    def _driving(self, what: str) -> Iterator[None]:
+        """One thread at a time drives the behavior (run/spin_once); a second one is an error, not a race."""
+        if not self._driver.acquire(blocking=False):
+            raise BehaviorRuntimeError(
+                f"{what}: behavior {self._ctx.name!r} is already being run by another thread (or from one of its hooks)"
+            )
+        try:
+            yield
+        finally:
+            self._driver.release()
+
+    def _spin_once(self) -> bool:
         if self._status is BehaviorStatus.READY:
             self.start()
         with self._lock:
@@ -239,14 +256,16 @@ class BehaviorExecutor:
             finally:
                 _CURRENT.reset(token)
 
-    def run(  # noqa: PLR0912, PLR0915  (the tick loop, kept in one piece for speed)
-        self, timeout_s: Optional[float] = None, *, stop_on_timeout: bool = True
-    ) -> BehaviorResult:
+    def run(self, timeout_s: Optional[float] = None, *, stop_on_timeout: bool = True) -> BehaviorResult:
         """Tick until the behavior ends, or ``timeout_s`` [s] of clock time pass.
 
         On timeout the behavior is preempted (states exited) unless ``stop_on_timeout`` is False, in
         which case it keeps its state and can be run again.
         """
+        with self._driving("run"):
+            return self._run(timeout_s, stop_on_timeout)
+
+    def _run(self, timeout_s: Optional[float], stop_on_timeout: bool) -> BehaviorResult:  # noqa: PLR0912, PLR0915
         if self._status is BehaviorStatus.READY:
             self.start()
         ctx = self._ctx

@@ -19,7 +19,7 @@ from flex_nav.behavior import (
     StateMachine,
     current_context,
 )
-from flex_nav.exceptions import BehaviorCommandError, ConfigError, NotReadyError
+from flex_nav.exceptions import BehaviorCommandError, BehaviorRuntimeError, ConfigError, NotReadyError
 
 
 def looping(journal, label="Loop", rate_hz=10.0):
@@ -343,3 +343,20 @@ def test_keyboard_interrupt_in_a_state_exits_states_before_propagating():
     result = ex.result()
     assert (result.status, result.reason) == (BehaviorStatus.PREEMPTED, "interrupted by KeyboardInterrupt")
     assert journal.of("A")[-2:] == ["exit", "stop"]
+
+
+def test_only_one_thread_drives_a_behavior():
+    journal = Journal()
+    sm = looping(journal)
+    ex = executor(sm)
+    errors = []
+
+    def reenter(event):
+        try:
+            ex.spin_once()
+        except BehaviorRuntimeError as err:
+            errors.append(str(err))
+
+    ex.context.hooks.status.append(reenter)
+    ex.run(timeout_s=0.5)
+    assert errors and errors[0].startswith("spin_once: behavior 'behavior' is already being run by another thread")
