@@ -135,7 +135,11 @@ class BehaviorContext:
         return self.proxies
 
     def log(self, level: LogLevel, message: str, path: str = "") -> None:
-        """Log for the operator (log hooks) and to the Python logger."""
+        """Log for the operator (log hooks) and to the Python logger.
+
+        Called from a state this runs in the executor's thread; called from another thread (e.g. a
+        proxy callback) the log hooks run in that thread.
+        """
         self.logger.log(_PY_LEVELS.get(level, logging.INFO), "%s%s", f"[{path}] " if path else "", message)
         if self.hooks.log:
             event = LogEvent(self.clock.now(), LogLevel(level), message, path)

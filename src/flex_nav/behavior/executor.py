@@ -8,9 +8,11 @@
     if result.status is not BehaviorStatus.FINISHED: ...
 
 Ticking: the executor ticks the root whenever it is due; each active state is due at its own
-rate (``rate_hz``), a newly entered state at once. Between ticks it waits on the injected clock
-(``Clock.wait_until``), and a command wakes it immediately. Waits are bounded by ``idle_wait_s``,
-so a ``should_stop`` check (e.g. ``rospy.is_shutdown``) runs at least that often.
+rate (``rate_hz``), a newly entered state at once (unless it executed less than one period ago).
+Between ticks it waits on the injected clock (``Clock.wait_until``), and a command wakes it
+immediately. Waits are bounded by ``idle_wait_s``, so a ``should_stop`` check (e.g.
+``rospy.is_shutdown``) runs at least that often. One thread drives a behavior (``run`` or
+``spin_once``); hooks are called in that thread.
 
 Commands (``set_autonomy``, ``force_transition``, ``approve``, ``pause``, ``resume``, ``preempt``,
 ``lock``, ``unlock``) may be called from any thread. They are checked at once against the
