@@ -349,3 +349,24 @@ def test_concurrent_children_share_the_container_store():
     result = executor(sm).run(timeout_s=5.0)
     assert result.outputs == {"shared": "from A"}
     assert got == ["from A"]
+
+
+def test_nested_machine_entered_without_a_value_for_its_input_fails_loudly():
+    """Validation accepts a key a sibling writes; at run time the sibling took a path that did not write it."""
+    inner = StateMachine(outcomes=["finished", "failed"], input_keys=["plan"])
+    inner.add(
+        "Use", ScriptedState(Journal(), input_keys=["plan"]), transitions={"done": "finished", "failed": "failed"}
+    )
+    outer = StateMachine(outcomes=["finished", "failed"], userdata={"other": 1})
+    outer.add(
+        "Plan",
+        ScriptedState(Journal(), output_keys=["plan"], script=["failed"]),
+        transitions={"done": "Inner", "failed": "Inner"},
+    )
+    outer.add("Inner", inner, transitions={"finished": "finished", "failed": "failed"})
+    result = executor(outer).run(timeout_s=5.0)
+    assert result.status is BehaviorStatus.FAILED
+    assert isinstance(result.error, UserDataKeyError)
+    assert (
+        "state machine /Inner: input key 'plan' has no value in its parent (keys with a value: other)" in result.reason
+    )
