@@ -32,6 +32,7 @@ class State:
         self._input_keys: Set[str] = set()
         self._output_keys: Set[str] = set()
         self._order: Dict[str, List[str]] = {"outcomes": [], "input_keys": [], "output_keys": []}
+        self._cache: Dict[str, Tuple[str, ...]] = {}  # registered names in order (hot path of containers)
         self._preempt_requested = False
         self._shutdown_requested = False
         self.register_outcomes(outcomes)
@@ -52,13 +53,18 @@ class State:
             if value not in target:
                 target.add(value)
                 order.append(value)
+        self._cache.pop(what, None)
 
     def _ordered(self, what: str, current: Set[str]) -> Tuple[str, ...]:
+        cached = self._cache.get(what)
+        if cached is not None and len(cached) == len(current):  # the sets may be changed behind our back
+            return cached
         order = self._order[what]
         listed = tuple(v for v in order if v in current)
-        if len(listed) == len(current):
-            return listed
-        return listed + tuple(sorted(current.difference(order)))  # added behind our back (direct set access)
+        if len(listed) != len(current):
+            listed += tuple(sorted(current.difference(order)))
+        self._cache[what] = listed
+        return listed
 
     def register_outcomes(self, new_outcomes: Iterable[str]) -> None:
         """Add outcomes to the registered ones."""

@@ -34,10 +34,10 @@ import threading
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
 from flex_nav.compat.smach._hooks import HOOKS
-from flex_nav.compat.smach.container import Container, check_state_interface, run_child, smach_construction
+from flex_nav.compat.smach.container import SMACH_ERRORS, Container, check_state_interface, smach_construction
 from flex_nav.compat.smach.user_data import Remapper, UserData, remapping_of
 from flex_nav.compat.smach.util import is_shutdown, names
-from flex_nav.exceptions import InvalidStateError, InvalidTransitionError
+from flex_nav.exceptions import InvalidStateError, InvalidTransitionError, InvalidUserCodeError
 
 _UNBOUND = object()
 
@@ -251,48 +251,67 @@ class StateMachine(Container):
         transitions = self._current_transitions
         assert label is not None and transitions is not None
         if self._preempt_requested:
-            preempted = self._preempted_state
-            if preempted is None:
-                self._preempt_current_state()  # requested between states: preempt this one before it runs
-            elif preempted.preempt_requested():
-                self._preempt_current_state()  # the last state ignored it: keep preempting
-            else:
-                self._preempt_requested = False  # the last state serviced it
-                self._preempted_state = None
-                self._preempted_label = None
-        self._state_transitioning_lock.release()
+            self._carry_preempt()
+        ud = Remapper(
+            self.userdata,
+            state.get_registered_input_keys(),
+            state.get_registered_output_keys(),
+            self._remappings[label],
+        )
+        lock = self._state_transitioning_lock
+        lock.release()
         try:
-            outcome = run_child(
-                label,
-                state,
-                Remapper(
-                    self.userdata,
-                    state.get_registered_input_keys(),
-                    state.get_registered_output_keys(),
-                    self._remappings[label],
-                ),
-            )
+            outcome = state.execute(ud)
+        except SMACH_ERRORS:
+            raise
+        except Exception as err:
+            raise InvalidUserCodeError(
+                f"state {label!r} ({type(state).__name__}) raised {type(err).__name__}: {err}"
+            ) from err
         finally:
-            self._state_transitioning_lock.acquire()
-        target = transitions.get(outcome, _UNBOUND) if isinstance(outcome, str) else _UNBOUND
+            lock.acquire()
+        target: Any = transitions.get(outcome, _UNBOUND) if isinstance(outcome, str) else _UNBOUND
         if target is _UNBOUND:
-            registered = state.get_registered_outcomes()
-            if outcome in registered:
-                raise InvalidTransitionError(
-                    f"outcome {outcome!r} of state {label!r} is not bound to any transition target "
-                    f"(bound: {_listed(list(transitions))})"
-                )
-            raise InvalidTransitionError(
-                f"state {label!r} ({type(state).__name__}) returned outcome {outcome!r}, which it does not register "
-                f"(registered: {_listed(registered)})"
-            )
-        if target in self._states:
-            self._set_current_state(target)
-            if HOOKS.info_enabled():
-                HOOKS.info(f"State machine transitioning {label!r}:{outcome!r}-->{target!r}")
+            self._raise_unbound(label, state, outcome, transitions)
+        nxt = self._states.get(target)
+        if nxt is None:
+            return self._terminate(label, state, outcome, target)
+        self._current_label = target
+        self._current_state = nxt
+        self._current_transitions = self._transitions[target]
+        if HOOKS.info_enabled():
+            HOOKS.info(f"State machine transitioning {label!r}:{outcome!r}-->{target!r}")
+        if self._transition_cbs:
             self.call_transition_cbs()
-            return None
-        # a terminal transition
+        return None
+
+    def _carry_preempt(self) -> None:
+        """A preempt is requested before the current state runs: decide whether it still applies."""
+        preempted = self._preempted_state
+        if preempted is None:
+            self._preempt_current_state()  # requested between states: preempt this one before it runs
+        elif preempted.preempt_requested():
+            self._preempt_current_state()  # the last state ignored it: keep preempting
+        else:
+            self._preempt_requested = False  # the last state serviced it
+            self._preempted_state = None
+            self._preempted_label = None
+
+    @staticmethod
+    def _raise_unbound(label: str, state: Any, outcome: object, transitions: Dict[str, Optional[str]]) -> None:
+        registered = state.get_registered_outcomes()
+        if outcome in registered:
+            raise InvalidTransitionError(
+                f"outcome {outcome!r} of state {label!r} is not bound to any transition target "
+                f"(bound: {_listed(list(transitions))})"
+            )
+        raise InvalidTransitionError(
+            f"state {label!r} ({type(state).__name__}) returned outcome {outcome!r}, which it does not register "
+            f"(registered: {_listed(registered)})"
+        )
+
+    def _terminate(self, label: str, state: Any, outcome: str, target: Optional[str]) -> str:
+        """A transition to an outcome of the machine (or an unbound one falling through)."""
         if self._preempt_requested and self._preempted_state is not None and not state.preempt_requested():
             self.service_preempt()
             self._preempted_state = None

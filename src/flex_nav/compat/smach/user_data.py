@@ -17,6 +17,7 @@ state key -> container key):
 from __future__ import annotations
 
 import copy
+import types
 from typing import Any, Collection, Dict, Iterator, List, Mapping, Optional
 
 from flex_nav.behavior.userdata import readonly
@@ -91,6 +92,10 @@ class UserData:
         return f"<UserData keys={sorted(self._data)}>"
 
 
+_NO_REMAPPING: Mapping[str, str] = types.MappingProxyType({})
+_COLLECTIONS = (tuple, list, frozenset, set)
+
+
 class Remapper:
     """A state's view on its container's userdata: declared keys only, renamed by ``remapping``.
 
@@ -110,10 +115,11 @@ class Remapper:
     ) -> None:
         if remapping and not isinstance(remapping, Mapping):
             raise InvalidUserCodeError(f"remapping must be a mapping of state key -> container key, got {remapping!r}")
+        # kept as given (not copied: a view is built for every state execution); never mutated here
         object.__setattr__(self, "_ud", ud)
-        object.__setattr__(self, "_input", frozenset(input_keys))
-        object.__setattr__(self, "_output", frozenset(output_keys))
-        object.__setattr__(self, "_map", dict(remapping) if remapping else {})
+        object.__setattr__(self, "_input", input_keys if type(input_keys) in _COLLECTIONS else tuple(input_keys))
+        object.__setattr__(self, "_output", output_keys if type(output_keys) in _COLLECTIONS else tuple(output_keys))
+        object.__setattr__(self, "_map", remapping if remapping else _NO_REMAPPING)
 
     def _remap(self, key: str) -> str:
         return self._map.get(key, key)
@@ -167,7 +173,7 @@ class Remapper:
         self._ud.update(other_userdata)
 
     def __repr__(self) -> str:
-        return f"<Remapper inputs={sorted(self._input)} outputs={sorted(self._output)} remapping={self._map}>"
+        return f"<Remapper inputs={sorted(self._input)} outputs={sorted(self._output)} remapping={dict(self._map)}>"
 
 
 def remapping_of(remapping: Any, owner: str) -> Dict[str, str]:
