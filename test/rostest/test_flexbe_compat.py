@@ -13,9 +13,13 @@ import rostest
 from actionlib_msgs.msg import GoalStatus
 from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import Path as PathMsg
+from std_msgs.msg import Int32
+from std_srvs.srv import Trigger, TriggerRequest
 
-from flex_nav.behavior import Autonomy, BehaviorContext, BehaviorExecutor, BehaviorStatus
+from flex_nav.behavior import Autonomy, BehaviorContext, BehaviorExecutor, BehaviorStatus, using_context
 from flex_nav.compat import install_aliases
+from flex_nav.exceptions import NotReadyError
+from flex_nav.msg import GetPathAction, GetPathGoal
 from flex_nav.ros.node import init_node
 from flex_nav.ros.proxies import RosProxies
 
@@ -26,6 +30,12 @@ install_aliases(["flexbe_core"])
 sys.path.insert(0, str(DATA_DIR))
 from example_flexbe_states.example_behaviors import ExampleSM, ListenSM, PlanAndFollowSM  # noqa: E402
 from flexbe_core import build_behavior  # noqa: E402
+from flexbe_core.proxy import (  # noqa: E402
+    ProxyActionClient,
+    ProxyPublisher,
+    ProxyServiceCaller,
+    ProxySubscriberCached,
+)
 
 
 def wait_for(predicate, timeout_s=WAIT_S):
@@ -140,6 +150,47 @@ class TestFlexBECompat(unittest.TestCase):
         self.assertIs(heard.status, BehaviorStatus.FINISHED, heard.reason)
         self.assertEqual(heard.outputs["message"].data, "hello")
         self.assertEqual(listener.messages(), [("HINT", "listening")])
+
+    def test_flexbe_proxy_methods_on_real_connections(self):
+        proxies = RosProxies()
+        ctx = BehaviorContext("proxy_methods", proxies=proxies)
+        logs = []
+        ctx.hooks.log.append(logs.append)
+        received = []
+        try:
+            with using_context(ctx):
+                pub = ProxyPublisher({"compat_numbers": Int32})
+                sub = ProxySubscriberCached()
+                sub.subscribe("compat_numbers", Int32, callback=received.append, buffered=True)
+                self.assertTrue(pub.wait_for_any("compat_numbers", timeout=WAIT_S))
+                for value in (1, 2, 3):
+                    pub.publish("compat_numbers", Int32(value))
+                self.assertTrue(wait_for(lambda: len(received) == 3))
+                self.assertEqual(sub.get_last_msg("compat_numbers").data, 3)
+                self.assertEqual([sub.get_from_buffer("compat_numbers").data for _ in range(3)], [1, 2, 3])
+                self.assertFalse(sub.has_buffered("compat_numbers"))
+                sub.disable_buffer("compat_numbers")
+                sub.unsubscribe_topic("compat_numbers")
+                pub.publish("compat_numbers", Int32(4))
+                self.assertTrue(wait_for(lambda: sub.get_last_msg("compat_numbers").data == 4))
+                self.assertEqual(len(received), 3)  # the callback is gone, the cache still works
+                self.assertFalse(sub.has_buffered("compat_numbers"))
+
+                client = ProxyActionClient({"get_path": GetPathAction}, wait_duration=WAIT_S)
+                self.assertTrue(client.is_available("get_path"))
+                client.send_goal("get_path", GetPathGoal(pose=goal_pose()))
+                self.assertTrue(wait_for(lambda: client.has_result("get_path")))
+                self.assertEqual(client.get_state("get_path"), GoalStatus.SUCCEEDED)
+                client.remove_result("get_path")
+                self.assertFalse(client.has_result("get_path"))
+
+                caller = ProxyServiceCaller({"no_such_service": Trigger}, wait_duration=0.5)
+                self.assertFalse(caller.is_available("no_such_service"))
+                with self.assertRaises(NotReadyError):
+                    caller.call("no_such_service", TriggerRequest())
+        finally:
+            proxies.shutdown()
+        self.assertIn("Service client no_such_service timed out", " ".join(e.message for e in logs))
 
 
 if __name__ == "__main__":
