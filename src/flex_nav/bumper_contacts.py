@@ -1,7 +1,8 @@
 """Where a bumper touched something: contact points from bumper zone states, for any robot model.
 
-A pressed zone means contact somewhere along its arc of the base; the contact point used to mark the
-costmap is the middle of the arc, just outside the base circle. Pure: no rospy.
+A pressed zone means contact somewhere along its arc of the base, so the whole arc is reported: points
+every ``ARC_STEP_RAD`` along it, just outside the base circle (one point at the middle would let the next
+plan graze the rest of a wide obstacle and hit it again). Pure: no rospy.
 """
 
 from __future__ import annotations
@@ -12,7 +13,8 @@ from collections.abc import Mapping, Sequence
 from flex_nav.exceptions import ConfigError, choices_message
 from flex_nav_sim.profiles import RobotProfile
 
-CONTACT_MARGIN = 0.03  # [m] the contact point lies this far outside the base radius
+CONTACT_MARGIN = 0.03  # [m] the contact points lie this far outside the base radius
+ARC_STEP_RAD = math.radians(15.0)  # spacing of the contact points along a zone's arc
 
 
 class BumperContacts:
@@ -22,9 +24,12 @@ class BumperContacts:
         if not margin_m >= 0.0:
             raise ConfigError(f"bumper contact margin must be >= 0 [m], got {margin_m!r}")
         reach = profile.radius + margin_m
-        self.points: dict[str, tuple[float, float]] = {
-            zone.name: (reach * math.cos(zone.center), reach * math.sin(zone.center)) for zone in profile.bumper.zones
-        }
+        self.points: dict[str, list[tuple[float, float]]] = {}
+        for zone in profile.bumper.zones:
+            count = 1 + math.ceil((zone.max_angle - zone.min_angle) / ARC_STEP_RAD - 1e-9)
+            span = zone.max_angle - zone.min_angle
+            bearings = [zone.min_angle + span * i / max(1, count - 1) for i in range(count)]
+            self.points[zone.name] = [(reach * math.cos(b), reach * math.sin(b)) for b in bearings]
         self._pressed: dict[str, bool] = dict.fromkeys(self.points, False)
 
     @property
@@ -32,13 +37,16 @@ class BumperContacts:
         return tuple(self.points)
 
     def update(self, states: Mapping[str, bool]) -> list[tuple[str, float, float]]:
-        """New presses among ``states`` (zone name -> pressed): [(zone, x, y)]; unknown zones raise ConfigError."""
+        """Contact points of new presses among ``states`` (zone name -> pressed): [(zone, x, y)], several per zone.
+
+        Unknown zones raise ConfigError.
+        """
         touched = []
         for zone, pressed in states.items():
             if zone not in self._pressed:
                 raise ConfigError(choices_message("bumper zone", zone, self.points))
             if pressed and not self._pressed[zone]:
-                touched.append((zone, *self.points[zone]))
+                touched.extend((zone, x, y) for x, y in self.points[zone])
             self._pressed[zone] = bool(pressed)
         return touched
 

@@ -54,11 +54,13 @@ class TestBumperRelay(unittest.TestCase):
             pub.publish(BumperState(zones=["left", "center", "right"], pressed=pressed))
             time.sleep(0.05)
         msgs = hits.wait(1)
-        time.sleep(0.3)
-        self.assertEqual(len(hits.msgs), 1, "a held bumper is one contact")
+        time.sleep(0.5)
+        with hits.lock:
+            count = len(hits.msgs)
+        self.assertEqual(count, 5, "one press of the 60 deg centre zone: 5 points 15 deg apart; held: no more")
         self.assertEqual(msgs[0].header.frame_id, "robot1/base_footprint")
-        self.assertGreater(msgs[0].point.x, 0.177)
-        self.assertAlmostEqual(msgs[0].point.y, 0.0, places=6)
+        self.assertTrue(all(m.point.x > 0.15 for m in hits.msgs))
+        self.assertAlmostEqual(sum(m.point.y for m in hits.msgs), 0.0, places=6)
         self.assertEqual(other.msgs, [], "robot2 must not see robot1's contacts")
 
     def test_create_left_press(self):
@@ -68,8 +70,8 @@ class TestBumperRelay(unittest.TestCase):
         time.sleep(0.3)
         pub.publish(CreateBumper(is_left_pressed=True, is_right_pressed=False))
         msgs = hits.wait(1)
-        self.assertEqual(len(msgs), 1)
-        self.assertGreater(msgs[0].point.y, 0.0)
+        self.assertGreaterEqual(len(msgs), 1)
+        self.assertGreater(sum(m.point.y for m in msgs), 0.0, "the left zone lies mostly on the left")
         self.assertEqual(msgs[0].header.frame_id, "robot2/base_footprint")
 
 
