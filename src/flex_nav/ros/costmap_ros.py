@@ -209,16 +209,18 @@ class CostmapROS:
 
     # ------------------------------------------------------------------ upkeep
     def _on_update_timer(self, _event: rospy.timer.TimerEvent) -> None:
+        centre = None
+        if self.rolling_window:
+            try:  # outside the lock: a tf wait must not hold up the users of the costmap
+                centre = self.robot_pose.pose(timeout_s=0.05)
+            except NotReadyError:
+                return
         with self.lock:
             if self.costmap is None:
                 return
             self.costmap.expire_bumper_hits(rospy.get_time())
-            if self.rolling_window:
-                try:
-                    x, y, _yaw = self.robot_pose.pose(timeout_s=0.05)
-                except NotReadyError:
-                    return
-                self.costmap.recentre(x, y)
+            if centre is not None:
+                self.costmap.recentre(centre[0], centre[1])
             self.costmap.update()
 
     def publish(self) -> None:

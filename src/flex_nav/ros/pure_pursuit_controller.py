@@ -5,8 +5,9 @@
 Both publish geometry_msgs/TwistStamped on ``cmd_vel_stamped`` (see ``twist_relay`` for a Twist driver).
 
 Control ticks are synchronised to odometry: a tick runs as soon as a new ``odom`` message has arrived and
-one period of ``~controller_frequency`` has passed since the previous tick, and at the latest one period
-after that even without odometry (so stale sensors are noticed). The robot pose is the odometry pose
+one period of ``~controller_frequency`` has passed since the previous tick (so the rate never exceeds it,
+and odometry slower than it is answered at once), and at the latest two periods after the previous tick
+even without odometry (so stale sensors are noticed). The robot pose is the odometry pose
 carried into ``~global_frame`` by tf (``global_frame -> odom frame``); the path is carried into
 ``~global_frame`` when it arrives. The local costmap ``~local_costmap/`` (rolling window from ``scan`` by
 default, see :mod:`flex_nav.ros.costmap_ros`) feeds pure pursuit's obstacle regulation and collision check.
@@ -233,7 +234,7 @@ class PurePursuitController:
                 if source is not None:
                     used_path = source.count
             now = time.monotonic()
-            next_due = max(next_due + self.period_s, now)
+            next_due = now + self.period_s  # from the tick itself: odometry arriving later starts the next one
             if path_msg is not None:
                 try:
                     self.follower.set_path(path_in_frame(self.tf_buffer, path_msg, self.global_frame,
