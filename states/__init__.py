@@ -8,6 +8,7 @@ rospy: all ROS I/O goes through the behavior's proxies (``self.context.require_p
 Modules (one state or one small family each):
 
 - action clients (:mod:`~flex_nav_states.action_base`): :mod:`get_path_state` (GetPath),
+  :mod:`replan_state` (GetPath every period, each plan published: move_base's replanning),
   :mod:`follow_path_state` (FollowPath: a controller, and FollowPlanner: a mid-level planner),
   :mod:`follow_topic_state` (FollowTopic), :mod:`clear_costmaps_state` (several ClearCostmap servers at once);
 - goals: :mod:`get_pose_state` (a PoseStamped goal from a topic, stale messages dropped),
@@ -34,6 +35,7 @@ STATE_MODULES = (
     "get_pose_state",
     "goal_list_state",
     "get_path_state",
+    "replan_state",
     "follow_path_state",
     "follow_topic_state",
     "clear_costmaps_state",

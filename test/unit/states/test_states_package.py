@@ -34,7 +34,7 @@ EXPECTED = {
     "GetPoseState", "GetPathState", "FollowPathState", "FollowPlannerState", "FollowTopicState",
     "ClearCostmapsState", "MoveDistanceState", "RotateAngleState", "TimedTwistState", "TimedStopState",
     "PurePursuitState", "BumperMonitorState", "StuckMonitorState", "SensorFreshnessState",
-    "OperatorDecisionState", "LogState", "WaitState", "GoalListState",
+    "OperatorDecisionState", "LogState", "WaitState", "GoalListState", "ReplanState",
 }
 
 

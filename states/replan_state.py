@@ -1,0 +1,105 @@
+"""ReplanState: move_base's global replanning as a state — plan to the goal every period and publish the plan."""
+
+from __future__ import annotations
+
+from typing import Any, Optional
+
+from actionlib_msgs.msg import GoalStatus
+from nav_msgs.msg import Path
+
+from flex_nav.action_types import action_type
+from flex_nav.behavior.state import State
+from flex_nav.behavior.userdata import UserDataView, unwrap
+from flex_nav.msg import GetPathGoal, GetPathResult
+from flex_nav_states import validation
+from flex_nav_states.proxy_types import ActionClientLike, PublisherLike, proxies_of
+
+GET_PATH = action_type("GetPath")
+
+
+class ReplanState(State):
+    """Plans to the goal with a GetPath server every period and publishes each new plan on a topic.
+
+    Runs beside a FollowTopic controller (which follows ``plan_topic``) in a concurrency container, as
+    move_base's planner thread replans at ``planner_frequency``. It never finishes by itself while plans
+    keep coming; it fails after ``max_failures`` planning failures in a row or when the server is missing.
+
+    -- action_name       str    GetPath server name, relative to the behavior's namespace.
+    -- plan_topic        str    nav_msgs/Path topic the plans are published on (latched).
+    -- period_s          float  [s] Time between the starts of two plans (> 0; move_base: 1 / planner_frequency).
+    -- max_failures      int    Planning failures in a row before giving up (>= 1).
+    -- server_timeout_s  float  [s] Fail if the server is not connected this long after entry.
+
+    ># goal  PoseStamped  The goal to plan to.
+    #> plan  Path         The newest plan.
+
+    <= failed  Planning failed max_failures times in a row, or the server is missing; the reason is logged.
+    """
+
+    def __init__(self, action_name: str = "get_path_server", plan_topic: str = "replan/plan", period_s: float = 1.0,
+                 max_failures: int = 3, server_timeout_s: float = 5.0) -> None:
+        super().__init__(outcomes=["failed"], input_keys=["goal"], output_keys=["plan"])
+        owner = type(self).__name__
+        self._action_name = validation.name(owner, "action_name", action_name)
+        self._plan_topic = validation.name(owner, "plan_topic", plan_topic)
+        self._replan_period_s = validation.number(owner, "period_s", period_s, positive=True, unit="[s]")
+        self._max_failures = int(validation.number(owner, "max_failures", max_failures, minimum=1.0))
+        self._server_timeout_s = validation.number(owner, "server_timeout_s", server_timeout_s, positive=True,
+                                                   unit="[s]")
+        self._client: Optional[ActionClientLike] = None
+        self._publisher: Optional[PublisherLike] = None
+        self._goal: Any = None
+        self._entered_s = 0.0
+        self._next_plan_s = 0.0  # [s] when the next plan may start
+        self._plan_in_flight = False  # a GetPath goal is out
+        self._failures = 0
+        self._plans = 0
+
+    def on_start(self) -> None:
+        proxies = proxies_of(self)
+        self._client = proxies.action_client(self._action_name, GET_PATH.action)
+        self._publisher = proxies.publisher(self._plan_topic, Path, latch=True)
+
+    def on_enter(self, userdata: UserDataView) -> None:
+        self._goal = GetPathGoal(pose=unwrap(userdata.goal))
+        self._entered_s = self._next_plan_s = self.now_s()
+        self._plan_in_flight = False
+        self._failures = self._plans = 0
+
+    def execute(self, userdata: UserDataView) -> Optional[str]:
+        assert self._client is not None and self._publisher is not None
+        now = self.now_s()
+        if self._plan_in_flight:
+            if not self._client.has_result():
+                return None
+            self._plan_in_flight = False
+            result = self._client.result()
+            if self._client.state() == GoalStatus.SUCCEEDED and result is not None and \
+                    result.code == GetPathResult.SUCCESS and len(result.plan.poses) > 0:
+                self._failures = 0
+                self._plans += 1
+                userdata.plan = result.plan
+                self._publisher.publish(result.plan)
+            else:
+                self._failures += 1
+                reason = result.message if result is not None else "no result"
+                self.log_warn(f"{self._action_name}: replan {self._failures}/{self._max_failures} failed: {reason}")
+                if self._failures >= self._max_failures:
+                    self.log_error(f"{self._action_name}: {self._failures} plans in a row failed; giving up")
+                    return "failed"
+        if now < self._next_plan_s:
+            return None
+        if not self._client.is_available(0.0):
+            if now - self._entered_s >= self._server_timeout_s:
+                self.log_error(f"{self._action_name}: GetPath server not available after {self._server_timeout_s} s")
+                return "failed"
+            return None
+        self._client.send_goal(self._goal, server_timeout_s=0.05)
+        self._plan_in_flight = True
+        self._next_plan_s = now + self._replan_period_s
+        return None
+
+    def on_exit(self, userdata: UserDataView) -> None:
+        if self._plan_in_flight and self._client is not None and self._client.is_active():
+            self._client.cancel()
+        self._plan_in_flight = False

@@ -1,0 +1,81 @@
+"""ReplanState: plans every period, publishes each plan, gives up after failures in a row, cancels on exit."""
+
+from __future__ import annotations
+
+from actionlib_msgs.msg import GoalStatus
+from geometry_msgs.msg import PoseStamped
+from nav_msgs.msg import Path
+from unit.states.states_testlib import Harness
+
+from flex_nav.behavior import BehaviorStatus
+from flex_nav.msg import GetPathAction, GetPathResult
+from flex_nav_states.replan_state import ReplanState
+
+
+def _goal() -> PoseStamped:
+    goal = PoseStamped()
+    goal.header.frame_id = "map"
+    goal.pose.position.x = 3.0
+    goal.pose.orientation.w = 1.0
+    return goal
+
+
+def _plan(x_end: float) -> GetPathResult:
+    result = GetPathResult(code=GetPathResult.SUCCESS, message="ok")
+    for x in (0.0, x_end):
+        pose = PoseStamped()
+        pose.header.frame_id = "map"
+        pose.pose.position.x = x
+        result.plan.poses.append(pose)
+    return result
+
+
+def test_plans_every_period_and_publishes_each_plan() -> None:
+    h = Harness(ReplanState(period_s=1.0, plan_topic="mb/plan"), inputs={"goal": _goal()})
+    client = h.proxies.client("get_path_server", GetPathAction)
+    for x_end in (3.0, 2.9, 2.8):
+        client.respond(GoalStatus.SUCCEEDED, _plan(x_end), delay_s=0.1)
+    h.start()
+    h.run_for(2.5, step_s=0.05)
+    assert len(client.goals) == 3  # at 0, 1 and 2 s
+    gaps = [b - a for a, b in zip(client.sent_at, client.sent_at[1:])]
+    assert all(1.0 <= gap <= 1.0 + 0.1 + 1e-9 for gap in gaps), gaps  # the period, late by at most one tick
+    published = h.proxies.publishers["mb/plan"].messages()
+    assert [m.poses[-1].pose.position.x for m in published] == [3.0, 2.9, 2.8]
+    assert all(isinstance(m, Path) for m in published)
+
+
+def test_gives_up_after_failures_in_a_row_with_the_reason() -> None:
+    h = Harness(ReplanState(period_s=0.5, max_failures=2), inputs={"goal": _goal()})
+    client = h.proxies.client("get_path_server", GetPathAction)
+    client.respond(GoalStatus.SUCCEEDED, _plan(3.0))
+    client.respond(GoalStatus.ABORTED, GetPathResult(code=GetPathResult.EMPTY, message="goal in an obstacle"))
+    client.respond(GoalStatus.SUCCEEDED, _plan(3.0))  # a success resets the count
+    client.respond(GoalStatus.ABORTED, GetPathResult(code=GetPathResult.EMPTY, message="goal in an obstacle"))
+    client.respond(GoalStatus.ABORTED, GetPathResult(code=GetPathResult.FAILURE, message="no transform"))
+    result = h.start().run(max_time_s=10.0)
+    assert result.status is BehaviorStatus.FINISHED and result.outcome == "failed"
+    assert len(client.goals) == 5
+    assert any("goal in an obstacle" in t for t in h.texts()) and any("no transform" in t for t in h.texts())
+
+
+def test_missing_server_fails_in_bounded_time() -> None:
+    h = Harness(ReplanState(server_timeout_s=2.0), inputs={"goal": _goal()})
+    client = h.proxies.client("get_path_server", GetPathAction)
+    client.available_at_s = float("inf")
+    result = h.start().run(max_time_s=5.0)
+    assert result.outcome == "failed"
+    assert h.clock.now() - 1000.0 <= 2.5
+    assert any("not available" in t for t in h.texts())
+
+
+def test_exit_cancels_the_plan_in_flight() -> None:
+    h = Harness(ReplanState(), inputs={"goal": _goal()})
+    client = h.proxies.client("get_path_server", GetPathAction)
+    client.respond(GoalStatus.SUCCEEDED, _plan(3.0), delay_s=5.0)
+    h.start()
+    h.run_for(0.3)
+    assert client.is_active()
+    h.executor.preempt("test")
+    h.tick()
+    assert client.cancels == 1
