@@ -40,7 +40,7 @@ def test_plans_every_period_and_publishes_each_plan() -> None:
     assert len(client.goals) == 3  # at 0, 1 and 2 s
     gaps = [b - a for a, b in zip(client.sent_at, client.sent_at[1:])]
     assert all(1.0 <= gap <= 1.0 + 0.1 + 1e-9 for gap in gaps), gaps  # the period, late by at most one tick
-    published = h.proxies.publishers["mb/plan"].messages()
+    published = h.proxies.publishers["mb/plan"].messages
     assert [m.poses[-1].pose.position.x for m in published] == [3.0, 2.9, 2.8]
     assert all(isinstance(m, Path) for m in published)
 
