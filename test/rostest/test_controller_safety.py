@@ -57,6 +57,7 @@ class FakeRobot:
         self.odom_on.set()
         self.scan_on.set()
         self.bad_velocity = False
+        self.obstacle_ahead = False  # the scan sees something 0.35 m straight ahead
         self.odom_frame = "odom"
         self.odom_pub = rospy.Publisher("odom", Odometry, queue_size=1)
         self.scan_pub = rospy.Publisher("scan", LaserScan, queue_size=1)
@@ -94,15 +95,18 @@ class FakeRobot:
                 scan.angle_max = scan.angle_min + 359 * scan.angle_increment
                 scan.range_min, scan.range_max = 0.05, 3.5
                 scan.ranges = [float("inf")] * 360
+                if self.obstacle_ahead:
+                    scan.ranges[170:191] = [0.35] * 21  # beams within +-10 deg of straight ahead
                 self.scan_pub.publish(scan)
             rospy.sleep(0.05)
 
     def healthy(self):
         """Undo what a test broke; True if something was broken."""
         broken = (self.odom_frame != "odom" or self.bad_velocity or not self.odom_on.is_set()
-                  or not self.scan_on.is_set())
+                  or not self.scan_on.is_set() or self.obstacle_ahead)
         self.odom_frame = "odom"
         self.bad_velocity = False
+        self.obstacle_ahead = False
         self.odom_on.set()
         self.scan_on.set()
         return broken
@@ -262,6 +266,13 @@ class TestControllerSafety(unittest.TestCase):
         mark = self.path_cmds.mark()
         self.robot.bad_velocity = True
         self.assert_aborted_and_stopped(handle, self.path_results, self.path_cmds, mark, "velocity is not finite")
+
+    def test_obstacle_ahead_in_the_local_costmap(self):
+        self.robot.obstacle_ahead = True  # pp_path has collision_timeout 0: abort at the first collision
+        rospy.sleep(0.5)  # a few scans into the rolling local costmap
+        mark = self.path_cmds.mark()
+        handle = self.send_path(straight_path())
+        self.assert_aborted_and_stopped(handle, self.path_results, self.path_cmds, mark, "collision ahead")
 
     # ------------------------------------------------------------------ cancel / replace
     def test_cancel_stops_every_time(self):

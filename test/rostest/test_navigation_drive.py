@@ -105,13 +105,23 @@ class TestNavigationDrive(unittest.TestCase):
         self.assertEqual(client.get_state(), GoalStatus.PREEMPTED)
         sub.unregister()
 
-    def test_2_follow_topic_server_without_publisher(self):
+    def test_1b_follow_topic_server_without_publisher(self):
         client = self.clients["follow_topic_server"]
         client.send_goal(FollowTopicGoal(topic=String(data="silent_topic")))
         self.assertTrue(client.wait_for_result(rospy.Duration(10.0)))
         self.assertEqual(client.get_state(), GoalStatus.ABORTED)
         self.assertEqual(client.get_result().code, FollowTopicResult.FAILURE)
         self.assertIn(f"no Path on {NS}silent_topic within 2.0 s", client.get_result().message)
+
+    def test_2_follow_path_server_rejects_bad_paths(self):
+        client = self.clients["follow_path_server"]
+        for path, reason in ((Path(), "the path is empty"),
+                             (path_msg(np.array([[1.0, 1.0], [2.0, 1.0]]), "atlantis", rospy.Time.now()),
+                              "'atlantis' cannot be transformed")):
+            client.send_goal(FollowPathGoal(path=path))
+            self.assertTrue(client.wait_for_result(rospy.Duration(5.0)))
+            self.assertEqual(client.get_state(), GoalStatus.ABORTED)
+            self.assertIn(reason, client.get_result().message)
 
     def test_3_drive_to_goal_through_the_chain(self):
         goal = (3.0, 3.5)  # beside the block x 1.5..2.5, y 3..4: the plan bends around its corner
