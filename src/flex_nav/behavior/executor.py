@@ -216,6 +216,7 @@ class BehaviorExecutor:
                 except Exception as err:
                     self._fail(err, now)
                     return
+                self._ctx._changed = True  # the first tick reports the initial active states
                 self._emit_status(now, None, "started")
             finally:
                 _CURRENT.reset(token)

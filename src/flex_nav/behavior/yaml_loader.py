@@ -600,6 +600,11 @@ class _Loader:
     def sub_behavior(self, entry: Dict[str, Tuple[Node, Node]], label: str, path: str) -> StateMachine:
         name_node = entry["behavior"][1]
         name = self.name(name_node, f"behavior of {label!r}")
+        if name.startswith("$") and not name.startswith("$$"):  # a str parameter names the sub-behavior
+            chosen = self.value(name_node)
+            if not isinstance(chosen, str) or not chosen:
+                self.fail(name_node, f"behavior of {label!r}: parameter {name} must name a behavior, got {chosen!r}")
+            name = chosen
         where = (self.file, name_node.start_mark.line + 1)
         dirs = [Path(self.file).parent, *self.search_path] if self.file != "<string>" else list(self.search_path)
         try:

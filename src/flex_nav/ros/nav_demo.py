@@ -46,7 +46,7 @@ class RobotRun:
 
     name: str
     profile: str
-    goals: List[Tuple[str, Tuple[float, float, float]]]
+    goals: List[Tuple[str, Tuple[float, float, float]]]  # (name, (x [m], y [m], yaw [rad]))
     next_goal: int = 0
     reached: int = 0
     recoveries: int = 0
@@ -65,6 +65,10 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     parser = argparse.ArgumentParser(prog="tools/demo.sh", description=__doc__.split("\n\n")[0])
     parser.add_argument("--profile", default="turtlebot2",
                         help="robot: " + ", ".join(PROFILES) + " (default %(default)s)")
+    parser.add_argument("--behavior", default="flex_planner",
+                        help="behavior: flex_planner, multi_level_planner, create_flex_planner, move_base_like")
+    parser.add_argument("--goals", default=",".join(LAP),
+                        help="comma-separated goal names of the world, in order (default %(default)s)")
     parser.add_argument("--world", default="lab", help="world name in sim/worlds or a path (default %(default)s)")
     parser.add_argument("--robots", type=int, default=1, help="number of robots, 1..3 (default %(default)s)")
     parser.add_argument("--laps", type=int, default=1, help="laps of the goal loop (default %(default)s)")
@@ -86,19 +90,24 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     return args
 
 
-def plan_robots(world: Any, profile: str, count: int, laps: int) -> List[RobotRun]:
-    """Robots start at the world's start and the next goals; each runs the lap from its own start point."""
-    names = [n for n in ("start", *LAP[:-1]) if n in world.goals]
-    missing = [n for n in LAP if n not in world.goals]
-    if missing:
-        raise ConfigError(f"world {world.name!r} has no goal(s) {', '.join(missing)} (has: {', '.join(world.goals)})")
+def plan_robots(world: Any, profile: str, count: int, laps: int, lap: Sequence[str] = LAP) -> List[RobotRun]:
+    """Robot k starts where goal k-1 of the lap ends (robot 1 at the world's first robot spawn or ``start``)
+    and runs the lap from there, ``laps`` times."""
+    missing = [n for n in lap if n not in world.goals]
+    if missing or not lap:
+        raise ConfigError(choices_message(f"world {world.name!r} goal", ", ".join(missing) or "(none)", world.goals))
+    if count > len(lap):
+        raise ConfigError(f"{count} robots need at least {count} goals in the lap, got {len(lap)}")
     runs = []
     for index in range(count):
-        lap = list(LAP[index:]) + list(LAP[:index])
-        goals = [(name, world.goals[name]) for _ in range(laps) for name in lap]
-        start_name = names[index]
-        runs.append(RobotRun(f"robot{index + 1}", profile, goals))
-        runs[-1].pose = world.goals[start_name]
+        order = list(lap[index:]) + list(lap[:index])
+        goals = [(name, world.goals[name]) for _ in range(laps) for name in order]
+        run = RobotRun(f"robot{index + 1}", profile, goals)
+        if index == 0:
+            run.pose = world.spawns[0].pose if world.spawns else world.goals.get("start", world.goals[lap[-1]])
+        else:
+            run.pose = world.goals[lap[index - 1]]
+        runs.append(run)
     return runs
 
 
@@ -157,14 +166,14 @@ class DemoMonitor:
 
     def _on_activity(self, msg: Any, run: RobotRun) -> None:
         with self.lock:
-            run.waiting_for_goal = "/ReceiveGoal" in msg.active_paths
+            run.waiting_for_goal = any(p.endswith("/ReceiveGoal") for p in msg.active_paths)
         for request in msg.requests:
             self._say(run, f"waits for the operator: {request.path} -> {request.outcome}")
 
     def _on_transition(self, msg: Any, run: RobotRun) -> None:
         self._say(run, f"{msg.path} --{msg.outcome}--> {msg.target}")
         with self.lock:
-            if msg.path == "/Navigate" and msg.outcome == "arrived" and run.next_goal > run.reached:
+            if msg.target == "Arrived" and run.next_goal > run.reached:
                 run.reached += 1
                 name, goal = run.goals[run.reached - 1]
                 self._say(run, f"goal {run.reached}/{len(run.goals)} ({name} at {goal[0]:.1f}, {goal[1]:.1f}) reached "
@@ -172,7 +181,7 @@ class DemoMonitor:
                                f"distance so far {run.distance_m:.1f} m")
                 if run.reached == len(run.goals):
                     run.finished = True
-            if msg.path == "/Recovery" and msg.outcome == "done":
+            if msg.path.endswith("/Recovery") and msg.outcome == "done":
                 run.recoveries += 1
                 self._say(run, f"bumper recovery {run.recoveries} done; replanning to the original goal")
 
@@ -207,7 +216,7 @@ class DemoMonitor:
             with self.lock:
                 due = run.waiting_for_goal and run.next_goal == run.reached and run.next_goal < len(run.goals)
                 if due:
-                    name, (x, y, yaw_deg) = run.goals[run.next_goal]
+                    name, (x, y, yaw) = run.goals[run.next_goal]
                     run.next_goal += 1
                     run.waiting_for_goal = False
                     run.goal_started_sim_s = self.sim_s()
@@ -216,11 +225,11 @@ class DemoMonitor:
                 msg.header.frame_id = "map"
                 msg.header.stamp = self.rospy.Time.now()
                 msg.pose.position.x, msg.pose.position.y = x, y
-                msg.pose.orientation.z = math.sin(math.radians(yaw_deg) / 2.0)
-                msg.pose.orientation.w = math.cos(math.radians(yaw_deg) / 2.0)
+                msg.pose.orientation.z = math.sin(yaw / 2.0)
+                msg.pose.orientation.w = math.cos(yaw / 2.0)
                 self.goal_pubs[run.name].publish(msg)
                 self._say(run, f"goal {run.next_goal}/{len(run.goals)}: {name} at "
-                               f"({x:.1f}, {y:.1f}, {yaw_deg:.0f} deg)")
+                               f"({x:.1f}, {y:.1f}, {math.degrees(yaw):.0f} deg)")
 
     def all_waiting(self) -> bool:
         with self.lock:
@@ -229,6 +238,14 @@ class DemoMonitor:
     def done(self) -> bool:
         with self.lock:
             return all(run.finished or run.failed_reason for run in self.runs)
+
+
+def behavior_parameters(behavior: str, profile: str) -> str:
+    """The behavior parameter overrides (YAML) for a robot: its profile, for behaviors that take one."""
+    from flex_nav.behavior.yaml_loader import load_behavior  # noqa: PLC0415
+
+    declared = load_behavior(behavior).parameters
+    return f"{{profile: {profile}}}" if "profile" in declared else "{}"
 
 
 def write_picture(out: Path, map_yaml: Path, runs: List[RobotRun], title: str) -> Path:
@@ -251,7 +268,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
     profile = PROFILES[args.profile]
     try:
         world = load_world(args.world)
-        runs = plan_robots(world, profile, args.robots, args.laps)
+        runs = plan_robots(world, profile, args.robots, args.laps, [g for g in args.goals.split(",") if g])
     except FlexNavError as err:
         print(f"demo: {err}", file=sys.stderr)
         return 2
@@ -260,8 +277,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
     out.mkdir(parents=True, exist_ok=True)
     logs = out / "logs"
     logs.mkdir(exist_ok=True)
-    print(f"flex_nav demo: {args.robots} x {args.profile} in world '{world.name}', {args.laps} lap(s) of "
-          f"{' -> '.join(LAP)}, autonomy {args.autonomy}; output in {out}", flush=True)
+    print(f"flex_nav demo: {args.behavior}, {args.robots} x {args.profile} in world '{world.name}', {args.laps} lap(s)"
+          f" of {' -> '.join(g for g, _ in runs[0].goals[:len(runs[0].goals) // args.laps])}, autonomy "
+          f"{args.autonomy}; output in {out}", flush=True)
 
     with contextlib.ExitStack() as stack:
         signal.signal(signal.SIGTERM, _interrupt)
@@ -269,7 +287,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
         env = master.env
         os.environ.update(env)
         _set_param(master.uri, "/use_sim_time", True)
-        robots_param = ",".join(f"{r.name}:{r.profile}:{r.pose[0]}:{r.pose[1]}:{r.pose[2]}" for r in runs if r.pose)
+        robots_param = ",".join(f"{r.name}:{r.profile}:{r.pose[0]}:{r.pose[1]}:{math.degrees(r.pose[2]):.1f}"
+                                for r in runs if r.pose)
         processes = [
             ManagedProcess(["rosrun", "flex_nav", "sim", f"_world:={args.world}", f"_robots:={robots_param}",
                             f"_rtf:={args.rtf}", f"_seed:={args.seed}", "_camera:=false",
@@ -280,7 +299,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
             processes.append(ManagedProcess(
                 ["roslaunch", "flex_nav", "flex_nav_robot.launch", f"robot:={run.name}", f"profile:={run.profile}",
                  "twist_relay:=true", f"autonomy:={args.autonomy}",
-                 f"behavior_parameters:={{profile: {run.profile}}}"],
+                 f"behavior:={args.behavior}",
+                 f"behavior_parameters:={behavior_parameters(args.behavior, run.profile)}"],
                 env=env, log_path=logs / f"{run.name}.log"))
         bag_topics = [t for r in runs for t in (f"/{r.name}/ground_truth", f"/{r.name}/odom",
                       f"/{r.name}/get_path_server/plan", f"/{r.name}/bumper_hits", f"/{r.name}/cmd_vel",

@@ -19,6 +19,7 @@ from flex_nav.behavior import (
     StateMachine,
     current_context,
 )
+from flex_nav.behavior.builtin_states import Wait
 from flex_nav.exceptions import BehaviorCommandError, BehaviorRuntimeError, ConfigError, NotReadyError
 
 
@@ -360,3 +361,16 @@ def test_only_one_thread_drives_a_behavior():
     ex.context.hooks.status.append(reenter)
     ex.run(timeout_s=0.5)
     assert errors and errors[0].startswith("spin_once: behavior 'behavior' is already being run by another thread")
+
+
+def test_initial_active_states_are_reported_on_the_first_tick():
+    # An operator interface that connects to a behavior whose first state keeps running must learn it.
+    sm = StateMachine(outcomes=["finished"])
+    sm.add("Hold", Wait(wait_time_s=10.0), transitions={"done": "finished"})
+    ex = executor(sm)
+    events = record_events(ex)
+    ex.start()
+    ex.spin_once()
+    assert [e.paths for e in events["active"]] == [("/Hold",)]
+    ex.spin_once()
+    assert len(events["active"]) == 1  # reported once, not on every tick

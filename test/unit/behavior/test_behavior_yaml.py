@@ -424,3 +424,24 @@ def test_error_in_a_sub_behavior_names_its_own_file(tmp_path):
         load_behavior(outer)
     assert (info.value.file, info.value.line) == (str(tmp_path / "inner.yaml"), 7)
     assert "state machine /I: transition 'S'.done goes to unknown target 'gone' (valid: S, done)" in info.value.reason
+
+
+def test_sub_behavior_named_by_a_parameter(tmp_path):
+    for name, text in (("left", "went left"), ("right", "went right")):
+        (tmp_path / f"{name}.yaml").write_text(
+            f"behavior: {name}\noutcomes: [done]\nstates:\n  S:\n    class: {STATES}.Log\n"
+            f"    parameters: {{text: {text}}}\n    transitions: {{done: done}}\n"
+        )
+    outer = tmp_path / "outer.yaml"
+    outer.write_text(
+        "behavior: outer\nparameters:\n  way: {type: str, default: left}\n  nothing: {type: float, default: 1.0}\n"
+        "outcomes: [finished]\nstates:\n  Go:\n    behavior: $way\n    transitions: {done: finished}\n"
+    )
+    assert load_behavior(outer).root["Go"]["S"]._text == "went left"
+    assert load_behavior(outer, parameters={"way": "right"}).root["Go"]["S"]._text == "went right"
+    with pytest.raises(BehaviorLoadError, match=r"outer.yaml:8: state 'Go': behavior .* 'nowhere' is not valid"):
+        load_behavior(outer, parameters={"way": "nowhere"})
+    bad = tmp_path / "bad.yaml"
+    bad.write_text(outer.read_text().replace("$way", "$nothing").replace("behavior: outer", "behavior: bad"))
+    with pytest.raises(BehaviorLoadError, match=r"bad.yaml:8: behavior of 'Go': parameter \$nothing must name"):
+        load_behavior(bad)
