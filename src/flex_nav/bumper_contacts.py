@@ -41,7 +41,7 @@ class BumperContacts:
 
         Unknown zones raise ConfigError.
         """
-        touched = []
+        touched: list[tuple[str, float, float]] = []
         for zone, pressed in states.items():
             if zone not in self._pressed:
                 raise ConfigError(choices_message("bumper zone", zone, self.points))
