@@ -1,0 +1,16 @@
+"""Perception for obstacle-aware navigation: is the region in front of the robot a person, a movable object or clear?
+
+ROS-free core (never imports rospy); the node is :mod:`flex_nav.ros.obstacle_classifier_node`.
+
+| module | what |
+| --- | --- |
+| ``labels`` | the three labels (+ ``unknown``) and the roles a detector class can map to |
+| ``image`` | a ``sensor_msgs/Image``-like buffer (rgb8/bgr8/rgba8/bgra8/mono8) -> an RGB array, no cv_bridge |
+| ``roi`` | the region of interest (fractions of the image) in front of the robot |
+| ``preprocess`` | classifier input (crop, resize, normalise) and YOLO letterbox (and its inverse) |
+| ``onnx_model`` | onnxruntime sessions on the CPU with one thread, loading errors that name the file |
+| ``classifier`` | :class:`ObstacleClassifier`: the project's own CNN (``models/obstacle_classifier.onnx``) |
+| ``yolo`` | YOLOv8-family output decoding (both ultralytics layouts), class-wise NMS, :class:`YoloObstacleDetector` |
+| ``smoothing`` | :class:`MajorityVote`: the majority of the last N frames, as in the thesis (N = 5) |
+| ``factory`` | building either model kind from a validated :class:`PerceptionConfig` |
+"""

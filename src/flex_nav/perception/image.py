@@ -1,0 +1,50 @@
+"""A ``sensor_msgs/Image``-like buffer -> an RGB ``uint8`` array (height, width, 3), without cv_bridge.
+
+Only 8-bit encodings are accepted; each row may be padded (``step`` >= width * channels). The result
+is a view into the buffer where no channel reordering is needed (``rgb8`` without padding), so the
+caller must not keep it past the buffer's lifetime if the buffer is reused.
+"""
+
+from __future__ import annotations
+
+from typing import Dict, Union
+
+import numpy as np
+
+from flex_nav.exceptions import ConfigError, choices_message
+
+CHANNELS: Dict[str, int] = {"rgb8": 3, "bgr8": 3, "rgba8": 4, "bgra8": 4, "mono8": 1}
+ENCODINGS = tuple(CHANNELS)
+
+Buffer = Union[bytes, bytearray, memoryview, np.ndarray]
+
+
+def to_rgb(data: Buffer, width: int, height: int, encoding: str, step: int = 0) -> np.ndarray:
+    """RGB uint8 (height, width, 3) from raw image bytes; ``step`` [bytes per row], 0 = packed.
+
+    Raises :class:`ConfigError` (a ValueError) naming the problem for an unsupported encoding, a
+    non-positive size, a step shorter than a row or a buffer shorter than ``step * height``.
+    """
+    channels = CHANNELS.get(encoding)
+    if channels is None:
+        raise ConfigError(choices_message("image encoding", encoding, ENCODINGS))
+    if width <= 0 or height <= 0:
+        raise ConfigError(f"image size {width}x{height} must be positive")
+    row = width * channels
+    step = row if step == 0 else step
+    if step < row:
+        raise ConfigError(f"image step {step} is shorter than a row ({width} px x {channels} bytes = {row})")
+    flat = np.frombuffer(data, dtype=np.uint8) if not isinstance(data, np.ndarray) else data.reshape(-1)
+    if flat.dtype != np.uint8:
+        raise ConfigError(f"image data must be uint8 bytes, got {flat.dtype}")
+    if flat.size < step * height:
+        raise ConfigError(f"image data has {flat.size} bytes, {step} x {height} = {step * height} expected")
+    rows = flat[: step * height].reshape(height, step)[:, :row]
+    pixels = rows.reshape(height, width, channels)
+    if encoding == "rgb8":
+        return pixels
+    if encoding == "mono8":
+        return np.repeat(pixels, 3, axis=2)
+    if encoding == "rgba8":
+        return pixels[:, :, :3]
+    return pixels[:, :, 2::-1]  # bgr8 / bgra8: B, G, R -> R, G, B

@@ -1,0 +1,189 @@
+"""``obstacle_classifier`` node: person / movable / clear in front of the robot, smoothed, and "safe to push".
+
+``rosrun flex_nav obstacle_classifier`` in the robot's namespace (``ROS_NAMESPACE=robot1`` or a
+``<group ns>``). Every received image (at most ``~max_rate`` per second) is classified
+(:mod:`flex_nav.perception`); the majority of the last ``~window`` frames is published.
+
+Subscribes ``camera/rgb/image_raw`` (sensor_msgs/Image: rgb8, bgr8, rgba8, bgra8 or mono8).
+Publishes ``obstacle_class`` (flex_nav/ObstacleClass) after every classified frame.
+Serves ``safe_to_push`` (std_srvs/SetBool): ``success`` is True only when the smoothed label is
+``movable``, fewer than ``~person_veto`` frames of the window saw a person and the latest classified
+image is at most ``~max_image_age`` old; ``message`` says what the robot sees. ``data``: False = answer
+from the current window (the thesis' behavior); True = a *fresh vote*: forget the window, wait for
+``~window`` new frames (at most ``~fresh_vote_timeout`` [s] wall clock, else not safe), then answer
+(use it after stopping in front of the obstacle, so frames taken while approaching do not count).
+
+Private parameters (a misspelt one, a bad value, a missing or broken model make the node exit with
+status 2 and a message naming the parameter or field):
+  ~model_type          str    classifier   classifier | yolo
+  ~model               str    ''           ONNX file; '' = the shipped models/obstacle_classifier.onnx (classifier)
+  ~metadata            str    ''           classifier metadata YAML; '' = beside the model
+  ~class_map           dict   {}           model class name -> person | movable | ignore (classes named
+                                           person/movable map to themselves; every other class is ignored)
+  ~class_names         list   []           yolo: class names in model order; [] = the model's 'names' metadata
+  ~roi                 list   []           [x_min, y_min, x_max, y_max] fractions; [] = the model's (classifier)
+                                           or [0.2, 0.0, 0.8, 1.0] (yolo)
+  ~conf_threshold      float  0.25         yolo: minimum detection score
+  ~iou_threshold       float  0.45         yolo: class-wise NMS overlap
+  ~min_roi_overlap     float  0.3          yolo: share of a box's area inside the roi for it to count
+  ~yolo_layout         str    auto         auto | raw (1, 4+nc, N) | end2end (1, K, 6)
+  ~input_size          list   []           yolo with a dynamic input size: [width, height] [px]
+  ~window              int    5            frames in the majority vote
+  ~max_rate            float  10.0         [Hz] classify at most this many images per second (0 = every image)
+  ~person_veto         int    2            safe_to_push refuses with this many person frames in the window (0 = off)
+  ~max_image_age       float  1.0          [s] safe_to_push refuses when the latest classified image is older
+  ~fresh_vote_timeout  float  5.0          [s] wall-clock bound of a fresh vote (data = True)
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from typing import Any, Dict, Optional, Tuple
+
+import rospy
+from sensor_msgs.msg import Image
+from std_srvs.srv import SetBool, SetBoolResponse
+
+from flex_nav.exceptions import ConfigError
+from flex_nav.msg import ObstacleClass
+from flex_nav.perception.factory import PerceptionConfig, as_names, build
+from flex_nav.perception.image import to_rgb
+from flex_nav.perception.labels import LABELS, Prediction
+from flex_nav.perception.push_decision import describe, safe_to_push
+from flex_nav.perception.roi import Roi
+from flex_nav.perception.smoothing import MAX_WINDOW, MajorityVote, Vote
+from flex_nav.ros.params import param_float, param_int, param_str, reject_unknown
+
+PARAMS = (
+    "model_type", "model", "metadata", "class_map", "class_names", "roi", "conf_threshold", "iou_threshold",
+    "min_roi_overlap", "yolo_layout", "input_size", "window", "max_rate", "person_veto", "max_image_age",
+    "fresh_vote_timeout",
+)
+IMAGE_BUFFER = 1 << 24  # [bytes] socket buffer: a whole 640x480 image fits, so the queue of one holds the newest
+
+
+def _param_list(name: str) -> list:
+    value = rospy.get_param(name, [])
+    if not isinstance(value, list):
+        raise ConfigError(f"parameter {rospy.resolve_name(name)} = {value!r} must be a list")
+    return value
+
+
+def _param_class_map(name: str) -> Dict[str, str]:
+    value = rospy.get_param(name, {})
+    if not isinstance(value, dict) or not all(isinstance(k, str) and isinstance(v, str) for k, v in value.items()):
+        raise ConfigError(f"parameter {rospy.resolve_name(name)} = {value!r} must map class names to "
+                          "person | movable | ignore")
+    return dict(value)
+
+
+def read_config() -> PerceptionConfig:
+    """The perception configuration from the private parameters (ConfigError names the parameter)."""
+    roi_values = _param_list("~roi")
+    size = _param_list("~input_size")
+    roi = Roi.from_sequence(roi_values, f"parameter {rospy.resolve_name('~roi')}") if roi_values else None
+    if size and (len(size) != 2 or not all(isinstance(v, int) and not isinstance(v, bool) for v in size)):
+        raise ConfigError(f"parameter {rospy.resolve_name('~input_size')} = {size!r} must be [width, height] [px]")
+    return PerceptionConfig(
+        model_type=param_str("~model_type", "classifier"),
+        model=param_str("~model", ""),
+        metadata=param_str("~metadata", ""),
+        class_map=_param_class_map("~class_map"),
+        class_names=as_names(_param_list("~class_names"), f"parameter {rospy.resolve_name('~class_names')}"),
+        roi=roi,
+        conf_threshold=param_float("~conf_threshold", 0.25, 0.0, 1.0),
+        iou_threshold=param_float("~iou_threshold", 0.45, 0.0, 1.0),
+        min_roi_overlap=param_float("~min_roi_overlap", 0.3, 0.0, 1.0),
+        yolo_layout=param_str("~yolo_layout", "auto"),
+        input_size=(int(size[0]), int(size[1])) if size else None,
+    )
+
+
+class ObstacleClassifierNode:
+    """Classify, vote, publish, answer; the callbacks run on rospy's threads, the vote is guarded by a lock."""
+
+    def __init__(self) -> None:
+        reject_unknown("~", PARAMS)
+        config = read_config()
+        try:
+            self.classifier = build(config)
+        except ConfigError as err:
+            model = config.model or "(the shipped classifier)"
+            raise ConfigError(f"~model_type={config.model_type} ~model={model}: {err}") from err
+        self.window = param_int("~window", 5, 1, MAX_WINDOW)
+        self.max_rate = param_float("~max_rate", 10.0, 0.0)  # [Hz]
+        self.person_veto = param_int("~person_veto", 2, 0, MAX_WINDOW)
+        self.max_image_age = param_float("~max_image_age", 1.0, 0.0)  # [s]
+        self.fresh_vote_timeout = param_float("~fresh_vote_timeout", 5.0, 0.0)  # [s] wall clock
+        self._cond = threading.Condition()
+        self._vote = MajorityVote(self.window)
+        self._last_frame: Optional[float] = None  # [s] ROS time the latest classified image arrived
+        self._last_start: Optional[float] = None  # [s] ROS time the latest classification started (rate limit)
+        self._fresh_frames = 0  # frames classified since the last reset
+        self.publisher = rospy.Publisher("obstacle_class", ObstacleClass, queue_size=5)
+        self.service = rospy.Service("safe_to_push", SetBool, self._on_safe_to_push)
+        self.subscriber = rospy.Subscriber(
+            "camera/rgb/image_raw", Image, self._on_image, queue_size=1, buff_size=IMAGE_BUFFER
+        )
+        rospy.loginfo(f"{rospy.get_name()}: {self.classifier.description}; window {self.window}, "
+                      f"at most {self.max_rate:g} Hz, person veto {self.person_veto}")
+
+    # -- images -------------------------------------------------------------------------------------
+    def _on_image(self, msg: Image) -> None:
+        now = rospy.get_time()
+        with self._cond:
+            if self._last_start is not None and now < self._last_start:
+                self._last_start = None  # time went backwards (a simulation restarted)
+            if (self.max_rate > 0.0 and self._last_start is not None
+                    and now - self._last_start < 1.0 / self.max_rate):
+                return
+            self._last_start = now
+        try:
+            rgb = to_rgb(msg.data, msg.width, msg.height, msg.encoding, msg.step)
+        except ConfigError as err:
+            rospy.logwarn_throttle(5.0, f"{rospy.get_name()}: image skipped: {err}")
+            return
+        prediction = self.classifier.classify(rgb)
+        with self._cond:
+            vote = self._vote.add(prediction)
+            self._last_frame = now
+            self._fresh_frames += 1
+            self._cond.notify_all()
+        self.publisher.publish(self._message(vote, prediction, msg))
+
+    @staticmethod
+    def _message(vote: Vote, prediction: Prediction, image: Image) -> ObstacleClass:
+        out = ObstacleClass()
+        out.header = image.header
+        out.label = vote.label
+        out.confidence = vote.confidence
+        out.votes = vote.votes
+        out.window = vote.window
+        out.frame_label = prediction.label
+        out.frame_confidence = prediction.confidence
+        out.labels = list(LABELS)
+        out.counts = bytes(vote.counts[label] for label in LABELS)  # uint8[] is bytes in genpy
+        return out
+
+    # -- service ------------------------------------------------------------------------------------
+    def _on_safe_to_push(self, request: Any) -> SetBoolResponse:
+        safe, message = self.answer(fresh=bool(request.data))
+        rospy.loginfo(f"{rospy.get_name()}: safe_to_push{' (fresh vote)' if request.data else ''} -> {message}")
+        return SetBoolResponse(success=safe, message=message)
+
+    def answer(self, fresh: bool) -> Tuple[bool, str]:
+        with self._cond:
+            if fresh:
+                self._vote.reset()
+                self._fresh_frames = 0
+                deadline = time.monotonic() + self.fresh_vote_timeout
+                while self._fresh_frames < self.window and not rospy.is_shutdown():
+                    remaining = deadline - time.monotonic()
+                    if remaining <= 0.0:
+                        return False, (f"not safe: a fresh vote got {self._fresh_frames} of {self.window} frames in "
+                                       f"{self.fresh_vote_timeout:g} s; {describe(self._vote.vote())}")
+                    self._cond.wait(min(remaining, 0.1))
+            vote = self._vote.vote()
+            age = None if self._last_frame is None else max(0.0, rospy.get_time() - self._last_frame)
+        return safe_to_push(vote, age, self.max_image_age, self.person_veto)

@@ -1,0 +1,116 @@
+"""Render the obstacle classifier's dataset with the simulator's camera; reproducible from the seed.
+
+    python -m tools.perception.render_dataset --out build/dataset --seed 7
+
+Writes ``train.npz``, ``val.npz``, ``test.npz`` (models seen in training, new scenes) and ``unseen.npz``
+(held-out people, objects and furniture; see :mod:`tools.perception.scenes`), each with ``patches``
+(N, H, W, 3) uint8 = the model input before normalisation (:func:`flex_nav.perception.preprocess.roi_patch`
+with the default ROI), ``labels`` (indices into ``classes``), ``models``, ``profiles`` and ``distances``
+[m]; plus ``sheet_<split>.png`` contact sheets of full frames with the ROI drawn. Every split is cut
+into chunks with their own generator from ``SeedSequence([seed, split, chunk])``, so the output does
+not depend on ``--workers``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+from concurrent.futures import ProcessPoolExecutor
+from pathlib import Path
+from typing import Dict, List, Tuple
+
+import cv2
+import numpy as np
+
+from flex_nav.perception.labels import LABELS
+from flex_nav.perception.preprocess import roi_patch
+from flex_nav.perception.roi import Roi
+
+PATCH_W, PATCH_H = 64, 64  # [px] the model input size (models/obstacle_classifier.yaml)
+SPLITS: Dict[str, Tuple[int, int]] = {"train": (0, 1500), "val": (1, 200), "test": (2, 300), "unseen": (3, 300)}
+CHUNK = 20  # samples per label in a chunk (one generator per chunk)
+SHEET_FRAMES = 24
+
+
+def render_chunk(args: Tuple[int, str, int, int, int]) -> Dict[str, object]:
+    """Render ``count`` samples per label of one chunk; returns plain arrays (picklable for the worker pool)."""
+    from tools.perception.scenes import Renderer, plan
+
+    seed, split, split_id, chunk, count = args
+    rng = np.random.default_rng(np.random.SeedSequence([seed, split_id, chunk]))
+    jobs = plan(LABELS, count, split, rng, offset=chunk)
+    renderer = Renderer(rng)
+    roi = Roi()
+    patches, labels, models, profiles, distances, frames = [], [], [], [], [], []
+    try:
+        for label, model in jobs:
+            sample = renderer.render(label, model)
+            patches.append(roi_patch(sample.rgb, roi, PATCH_W, PATCH_H))
+            labels.append(LABELS.index(label))
+            models.append(model)
+            profiles.append(sample.profile)
+            distances.append(sample.distance)
+            if chunk == 0 and len(frames) < SHEET_FRAMES:
+                frames.append(sample.rgb)
+    finally:
+        renderer.close()
+    return {"patches": np.stack(patches), "labels": np.array(labels, dtype=np.int64), "models": models,
+            "profiles": profiles, "distances": np.array(distances, dtype=np.float32), "frames": frames}
+
+
+def contact_sheet(frames: List[np.ndarray], roi: Roi, columns: int = 6) -> np.ndarray:
+    tiles = []
+    for rgb in frames:
+        tile = rgb.copy()
+        x0, y0, x1, y1 = roi.pixels(tile.shape[1], tile.shape[0])
+        cv2.rectangle(tile, (x0, y0), (x1 - 1, y1 - 1), (255, 0, 0), 1)
+        tiles.append(cv2.resize(tile, (160, 120), interpolation=cv2.INTER_AREA))
+    while len(tiles) % columns:
+        tiles.append(np.zeros_like(tiles[0]))
+    rows = [np.hstack(tiles[i : i + columns]) for i in range(0, len(tiles), columns)]
+    return np.vstack(rows)
+
+
+def main(argv: List[str]) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--out", type=Path, default=Path("build/dataset"))
+    parser.add_argument("--seed", type=int, default=7)
+    parser.add_argument("--workers", type=int, default=2, help="processes (the output does not depend on it)")
+    parser.add_argument("--scale", type=float, default=1.0, help="multiply every split's size (e.g. 0.1 to try)")
+    args = parser.parse_args(argv)
+    args.out.mkdir(parents=True, exist_ok=True)
+    summary = {}
+    started = time.monotonic()
+    for split, (split_id, per_label) in SPLITS.items():
+        total = max(1, round(per_label * args.scale))  # per label
+        chunks = [(args.seed, split, split_id, i, min(CHUNK, total - i * CHUNK))
+                  for i in range((total + CHUNK - 1) // CHUNK)]
+        t0 = time.monotonic()
+        if args.workers > 1:
+            with ProcessPoolExecutor(max_workers=args.workers) as pool:
+                parts = list(pool.map(render_chunk, chunks))
+        else:
+            parts = [render_chunk(c) for c in chunks]
+        patches = np.concatenate([p["patches"] for p in parts])  # type: ignore[misc]
+        labels = np.concatenate([p["labels"] for p in parts])  # type: ignore[misc]
+        models = [m for p in parts for m in p["models"]]  # type: ignore[attr-defined]
+        profiles = [m for p in parts for m in p["profiles"]]  # type: ignore[attr-defined]
+        distances = np.concatenate([p["distances"] for p in parts])  # type: ignore[misc]
+        np.savez_compressed(args.out / f"{split}.npz", patches=patches, labels=labels, models=np.array(models),
+                            profiles=np.array(profiles), distances=distances, classes=np.array(LABELS))
+        sheet = contact_sheet(parts[0]["frames"], Roi())  # type: ignore[arg-type]
+        cv2.imwrite(str(args.out / f"sheet_{split}.png"), cv2.cvtColor(sheet, cv2.COLOR_RGB2BGR))
+        counts = {label: int((labels == i).sum()) for i, label in enumerate(LABELS)}
+        summary[split] = {"samples": len(labels), "per_label": counts, "models": sorted(set(models)),
+                          "seconds": round(time.monotonic() - t0, 1)}
+        print(f"[render_dataset] {split}: {len(labels)} samples {counts} in {time.monotonic() - t0:.0f} s", flush=True)
+    summary["seed"] = args.seed  # type: ignore[assignment]
+    (args.out / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+    print(f"[render_dataset] done in {time.monotonic() - started:.0f} s -> {args.out}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

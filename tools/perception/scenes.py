@@ -1,0 +1,594 @@
+"""Scenes for the obstacle classifier's dataset, rendered with the simulator's camera model.
+
+Each sample is one pybullet scene in front of a robot at the origin facing +x: a floor, background
+walls, optional side distractors outside the region of interest, and one *target* that decides the
+label: a person (``person``), a box (``movable``) or nothing / a wall / fixed furniture (``clear``).
+The camera is one of the robot profiles' (``sim/robots/*.yaml``: OAK-D on the TurtleBot 4, Kinect on
+the Kobuki and Create 2) with a little height and pitch jitter, rendered offscreen with
+ER_TINY_RENDERER exactly as :class:`flex_nav_sim.sensors.Camera` does, under varied lighting.
+
+Models are split into the ones used for training and the ones held out for evaluation
+(``HELD_OUT``): the held-out people, objects and furniture are never seen in training.
+
+People are drawn in the simulator's own way (a capsule, in clothing colours; the simulator's default
+person colour included) and as articulated figures (a primitive walker, the MuJoCo humanoid, the
+DeepMimic humanoid of pybullet_data) in random walking poses. Note: a single-colour capsule seen from
+0.25-0.30 m height looks like a cylinder pillar of the same colour; the dataset keeps pillars in
+furniture colours (greys, whites, wood, muted blue), which is what lets the model tell them apart.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass
+from typing import Any, Callable, Dict, List, Sequence, Tuple
+
+import numpy as np
+import pybullet
+import pybullet_data
+
+from flex_nav.perception.labels import CLEAR, MOVABLE, PERSON
+from flex_nav_sim.bodies import FLOOR_COLOR
+from flex_nav_sim.profiles import CameraSpec, load_profile
+from flex_nav_sim.world import DEFAULT_COLORS
+
+Rgba = Tuple[float, float, float, float]
+Vec3 = Tuple[float, float, float]
+DATA = pybullet_data.getDataPath()
+PROFILES = ("turtlebot4", "kobuki", "create2")
+
+TRAIN_MODELS: Dict[str, Tuple[str, ...]] = {
+    PERSON: ("capsule", "walker", "mjcf_humanoid"),
+    MOVABLE: ("box", "box_pair"),
+    CLEAR: ("empty", "wall", "table", "chair", "pillar", "bin", "cabinet", "shelf"),
+}
+HELD_OUT: Dict[str, Tuple[str, ...]] = {
+    PERSON: ("deepmimic_humanoid", "dress_walker"),
+    MOVABLE: ("crate", "textured_cube", "taped_parcel"),
+    CLEAR: ("urdf_table", "bench", "plant", "door_frame"),
+}
+
+# -- colour palettes ----------------------------------------------------------------------------------
+CLOTHES: Tuple[Vec3, ...] = (
+    DEFAULT_COLORS["person"][:3], (0.1, 0.15, 0.35), (0.15, 0.15, 0.18), (0.25, 0.35, 0.6), (0.2, 0.5, 0.5),
+    (0.55, 0.1, 0.1), (0.1, 0.4, 0.15), (0.45, 0.4, 0.3), (0.9, 0.9, 0.92), (0.5, 0.2, 0.45), (0.85, 0.55, 0.1),
+    (0.3, 0.55, 0.75), (0.6, 0.75, 0.85), (0.35, 0.25, 0.2), (0.8, 0.25, 0.45),
+)
+SKIN: Tuple[Vec3, ...] = ((0.95, 0.8, 0.7), (0.85, 0.65, 0.5), (0.6, 0.42, 0.3), (0.4, 0.27, 0.18))
+SHOES: Tuple[Vec3, ...] = ((0.05, 0.05, 0.05), (0.3, 0.2, 0.1), (0.9, 0.9, 0.9), (0.2, 0.2, 0.3))
+BOXES: Tuple[Vec3, ...] = (
+    DEFAULT_COLORS["box"][:3], (0.75, 0.58, 0.35), (0.65, 0.5, 0.3), (0.85, 0.7, 0.45), (0.9, 0.9, 0.88),
+    (0.3, 0.45, 0.75), (0.75, 0.2, 0.2), (0.25, 0.55, 0.3), (0.9, 0.8, 0.2), (0.45, 0.45, 0.45),
+)
+FURNITURE: Tuple[Vec3, ...] = (
+    DEFAULT_COLORS["obstacle"][:3], DEFAULT_COLORS["wall"][:3], DEFAULT_COLORS["door"][:3], (0.9, 0.9, 0.9),
+    (0.6, 0.6, 0.62), (0.4, 0.4, 0.42), (0.55, 0.4, 0.25), (0.7, 0.55, 0.4), (0.8, 0.8, 0.75), (0.5, 0.55, 0.6),
+)
+WALLS: Tuple[Vec3, ...] = (
+    DEFAULT_COLORS["wall"][:3], (0.85, 0.85, 0.8), (0.75, 0.8, 0.85), (0.9, 0.88, 0.8), (0.6, 0.65, 0.6),
+    (0.8, 0.75, 0.7), (0.95, 0.95, 0.95),
+)
+FLOORS: Tuple[Vec3, ...] = (
+    FLOOR_COLOR[:3], (0.7, 0.7, 0.68), (0.6, 0.55, 0.5), (0.5, 0.55, 0.6), (0.85, 0.85, 0.85), (0.55, 0.45, 0.35),
+    (0.4, 0.42, 0.45),
+)
+
+
+def jitter(rng: np.random.Generator, color: Vec3, amount: float = 0.06) -> Rgba:
+    r, g, b = (float(np.clip(v + rng.uniform(-amount, amount), 0.0, 1.0)) for v in color)
+    return r, g, b, 1.0
+
+
+def pick(rng: np.random.Generator, palette: Sequence[Vec3]) -> Vec3:
+    return palette[int(rng.integers(len(palette)))]
+
+
+@dataclass(frozen=True)
+class Sample:
+    """One rendered sample: the image and what is in it."""
+
+    rgb: np.ndarray  # uint8 (height, width, 3)
+    label: str
+    model: str
+    profile: str
+    distance: float  # [m] camera to target (0 for 'empty')
+
+
+class Scene:
+    """Visual-only primitives in one BulletClient (nothing is simulated, only rendered)."""
+
+    def __init__(self, client: Any, rng: np.random.Generator) -> None:
+        self.c = client
+        self.rng = rng
+
+    def _body(self, visual: int, pos: Vec3, orn: Sequence[float]) -> int:
+        return int(self.c.createMultiBody(0.0, -1, visual, list(pos), list(orn)))
+
+    def box(self, pos: Vec3, half: Vec3, color: Rgba, yaw: float = 0.0, pitch: float = 0.0) -> int:
+        visual = self.c.createVisualShape(pybullet.GEOM_BOX, halfExtents=list(half), rgbaColor=list(color))
+        return self._body(visual, pos, self.c.getQuaternionFromEuler([0.0, pitch, yaw]))
+
+    def cylinder(self, pos: Vec3, radius: float, length: float, color: Rgba) -> int:
+        visual = self.c.createVisualShape(pybullet.GEOM_CYLINDER, radius=radius, length=length, rgbaColor=list(color))
+        return self._body(visual, pos, (0.0, 0.0, 0.0, 1.0))
+
+    def capsule(self, pos: Vec3, radius: float, length: float, color: Rgba, *, yaw: float = 0.0,
+                pitch: float = 0.0, roll: float = 0.0) -> int:
+        visual = self.c.createVisualShape(pybullet.GEOM_CAPSULE, radius=radius, length=length, rgbaColor=list(color))
+        return self._body(visual, pos, self.c.getQuaternionFromEuler([roll, pitch, yaw]))
+
+    def sphere(self, pos: Vec3, radius: float, color: Rgba) -> int:
+        visual = self.c.createVisualShape(pybullet.GEOM_SPHERE, radius=radius, rgbaColor=list(color))
+        return self._body(visual, pos, (0.0, 0.0, 0.0, 1.0))
+
+    def floor(self, color: Rgba) -> None:
+        visual = self.c.createVisualShape(pybullet.GEOM_BOX, halfExtents=[30.0, 30.0, 0.005], rgbaColor=list(color))
+        self._body(visual, (0.0, 0.0, -0.005), (0.0, 0.0, 0.0, 1.0))
+
+    def wall(self, centre: Tuple[float, float], length: float, height: float, yaw: float, color: Rgba, *,
+             thickness: float = 0.1) -> None:
+        """A wall segment whose long side runs along ``yaw`` [rad]."""
+        self.box((centre[0], centre[1], height / 2.0), (length / 2.0, thickness / 2.0, height / 2.0), color, yaw)
+
+
+def local(x: float, y: float, yaw: float, fx: float, fy: float) -> Tuple[float, float]:
+    """A point (fx forward, fy left) [m] in the frame of an object at (x, y, yaw), in world coordinates."""
+    c, s = math.cos(yaw), math.sin(yaw)
+    return x + c * fx - s * fy, y + s * fx + c * fy
+
+
+# -- people ---------------------------------------------------------------------------------------------
+def person_capsule(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """The simulator's person: a kinematic capsule (flex_nav_sim.bodies.create_person), clothing colour."""
+    rng = sc.rng
+    radius = rng.uniform(0.17, 0.28)
+    height = rng.uniform(1.5, 1.9)
+    color = DEFAULT_COLORS["person"] if rng.random() < 0.3 else jitter(rng, pick(rng, CLOTHES))
+    sc.capsule((x, y, height / 2.0), radius, height - 2.0 * radius, color, yaw=yaw)
+
+
+def person_walker(sc: Scene, x: float, y: float, yaw: float, dress: bool = False) -> None:
+    """A figure of primitives: legs in a walking pose, shoes, torso, arms, head (``dress``: a skirt)."""
+    rng = sc.rng
+    s = rng.uniform(0.9, 1.1)
+    hip_h, hip_w = 0.9 * s, rng.uniform(0.08, 0.12) * s
+    leg_r = rng.uniform(0.05, 0.08) * s
+    stride = rng.uniform(-0.45, 0.45)  # [rad] leg swing
+    trousers = jitter(rng, pick(rng, CLOTHES))
+    shirt = jitter(rng, pick(rng, CLOTHES))
+    skin = jitter(rng, pick(rng, SKIN), 0.03)
+    shoes = jitter(rng, pick(rng, SHOES), 0.03)
+    legs = skin if dress and rng.random() < 0.6 else trousers
+    for side, swing in ((1.0, stride), (-1.0, -stride)):
+        hx, hy = local(x, y, yaw, 0.0, side * hip_w)
+        length = hip_h / max(math.cos(swing), 0.5)
+        fwd = 0.5 * length * math.sin(swing)
+        cx, cy = local(hx, hy, yaw, fwd, 0.0)
+        sc.capsule((cx, cy, hip_h - 0.5 * length * math.cos(swing) + 0.02), leg_r, length - 2 * leg_r, legs,
+                   yaw=yaw, pitch=-swing)
+        foot_fwd = length * math.sin(swing) + 0.06
+        fx, fy = local(hx, hy, yaw, foot_fwd, 0.0)
+        sc.box((fx, fy, 0.04), (0.13 * s, 0.05 * s, 0.04), shoes, yaw)
+    torso_h = rng.uniform(0.5, 0.62) * s
+    width, depth = rng.uniform(0.34, 0.44) * s, rng.uniform(0.2, 0.28) * s
+    sc.box((x, y, hip_h + torso_h / 2.0), (depth / 2.0, width / 2.0, torso_h / 2.0), shirt, yaw)
+    if dress:
+        skirt_bottom = rng.uniform(0.35, 0.6) * s
+        sc.cylinder((x, y, (hip_h + 0.05 + skirt_bottom) / 2.0), rng.uniform(0.2, 0.3) * s,
+                    hip_h + 0.05 - skirt_bottom, shirt if rng.random() < 0.5 else jitter(rng, pick(rng, CLOTHES)))
+    else:
+        sc.box((x, y, hip_h), (depth / 2.0 + 0.01, width / 2.0 - 0.02, 0.06), trousers, yaw)  # hips
+    shoulder = hip_h + torso_h
+    for side in (1.0, -1.0):
+        swing = -side * stride * 0.8
+        ax, ay = local(x, y, yaw, 0.5 * 0.6 * math.sin(swing), side * (width / 2.0 + 0.05))
+        sc.capsule((ax, ay, shoulder - 0.3 * s), 0.045 * s, 0.5 * s, shirt, yaw=yaw, pitch=-swing)
+    sc.sphere((x, y, shoulder + 0.15 * s), 0.1 * s, skin)
+
+
+def _color_links(sc: Scene, body: int, colors: Callable[[str], Rgba]) -> None:
+    sc.c.changeVisualShape(body, -1, rgbaColor=list(colors("base")))
+    for j in range(sc.c.getNumJoints(body)):
+        name = sc.c.getJointInfo(body, j)[12].decode()
+        sc.c.changeVisualShape(body, j, rgbaColor=list(colors(name)))
+
+
+def _stand_on_floor(sc: Scene, body: int, x: float, y: float, orn: Sequence[float]) -> None:
+    """Move ``body`` so its lowest point touches the floor at (x, y)."""
+    pos, _ = sc.c.getBasePositionAndOrientation(body)
+    lo_z, lo_xy = math.inf, None
+    ranges = [sc.c.getAABB(body, j) for j in range(-1, sc.c.getNumJoints(body))]
+    lo = np.min([r[0] for r in ranges], axis=0)
+    hi = np.max([r[1] for r in ranges], axis=0)
+    lo_z = float(lo[2])
+    lo_xy = (float(lo[0] + hi[0]) / 2.0, float(lo[1] + hi[1]) / 2.0)
+    sc.c.resetBasePositionAndOrientation(
+        body, [pos[0] + x - lo_xy[0], pos[1] + y - lo_xy[1], pos[2] - lo_z], list(orn)
+    )
+
+
+def _clothing(sc: Scene) -> Dict[str, Rgba]:
+    rng = sc.rng
+    return {
+        "trousers": jitter(rng, pick(rng, CLOTHES)),
+        "shirt": jitter(rng, pick(rng, CLOTHES)),
+        "skin": jitter(rng, pick(rng, SKIN), 0.03),
+        "shoes": jitter(rng, pick(rng, SHOES), 0.03),
+    }
+
+
+def person_mjcf(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """The MuJoCo humanoid (pybullet_data mjcf/humanoid_symmetric_no_ground.xml) in a random walking pose."""
+    rng, c = sc.rng, sc.c
+    body = c.loadMJCF(os.path.join(DATA, "mjcf", "humanoid_symmetric_no_ground.xml"))[0]
+    stride = rng.uniform(-0.6, 0.6)
+    angles = {
+        "right_hip_y": -stride, "left_hip_y": stride,
+        "right_knee": -rng.uniform(0.0, 0.8), "left_knee": -rng.uniform(0.0, 0.8),
+        "right_shoulder1": rng.uniform(-0.5, 0.5), "left_shoulder1": rng.uniform(-0.5, 0.5),
+        "right_elbow": -rng.uniform(0.2, 1.2), "left_elbow": -rng.uniform(0.2, 1.2),
+    }
+    for j in range(c.getNumJoints(body)):
+        name = c.getJointInfo(body, j)[1].decode()
+        if name in angles:
+            c.resetJointState(body, j, angles[name])
+    wear = _clothing(sc)
+
+    def colour(link: str) -> Rgba:
+        if "foot" in link:
+            return wear["shoes"]
+        if any(k in link for k in ("thigh", "shin", "pelvis")):
+            return wear["trousers"]
+        if "lower_arm" in link or link in ("head", "base"):
+            return wear["skin"] if link != "base" else wear["shirt"]
+        return wear["shirt"]
+
+    _color_links(sc, body, colour)
+    _stand_on_floor(sc, body, x, y, c.getQuaternionFromEuler([0.0, 0.0, yaw]))
+
+
+def person_deepmimic(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """The DeepMimic humanoid (pybullet_data humanoid/humanoid.urdf, y-up, rotated upright), random pose."""
+    rng, c = sc.rng, sc.c
+    scale = rng.uniform(0.22, 0.27)
+    orn = c.getQuaternionFromEuler([math.pi / 2.0, 0.0, yaw])
+    body = c.loadURDF(os.path.join(DATA, "humanoid", "humanoid.urdf"), [x, y, 1.0], orn, globalScaling=scale,
+                      useFixedBase=True)
+    stride = rng.uniform(-0.6, 0.6)
+    for j in range(c.getNumJoints(body)):
+        name = c.getJointInfo(body, j)[1].decode()
+        if name in ("right_hip", "left_hip"):
+            sign = 1.0 if name == "right_hip" else -1.0
+            c.resetJointStateMultiDof(body, j, list(c.getQuaternionFromEuler([0.0, 0.0, sign * stride])))
+        elif name in ("right_knee", "left_knee"):
+            c.resetJointState(body, j, -rng.uniform(0.0, 0.9))
+        elif name in ("right_shoulder", "left_shoulder"):
+            c.resetJointStateMultiDof(body, j, list(c.getQuaternionFromEuler([rng.uniform(-0.3, 0.3), 0.0,
+                                                                               rng.uniform(-0.5, 0.5)])))
+        elif name in ("right_elbow", "left_elbow"):
+            c.resetJointState(body, j, rng.uniform(0.0, 1.2))
+    wear = _clothing(sc)
+
+    def colour(link: str) -> Rgba:
+        if "ankle" in link:
+            return wear["shoes"]
+        if "hip" in link or "knee" in link or link == "base":
+            return wear["trousers"]
+        if "wrist" in link or "neck" in link:
+            return wear["skin"]
+        return wear["shirt"]
+
+    _color_links(sc, body, colour)
+    _stand_on_floor(sc, body, x, y, orn)
+
+
+# -- movable objects ------------------------------------------------------------------------------------
+def box_color(rng: np.random.Generator) -> Rgba:
+    return jitter(rng, BOXES[0] if rng.random() < 0.35 else pick(rng, BOXES))
+
+
+def movable_box(sc: Scene, x: float, y: float, yaw: float) -> None:
+    rng = sc.rng
+    sx, sy, sz = rng.uniform(0.2, 0.7), rng.uniform(0.2, 0.7), rng.uniform(0.15, 0.65)
+    sc.box((x, y, sz / 2.0), (sx / 2.0, sy / 2.0, sz / 2.0), box_color(rng), yaw)
+
+
+def movable_box_pair(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """Two boxes: stacked, or side by side."""
+    rng = sc.rng
+    sx, sy, sz = rng.uniform(0.25, 0.6), rng.uniform(0.25, 0.6), rng.uniform(0.15, 0.32)
+    sc.box((x, y, sz / 2.0), (sx / 2.0, sy / 2.0, sz / 2.0), box_color(rng), yaw)
+    tx, ty, tz = sx * rng.uniform(0.5, 0.9), sy * rng.uniform(0.5, 0.9), rng.uniform(0.12, 0.3)
+    if rng.random() < 0.6:
+        sc.box((x, y, sz + tz / 2.0), (tx / 2.0, ty / 2.0, tz / 2.0), box_color(rng), yaw + rng.uniform(-0.4, 0.4))
+    else:
+        px, py = local(x, y, yaw, 0.0, (sy + ty) / 2.0 + 0.02)
+        sc.box((px, py, tz / 2.0), (tx / 2.0, ty / 2.0, tz / 2.0), box_color(rng), yaw + rng.uniform(-0.3, 0.3))
+
+
+def movable_crate(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """An open-top plastic crate: a floor panel and four thin walls."""
+    rng = sc.rng
+    sx, sy, sz = rng.uniform(0.3, 0.6), rng.uniform(0.25, 0.45), rng.uniform(0.2, 0.4)
+    t = 0.015
+    color = jitter(rng, pick(rng, ((0.2, 0.3, 0.7), (0.8, 0.2, 0.15), (0.15, 0.15, 0.15), (0.9, 0.6, 0.1),
+                                   (0.2, 0.55, 0.3))))
+    sc.box((x, y, t), (sx / 2.0, sy / 2.0, t), color, yaw)
+    for fx, fy, hx, hy in ((sx / 2.0, 0.0, t, sy / 2.0), (-sx / 2.0, 0.0, t, sy / 2.0),
+                           (0.0, sy / 2.0, sx / 2.0, t), (0.0, -sy / 2.0, sx / 2.0, t)):
+        px, py = local(x, y, yaw, fx, fy)
+        sc.box((px, py, sz / 2.0), (hx, hy, sz / 2.0), color, yaw)
+
+
+def movable_textured_cube(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """pybullet_data's textured cube.urdf, scaled to 0.25-0.55 m."""
+    rng, c = sc.rng, sc.c
+    size = rng.uniform(0.25, 0.55)
+    c.loadURDF(os.path.join(DATA, "cube.urdf"), [x, y, size / 2.0], c.getQuaternionFromEuler([0.0, 0.0, yaw]),
+               globalScaling=size, useFixedBase=True)
+
+
+def movable_taped_parcel(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A cardboard box with a tape band around it and a white label."""
+    rng = sc.rng
+    sx, sy, sz = rng.uniform(0.25, 0.6), rng.uniform(0.25, 0.6), rng.uniform(0.2, 0.55)
+    sc.box((x, y, sz / 2.0), (sx / 2.0, sy / 2.0, sz / 2.0), jitter(rng, BOXES[int(rng.integers(4))]), yaw)
+    tape = jitter(rng, pick(rng, ((0.6, 0.45, 0.25), (0.2, 0.2, 0.2), (0.85, 0.85, 0.8), (0.8, 0.2, 0.1))), 0.03)
+    sc.box((x, y, sz / 2.0), (0.03, sy / 2.0 + 0.003, sz / 2.0 + 0.003), tape, yaw)
+    lx, ly = local(x, y, yaw, -sx / 2.0 - 0.002, sy * 0.2)
+    sc.box((lx, ly, sz * 0.55), (0.002, sy * 0.12, sz * 0.12), (0.95, 0.95, 0.95, 1.0), yaw)
+
+
+# -- clear: nothing, walls and furniture -------------------------------------------------------------------
+def furniture_color(rng: np.random.Generator) -> Rgba:
+    return jitter(rng, pick(rng, FURNITURE))
+
+
+def clear_wall(sc: Scene, x: float, y: float, yaw: float) -> None:
+    rng = sc.rng
+    height = rng.uniform(0.5, 2.5)
+    sc.wall((x, y), rng.uniform(3.0, 8.0), height, yaw + math.pi / 2.0 + rng.uniform(-0.6, 0.6),
+            jitter(rng, pick(rng, WALLS)))
+    if rng.random() < 0.3:  # closed door panel or skirting board
+        sc.box((x - 0.06 * math.cos(yaw), y - 0.06 * math.sin(yaw), min(height, 2.0) / 2.0),
+               (0.02, rng.uniform(0.4, 0.5), min(height, 2.0) / 2.0), jitter(rng, DEFAULT_COLORS["door"][:3]), yaw)
+
+
+def clear_table(sc: Scene, x: float, y: float, yaw: float) -> None:
+    rng = sc.rng
+    w, d, h = rng.uniform(0.8, 1.6), rng.uniform(0.6, 0.9), rng.uniform(0.7, 0.78)
+    top, legs = furniture_color(rng), furniture_color(rng)
+    sc.box((x, y, h - 0.02), (d / 2.0, w / 2.0, 0.02), top, yaw)
+    leg = rng.uniform(0.02, 0.04)
+    for fx in (d / 2.0 - 0.05, -d / 2.0 + 0.05):
+        for fy in (w / 2.0 - 0.05, -w / 2.0 + 0.05):
+            px, py = local(x, y, yaw, fx, fy)
+            sc.box((px, py, (h - 0.04) / 2.0), (leg, leg, (h - 0.04) / 2.0), legs, yaw)
+
+
+def clear_chair(sc: Scene, x: float, y: float, yaw: float) -> None:
+    rng = sc.rng
+    s, h = rng.uniform(0.4, 0.5), rng.uniform(0.42, 0.48)
+    seat, legs = furniture_color(rng), furniture_color(rng)
+    sc.box((x, y, h), (s / 2.0, s / 2.0, 0.025), seat, yaw)
+    for fx in (s / 2.0 - 0.03, -s / 2.0 + 0.03):
+        for fy in (s / 2.0 - 0.03, -s / 2.0 + 0.03):
+            px, py = local(x, y, yaw, fx, fy)
+            sc.box((px, py, h / 2.0), (0.02, 0.02, h / 2.0), legs, yaw)
+    bx, by = local(x, y, yaw, -s / 2.0, 0.0)
+    sc.box((bx, by, h + 0.25), (0.02, s / 2.0, 0.25), seat, yaw)
+
+
+def clear_pillar(sc: Scene, x: float, y: float, yaw: float) -> None:
+    rng = sc.rng
+    h = rng.uniform(2.0, 3.0)
+    if rng.random() < 0.6:
+        sc.cylinder((x, y, h / 2.0), rng.uniform(0.15, 0.4), h, furniture_color(rng))
+    else:
+        half = rng.uniform(0.15, 0.35)
+        sc.box((x, y, h / 2.0), (half, half, h / 2.0), furniture_color(rng), yaw)
+
+
+def clear_bin(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A low cylinder: waste bin, cone, stool (the simulator's lab has bins and cones as static obstacles)."""
+    rng = sc.rng
+    h = rng.uniform(0.3, 0.6)
+    sc.cylinder((x, y, h / 2.0), rng.uniform(0.12, 0.25), h, furniture_color(rng))
+
+
+def clear_cabinet(sc: Scene, x: float, y: float, yaw: float) -> None:
+    rng = sc.rng
+    w, d, h = rng.uniform(0.5, 1.2), rng.uniform(0.4, 0.6), rng.uniform(0.9, 2.0)
+    sc.box((x, y, h / 2.0), (d / 2.0, w / 2.0, h / 2.0), furniture_color(rng), yaw)
+    if rng.random() < 0.5:  # door gap line
+        fx, fy = local(x, y, yaw, -d / 2.0 - 0.002, 0.0)
+        sc.box((fx, fy, h / 2.0), (0.002, 0.005, h / 2.0 - 0.05), (0.2, 0.2, 0.2, 1.0), yaw)
+
+
+def clear_shelf(sc: Scene, x: float, y: float, yaw: float) -> None:
+    rng = sc.rng
+    w, d, h = rng.uniform(0.6, 1.2), rng.uniform(0.3, 0.45), rng.uniform(1.2, 2.0)
+    color = furniture_color(rng)
+    for fy in (w / 2.0, -w / 2.0):
+        px, py = local(x, y, yaw, 0.0, fy)
+        sc.box((px, py, h / 2.0), (d / 2.0, 0.015, h / 2.0), color, yaw)
+    levels = int(rng.integers(3, 6))
+    for k in range(levels):
+        z = 0.08 + k * (h - 0.1) / (levels - 1)
+        sc.box((x, y, z), (d / 2.0, w / 2.0, 0.012), color, yaw)
+
+
+def clear_urdf_table(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """pybullet_data's textured table.urdf (0.6 m high), scaled 0.9-1.3."""
+    c = sc.c
+    c.loadURDF(os.path.join(DATA, "table", "table.urdf"), [x, y, 0.0], c.getQuaternionFromEuler([0.0, 0.0, yaw]),
+               globalScaling=float(sc.rng.uniform(0.9, 1.3)), useFixedBase=True)
+
+
+def clear_bench(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A long bench on two slab legs."""
+    rng = sc.rng
+    length, depth, h = rng.uniform(1.2, 1.8), rng.uniform(0.35, 0.45), rng.uniform(0.42, 0.48)
+    color = furniture_color(rng)
+    sc.box((x, y, h), (depth / 2.0, length / 2.0, 0.03), color, yaw)
+    for fy in (length / 2.0 - 0.1, -length / 2.0 + 0.1):
+        px, py = local(x, y, yaw, 0.0, fy)
+        sc.box((px, py, h / 2.0), (depth / 2.0 - 0.02, 0.03, h / 2.0), color, yaw)
+
+
+def clear_plant(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A pot with foliage."""
+    rng = sc.rng
+    pot_h, pot_r = rng.uniform(0.3, 0.5), rng.uniform(0.15, 0.25)
+    sc.cylinder((x, y, pot_h / 2.0), pot_r, pot_h, furniture_color(rng))
+    green = jitter(rng, (0.2, 0.5, 0.2), 0.1)
+    for _ in range(int(rng.integers(2, 5))):
+        sc.sphere((x + rng.uniform(-0.1, 0.1), y + rng.uniform(-0.1, 0.1), pot_h + rng.uniform(0.1, 0.6)),
+                  rng.uniform(0.15, 0.3), green)
+
+
+def clear_door_frame(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A wall with an open door straight ahead: the way is clear."""
+    rng = sc.rng
+    height, gap = rng.uniform(0.6, 2.2), rng.uniform(0.8, 1.2)
+    color = jitter(rng, pick(rng, WALLS))
+    for side in (1.0, -1.0):
+        px, py = local(x, y, yaw, 0.0, side * (gap / 2.0 + 1.5))
+        sc.wall((px, py), 3.0, height, yaw + math.pi / 2.0, color)
+    if rng.random() < 0.5:  # door panel swung open against the wall
+        px, py = local(x, y, yaw, -0.45, gap / 2.0)
+        sc.box((px, py, min(height, 2.0) / 2.0), (0.42, 0.02, min(height, 2.0) / 2.0),
+               jitter(rng, DEFAULT_COLORS["door"][:3]), yaw)
+
+
+def clear_empty(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """Nothing in front (only the background)."""
+
+
+Builder = Callable[[Scene, float, float, float], None]
+BUILDERS: Dict[str, Builder] = {
+    "capsule": person_capsule,
+    "walker": person_walker,
+    "dress_walker": lambda sc, x, y, yaw: person_walker(sc, x, y, yaw, dress=True),
+    "mjcf_humanoid": person_mjcf,
+    "deepmimic_humanoid": person_deepmimic,
+    "box": movable_box,
+    "box_pair": movable_box_pair,
+    "crate": movable_crate,
+    "textured_cube": movable_textured_cube,
+    "taped_parcel": movable_taped_parcel,
+    "empty": clear_empty,
+    "wall": clear_wall,
+    "table": clear_table,
+    "chair": clear_chair,
+    "pillar": clear_pillar,
+    "bin": clear_bin,
+    "cabinet": clear_cabinet,
+    "shelf": clear_shelf,
+    "urdf_table": clear_urdf_table,
+    "bench": clear_bench,
+    "plant": clear_plant,
+    "door_frame": clear_door_frame,
+}
+DISTANCES: Dict[str, Tuple[float, float]] = {  # [m] camera to target centre
+    PERSON: (0.5, 2.2),
+    MOVABLE: (0.45, 1.8),
+    CLEAR: (0.5, 2.5),
+}
+SIDE_DISTRACTORS = ("capsule", "walker", "box", "table", "chair", "pillar", "bin", "cabinet")
+
+
+class Renderer:
+    """Renders samples in one DIRECT BulletClient, reset between samples."""
+
+    def __init__(self, rng: np.random.Generator) -> None:
+        from pybullet_utils import bullet_client
+
+        self.client = bullet_client.BulletClient(connection_mode=pybullet.DIRECT)
+        self.rng = rng
+        self.cameras = {name: load_profile(name).camera for name in PROFILES}
+
+    def close(self) -> None:
+        self.client.disconnect()
+
+    def render(self, label: str, model: str) -> Sample:
+        rng, c = self.rng, self.client
+        c.resetSimulation()
+        sc = Scene(c, rng)
+        profile = PROFILES[int(rng.integers(len(PROFILES)))]
+        spec = self.cameras[profile]
+        assert spec is not None
+        eye_z = spec.mount[2] + rng.uniform(-0.03, 0.03)
+        pitch = spec.pitch + math.radians(rng.uniform(-3.0, 3.0))
+        eye = (spec.mount[0], 0.0, eye_z)
+        sc.floor(jitter(rng, pick(rng, FLOORS), 0.05))
+        self._background(sc, spec)
+        roi_half = math.atan(0.6 * math.tan(spec.hfov / 2.0))  # [rad] half-angle of the default ROI
+        distance = 0.0
+        if model != "empty":
+            lo, hi = DISTANCES[label]
+            distance = rng.uniform(lo, hi)
+            bearing = rng.uniform(-0.5, 0.5) * roi_half
+            x, y = eye[0] + distance * math.cos(bearing), distance * math.sin(bearing)
+            BUILDERS[model](sc, x, y, rng.uniform(-math.pi, math.pi))
+        self._side_distractors(sc, roi_half, spec)
+        rgb = self._shoot(spec, eye, pitch)
+        return Sample(rgb, label, model, profile, distance)
+
+    def _background(self, sc: Scene, spec: CameraSpec) -> None:
+        rng = sc.rng
+        for _ in range(int(rng.integers(0, 4))):
+            d = rng.uniform(2.8, 7.0)
+            b = rng.uniform(-1.2, 1.2)
+            sc.wall((d * math.cos(b), d * math.sin(b)), rng.uniform(3.0, 10.0), rng.uniform(0.6, 2.5),
+                    b + math.pi / 2.0 + rng.uniform(-0.5, 0.5), jitter(rng, pick(rng, WALLS)))
+
+    def _side_distractors(self, sc: Scene, roi_half: float, spec: CameraSpec) -> None:
+        rng = sc.rng
+        for _ in range(int(rng.integers(0, 3))):
+            model = SIDE_DISTRACTORS[int(rng.integers(len(SIDE_DISTRACTORS)))]
+            d = rng.uniform(1.2, 4.0)
+            margin = math.asin(min(0.9 / d, 1.0))  # [rad] keeps objects up to 0.9 m wide out of the ROI
+            side = 1.0 if rng.random() < 0.5 else -1.0
+            b = side * rng.uniform(roi_half + margin, roi_half + margin + 0.5)
+            BUILDERS[model](sc, d * math.cos(b), d * math.sin(b), rng.uniform(-math.pi, math.pi))
+
+    def _shoot(self, spec: CameraSpec, eye: Vec3, pitch: float) -> np.ndarray:
+        rng, c = self.rng, self.client
+        cp, sp = math.cos(pitch), math.sin(pitch)
+        view = c.computeViewMatrix(list(eye), [eye[0] + cp, eye[1], eye[2] - sp], [sp, 0.0, cp])
+        projection = c.computeProjectionMatrixFOV(math.degrees(spec.vfov), spec.width / spec.height, spec.near,
+                                                  spec.far)
+        light: Dict[str, Any] = {}
+        if rng.random() < 0.7:  # else the simulator's default lighting
+            az, el = rng.uniform(-math.pi, math.pi), rng.uniform(0.3, 1.4)
+            light = {
+                "lightDirection": [math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)],
+                "lightColor": [float(v) for v in rng.uniform(0.85, 1.0, 3)],
+                "lightAmbientCoeff": float(rng.uniform(0.3, 0.8)),
+                "lightDiffuseCoeff": float(rng.uniform(0.3, 0.8)),
+                "lightSpecularCoeff": float(rng.uniform(0.0, 0.3)),
+            }
+        _, _, rgba, _, _ = c.getCameraImage(
+            spec.width, spec.height, view, projection, renderer=pybullet.ER_TINY_RENDERER,
+            flags=pybullet.ER_NO_SEGMENTATION_MASK, shadow=0, **light,
+        )
+        image = np.asarray(rgba, dtype=np.uint8).reshape(spec.height, spec.width, 4)
+        return np.ascontiguousarray(image[:, :, :3])
+
+
+def models_for(split: str) -> Dict[str, Tuple[str, ...]]:
+    """The models of each label used in a split: ``train``/``val``/``test`` (seen) or ``unseen`` (held out)."""
+    return HELD_OUT if split == "unseen" else TRAIN_MODELS
+
+
+def plan(labels: Sequence[str], per_label: int, split: str, rng: np.random.Generator,
+         offset: int = 0) -> List[Tuple[str, str]]:
+    """(label, model) pairs: ``per_label`` per label, models cycled evenly from ``offset``, shuffled."""
+    pairs: List[Tuple[str, str]] = []
+    for label in labels:
+        models = models_for(split)[label]
+        pairs.extend((label, models[(i + offset) % len(models)]) for i in range(per_label))
+    order = rng.permutation(len(pairs))
+    return [pairs[i] for i in order]

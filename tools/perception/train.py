@@ -1,0 +1,162 @@
+"""Train the obstacle classifier (a small CNN) on the rendered dataset and export the shipped ONNX model.
+
+    pip install -r requirements-train.txt      # torch, CPU, training only
+    python -m tools.perception.render_dataset --out build/dataset --seed 7
+    python -m tools.perception.train --data build/dataset --seed 7 --out models/obstacle_classifier.onnx
+
+Fixed seed, CPU, ``--threads`` torch threads (2 by default). The model is picked at the epoch with the
+best validation accuracy, exported with ``torch.onnx.export(..., dynamo=False)`` (softmax inside the
+graph, dynamic batch), then evaluated with onnxruntime on the validation, test (seen models) and
+unseen (held-out models) splits (:mod:`tools.perception.evaluate`); the metadata file beside the model
+(``obstacle_classifier.yaml``) records input size, normalisation, classes, commands, seed and results.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+from typing import Any, Dict, List, Tuple
+
+import numpy as np
+
+MEAN = (0.5, 0.5, 0.5)
+STD = (0.25, 0.25, 0.25)
+DATASET_COMMAND = "python -m tools.perception.render_dataset --out build/dataset --seed {seed}"
+TRAIN_COMMAND = "python -m tools.perception.train --data build/dataset --seed {seed} --out {out}"
+
+
+def build_model(classes: int) -> Any:
+    """conv3x3 blocks 16-32-64-64 with batch norm, max pooling, global average pooling, dropout, linear."""
+    from torch import nn
+
+    def block(cin: int, cout: int, pool: bool) -> List[Any]:
+        layers: List[Any] = [nn.Conv2d(cin, cout, 3, padding=1, bias=False), nn.BatchNorm2d(cout), nn.ReLU()]
+        return [*layers, nn.MaxPool2d(2)] if pool else layers
+
+    return nn.Sequential(
+        *block(3, 16, True), *block(16, 32, True), *block(32, 64, True), *block(64, 64, False),
+        nn.AdaptiveAvgPool2d(1), nn.Flatten(), nn.Dropout(0.2), nn.Linear(64, classes),
+    )
+
+
+def augment(batch: Any, gen: Any) -> Any:
+    """Flips, shifts of up to 4 px, brightness/contrast/colour jitter and sensor noise (on 0..1 images)."""
+    import torch
+
+    n = batch.shape[0]
+    flip = torch.rand(n, generator=gen) < 0.5
+    batch = torch.where(flip[:, None, None, None], batch.flip(3), batch)
+    padded = torch.nn.functional.pad(batch, (4, 4, 4, 4), mode="replicate")
+    dx, dy = torch.randint(0, 9, (2,), generator=gen).tolist()
+    batch = padded[:, :, dy : dy + batch.shape[2], dx : dx + batch.shape[3]]
+    contrast = 0.75 + 0.5 * torch.rand(n, 1, 1, 1, generator=gen)
+    brightness = 0.16 * torch.rand(n, 1, 1, 1, generator=gen) - 0.08
+    tint = 1.0 + 0.1 * torch.rand(n, 3, 1, 1, generator=gen) - 0.05
+    mean = batch.mean(dim=(1, 2, 3), keepdim=True)
+    batch = (batch - mean) * contrast + mean + brightness
+    batch = batch * tint + 0.02 * torch.rand(1, generator=gen) * torch.randn(batch.shape, generator=gen)
+    return batch.clamp(0.0, 1.0)
+
+
+def load_split(data: Path, split: str) -> Tuple[np.ndarray, np.ndarray, np.ndarray, List[str]]:
+    with np.load(data / f"{split}.npz") as f:
+        return f["patches"], f["labels"], f["models"], [str(c) for c in f["classes"]]
+
+
+def main(argv: List[str]) -> int:  # noqa: PLR0915 - one linear training script
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--data", type=Path, default=Path("build/dataset"))
+    parser.add_argument("--out", type=Path, default=Path("models/obstacle_classifier.onnx"))
+    parser.add_argument("--seed", type=int, default=7)
+    parser.add_argument("--epochs", type=int, default=14)
+    parser.add_argument("--batch", type=int, default=64)
+    parser.add_argument("--lr", type=float, default=3e-3)
+    parser.add_argument("--threads", type=int, default=2, help="torch CPU threads")
+    args = parser.parse_args(argv)
+
+    import torch
+
+    from tools.perception.evaluate import evaluate_splits, write_metadata
+
+    torch.manual_seed(args.seed)
+    torch.set_num_threads(args.threads)
+    torch.use_deterministic_algorithms(True, warn_only=True)
+    gen = torch.Generator().manual_seed(args.seed)
+
+    x_train, y_train, _, classes = load_split(args.data, "train")
+    x_val, y_val, _, _ = load_split(args.data, "val")
+    to_tensor = lambda x: torch.from_numpy(x).permute(0, 3, 1, 2).float().div_(255.0)  # noqa: E731
+    train_images, train_labels = to_tensor(x_train), torch.from_numpy(y_train)
+    val_images, val_labels = to_tensor(x_val), torch.from_numpy(y_val)
+    mean = torch.tensor(MEAN).view(1, 3, 1, 1)
+    std = torch.tensor(STD).view(1, 3, 1, 1)
+
+    model = build_model(len(classes))
+    params = sum(p.numel() for p in model.parameters())
+    optimiser = torch.optim.AdamW(model.parameters(), lr=args.lr, weight_decay=1e-4)
+    steps = args.epochs * ((len(train_labels) + args.batch - 1) // args.batch)
+    schedule = torch.optim.lr_scheduler.OneCycleLR(optimiser, max_lr=args.lr, total_steps=steps)
+    loss_fn = torch.nn.CrossEntropyLoss(label_smoothing=0.05)
+    print(f"[train] {len(train_labels)} train / {len(val_labels)} val images, classes {classes}, {params} parameters")
+
+    best: Dict[str, Any] = {"accuracy": -1.0}
+    started = time.monotonic()
+    for epoch in range(args.epochs):
+        model.train()
+        order = torch.randperm(len(train_labels), generator=gen)
+        total_loss = 0.0
+        for i in range(0, len(order), args.batch):
+            idx = order[i : i + args.batch]
+            images = (augment(train_images[idx], gen) - mean) / std
+            loss = loss_fn(model(images), train_labels[idx])
+            optimiser.zero_grad()
+            loss.backward()
+            optimiser.step()
+            schedule.step()
+            total_loss += float(loss) * len(idx)
+        model.eval()
+        with torch.no_grad():
+            predicted = model((val_images - mean) / std).argmax(1)
+        accuracy = float((predicted == val_labels).float().mean())
+        print(f"[train] epoch {epoch + 1}/{args.epochs}: loss {total_loss / len(order):.4f}, "
+              f"val accuracy {accuracy:.4f} ({time.monotonic() - started:.0f} s)", flush=True)
+        if accuracy > best["accuracy"]:
+            best = {"accuracy": accuracy, "epoch": epoch + 1,
+                    "state": {k: v.clone() for k, v in model.state_dict().items()}}
+    seconds = time.monotonic() - started
+    model.load_state_dict(best["state"])
+    model.eval()
+
+    export = torch.nn.Sequential(model, torch.nn.Softmax(dim=1)).eval()
+    args.out.parent.mkdir(parents=True, exist_ok=True)
+    torch.onnx.export(
+        export, (torch.zeros(1, 3, x_train.shape[1], x_train.shape[2]),), str(args.out), dynamo=False,
+        input_names=["image"], output_names=["probabilities"], dynamic_axes={"image": {0: "batch"},
+                                                                            "probabilities": {0: "batch"}},
+        opset_version=17,
+    )
+    print(f"[train] best epoch {best['epoch']} (val accuracy {best['accuracy']:.4f}); {seconds:.0f} s of training; "
+          f"wrote {args.out} ({args.out.stat().st_size / 1024:.0f} KiB)")
+    training = {
+        "dataset_command": DATASET_COMMAND.format(seed=args.seed),
+        "command": TRAIN_COMMAND.format(seed=args.seed, out=args.out),
+        "seed": args.seed,
+        "epochs": args.epochs,
+        "best_epoch": best["epoch"],
+        "train_samples": len(train_labels),
+        "parameters": params,
+        "seconds": round(seconds, 1),
+        "threads": args.threads,
+        "torch": torch.__version__.split("+")[0],
+    }
+    size = (x_train.shape[2], x_train.shape[1])
+    write_metadata(args.out, classes, MEAN, STD, size, training=training)
+    results = evaluate_splits(args.out, args.data)
+    write_metadata(args.out, classes, MEAN, STD, size, training=training, evaluation=results)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
