@@ -116,8 +116,9 @@ class FollowServer:
             if not topic:
                 self._end(ticket, RESULT_ABORTED, "the goal names no topic", None)
                 return
+            started = rospy.Time.now()
             source = self._topics.subscribe(topic)
-            if not self._topics.wait_first(source, self.topic_timeout_s, ticket.cancelled):
+            if not self._topics.wait_first(source, self.topic_timeout_s, ticket.cancelled, newer_than=started):
                 if not ticket.cancelled.is_set():
                     self._end(ticket, RESULT_ABORTED, source.no_path_reason(self.topic_timeout_s), None)
                 return

@@ -59,6 +59,7 @@ class RobotRun:
     failed_reason: str = ""
     finished: bool = False
     goal_started_sim_s: float = 0.0
+    last_bumper_sim_s: float = -math.inf
 
 
 def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
@@ -202,7 +203,10 @@ class DemoMonitor:
             px, py = msg.point.x, msg.point.y
             run.bumper_hits.append((x + math.cos(yaw) * px - math.sin(yaw) * py,
                                     y + math.sin(yaw) * px + math.cos(yaw) * py))
-        self._say(run, "BUMPER hit: something the lidar does not see")
+            new_press = self.sim_s() - run.last_bumper_sim_s > 0.5  # one press reports several contact points
+            run.last_bumper_sim_s = self.sim_s()
+        if new_press:
+            self._say(run, "BUMPER hit: something the lidar does not see")
 
     def _on_plan(self, msg: Any, run: RobotRun) -> None:
         import numpy as np  # noqa: PLC0415

@@ -3,6 +3,10 @@
 Shared by ``follow_topic_server`` and ``pure_pursuit_topic``. The name in the goal is used exactly as
 given (a relative name resolves in the node's namespace, as every ROS name does); the subscription is
 kept while consecutive goals name the same topic, so a latched or frequent topic answers at once.
+
+A Path stamped before the goal started is most likely what the topic held for the previous goal (a
+planner's latched plan): following it, a controller already at its end would report success at once.
+Such a Path is used only if no newer one arrives within ``STALE_GRACE_S`` (a one-shot latched publisher).
 """
 
 from __future__ import annotations
@@ -13,6 +17,8 @@ from typing import Optional
 
 import rospy
 from nav_msgs.msg import Path
+
+STALE_GRACE_S = 1.0  # [s] wall: how long to wait for a Path newer than the goal before using an older one
 
 
 class TopicPath:
@@ -55,9 +61,17 @@ class TopicPaths:
             self.current = TopicPath(resolved, self._wake)
         return self.current
 
-    def wait_first(self, source: TopicPath, timeout_s: float, cancelled: threading.Event) -> bool:
+    def wait_first(
+        self,
+        source: TopicPath,
+        timeout_s: float,
+        cancelled: threading.Event,
+        newer_than: Optional[rospy.Time] = None,
+        grace_s: float = STALE_GRACE_S,
+    ) -> bool:
         """True once ``source`` has a Path; False after ``timeout_s`` [s] or when ``cancelled`` is set
-        (whoever sets it must notify ``wake``)."""
+        (whoever sets it must notify ``wake``). With ``newer_than`` (the goal's start), a Path stamped
+        before it is used only when no newer Path arrives within ``grace_s`` [s]."""
         deadline = time.monotonic() + timeout_s
         with self._wake:
             while source.msg is None and not cancelled.is_set():
@@ -65,4 +79,18 @@ class TopicPaths:
                 if left <= 0.0:
                     return False
                 self._wake.wait(left)
+            if newer_than is not None and source.msg is not None and is_older(source.msg, newer_than):
+                count = source.count
+                fresh_by = min(deadline, time.monotonic() + grace_s)
+                while source.count == count and not cancelled.is_set():
+                    left = fresh_by - time.monotonic()
+                    if left <= 0.0:
+                        break
+                    self._wake.wait(left)
         return source.msg is not None and not cancelled.is_set()
+
+
+def is_older(msg: Path, time_point: rospy.Time) -> bool:
+    """True for a Path stamped (non-zero stamp) before ``time_point``."""
+    stamp = msg.header.stamp
+    return bool(stamp != rospy.Time(0) and stamp < time_point)
