@@ -140,6 +140,15 @@ generate_messages() {
   "$VENV/bin/python" "$REPO/tools/gen_actions.py" || die "generating the action classes failed (see above)."
 }
 
+warm_numba_cache() {
+  # Compile the numba kernels once now, not in every planner/controller node started afterwards.
+  local stamp="$VENV/.flex_nav-numba.sha256" want
+  want="$(cat "$REPO"/src/flex_nav/nav/*.py "$REPO"/src/flex_nav/follow/*.py "$REPO/requirements.txt" | sha256sum | cut -d' ' -f1)"
+  if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$want" ]; then say "numba: compiled kernels cached"; return; fi
+  "$VENV/bin/python" -m flex_nav.nav.warm_cache || die "compiling the numba kernels failed (see above)."
+  printf '%s\n' "$want" >"$stamp"
+}
+
 write_activate_hook() {
   # `source .venv/bin/activate` is the one line a user needs: it also puts this package on ROS_PACKAGE_PATH.
   local act="$VENV/bin/activate" marker="# flex_nav: package path"
@@ -157,6 +166,7 @@ main() {
   make_venv
   generate_messages
   pip_install
+  warm_numba_cache
   write_activate_hook
   say "ready. In a shell: source $VENV/bin/activate  (then rosrun/roslaunch/rostest find flex_nav)"
 }
