@@ -66,6 +66,8 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     parser = argparse.ArgumentParser(prog="tools/demo.sh", description=__doc__.split("\n\n")[0])
     parser.add_argument("--profile", default="turtlebot2",
                         help="robot: " + ", ".join(PROFILES) + " (default %(default)s)")
+    parser.add_argument("--profiles", default="",
+                        help="one profile per robot, comma-separated (e.g. turtlebot2,turtlebot2,create)")
     parser.add_argument("--behavior", default="flex_planner",
                         help="behavior: flex_planner, multi_level_planner, create_flex_planner, move_base_like")
     parser.add_argument("--goals", default=",".join(LAP),
@@ -80,8 +82,12 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     parser.add_argument("--gui", action="store_true", help="pybullet window (needs a display)")
     parser.add_argument("--out", type=Path, default=None, help="output directory (default out/demo-<time>)")
     args = parser.parse_args(argv)
-    if args.profile not in PROFILES:
-        parser.error(choices_message("--profile", args.profile, PROFILES))
+    args.profile_list = [p for p in args.profiles.split(",") if p] or [args.profile] * args.robots
+    if args.profiles:
+        args.robots = len(args.profile_list)
+    for profile in args.profile_list:
+        if profile not in PROFILES:
+            parser.error(choices_message("profile", profile, PROFILES))
     if not 1 <= args.robots <= 3:
         parser.error(f"--robots {args.robots} is not valid (valid: 1, 2, 3)")
     if args.laps < 1:
@@ -91,19 +97,19 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     return args
 
 
-def plan_robots(world: Any, profile: str, count: int, laps: int, lap: Sequence[str] = LAP) -> List[RobotRun]:
+def plan_robots(world: Any, profiles: Sequence[str], laps: int, lap: Sequence[str] = LAP) -> List[RobotRun]:
     """Robot k starts where goal k-1 of the lap ends (robot 1 at the world's first robot spawn or ``start``)
     and runs the lap from there, ``laps`` times."""
     missing = [n for n in lap if n not in world.goals]
     if missing or not lap:
         raise ConfigError(choices_message(f"world {world.name!r} goal", ", ".join(missing) or "(none)", world.goals))
-    if count > len(lap):
-        raise ConfigError(f"{count} robots need at least {count} goals in the lap, got {len(lap)}")
+    if len(profiles) > len(lap):
+        raise ConfigError(f"{len(profiles)} robots need at least {len(profiles)} goals in the lap, got {len(lap)}")
     runs = []
-    for index in range(count):
+    for index, profile in enumerate(profiles):
         order = list(lap[index:]) + list(lap[:index])
         goals = [(name, world.goals[name]) for _ in range(laps) for name in order]
-        run = RobotRun(f"robot{index + 1}", profile, goals)
+        run = RobotRun(f"robot{index + 1}", PROFILES[profile], goals)
         if index == 0:
             run.pose = world.spawns[0].pose if world.spawns else world.goals.get("start", world.goals[lap[-1]])
         else:
@@ -269,10 +275,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
     from flex_nav_sim.world import load_world  # noqa: PLC0415
 
     started = time.monotonic()
-    profile = PROFILES[args.profile]
     try:
         world = load_world(args.world)
-        runs = plan_robots(world, profile, args.robots, args.laps, [g for g in args.goals.split(",") if g])
+        runs = plan_robots(world, args.profile_list, args.laps, [g for g in args.goals.split(",") if g])
     except FlexNavError as err:
         print(f"demo: {err}", file=sys.stderr)
         return 2
@@ -281,9 +286,10 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
     out.mkdir(parents=True, exist_ok=True)
     logs = out / "logs"
     logs.mkdir(exist_ok=True)
-    print(f"flex_nav demo: {args.behavior}, {args.robots} x {args.profile} in world '{world.name}', {args.laps} lap(s)"
-          f" of {' -> '.join(g for g, _ in runs[0].goals[:len(runs[0].goals) // args.laps])}, autonomy "
-          f"{args.autonomy}; output in {out}", flush=True)
+    robots = ", ".join(f"{r.name} ({r.profile})" for r in runs)
+    lap_text = " -> ".join(g for g, _ in runs[0].goals[: len(runs[0].goals) // args.laps])
+    print(f"flex_nav demo: {args.behavior}, robots {robots} in world '{world.name}', {args.laps} lap(s) of "
+          f"{lap_text}, autonomy {args.autonomy}; output in {out}", flush=True)
 
     with contextlib.ExitStack() as stack:
         signal.signal(signal.SIGTERM, _interrupt)
@@ -350,7 +356,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
     reached = sum(r.reached for r in runs)
     total = sum(len(r.goals) for r in runs)
     recoveries = sum(r.recoveries for r in runs)
-    title = f"{args.robots} x {args.profile} in {world.name}: {reached}/{total} goals, {recoveries} bumper recoveries"
+    title = (f"{args.behavior}, {', '.join(r.profile for r in runs)} in {world.name}: {reached}/{total} goals, "
+             f"{recoveries} bumper recoveries")
     picture = write_picture(out, map_yaml, runs, title)
     bag_file = out / "run.bag"
     for run in runs:
