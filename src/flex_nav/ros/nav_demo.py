@@ -38,6 +38,7 @@ PROFILES = {"kobuki": "kobuki", "turtlebot2": "kobuki", "create": "create2", "cr
 LAP = ("g1", "g2", "g3", "start")  # the paper's three intermediate goals, then home
 STARTUP_TIMEOUT_S = 60.0  # [s] wall: every robot's behavior must be waiting for a goal by then
 GOAL_TOPIC = "move_base_simple/goal"
+GIVEN_UP = ("GiveUp", "NoPath", "Abort")  # labels of the behaviors' states that drop a goal
 
 
 @dataclass
@@ -47,7 +48,8 @@ class RobotRun:
     name: str
     profile: str
     goals: List[Tuple[str, Tuple[float, float, float]]]  # (name, (x [m], y [m], yaw [rad]))
-    next_goal: int = 0
+    next_goal: int = 0  # goals sent
+    completed: int = 0  # goals the behavior is done with: reached or given up
     reached: int = 0
     recoveries: int = 0
     bumper_hits: List[Tuple[float, float]] = field(default_factory=list)
@@ -180,13 +182,18 @@ class DemoMonitor:
     def _on_transition(self, msg: Any, run: RobotRun) -> None:
         self._say(run, f"{msg.path} --{msg.outcome}--> {msg.target}")
         with self.lock:
-            if msg.target == "Arrived" and run.next_goal > run.reached:
-                run.reached += 1
-                name, goal = run.goals[run.reached - 1]
-                self._say(run, f"goal {run.reached}/{len(run.goals)} ({name} at {goal[0]:.1f}, {goal[1]:.1f}) reached "
-                               f"after {self.sim_s() - run.goal_started_sim_s:.1f} s; "
-                               f"distance so far {run.distance_m:.1f} m")
-                if run.reached == len(run.goals):
+            if msg.target in ("Arrived", *GIVEN_UP) and run.next_goal > run.completed:
+                name, goal = run.goals[run.completed]
+                run.completed += 1
+                if msg.target == "Arrived":
+                    run.reached += 1
+                    self._say(run, f"goal {run.completed}/{len(run.goals)} ({name} at {goal[0]:.1f}, {goal[1]:.1f}) "
+                                   f"reached after {self.sim_s() - run.goal_started_sim_s:.1f} s; "
+                                   f"distance so far {run.distance_m:.1f} m")
+                else:
+                    self._say(run, f"goal {run.completed}/{len(run.goals)} ({name}) NOT reached: the behavior gave it "
+                                   f"up ({msg.target})")
+                if run.completed == len(run.goals):
                     run.finished = True
             if msg.path.endswith("/Recovery") and msg.outcome == "done":
                 run.recoveries += 1
@@ -224,7 +231,7 @@ class DemoMonitor:
     def send_due_goals(self) -> None:
         for run in self.runs:
             with self.lock:
-                due = run.waiting_for_goal and run.next_goal == run.reached and run.next_goal < len(run.goals)
+                due = run.waiting_for_goal and run.next_goal == run.completed and run.next_goal < len(run.goals)
                 if due:
                     name, (x, y, yaw) = run.goals[run.next_goal]
                     run.next_goal += 1
@@ -250,6 +257,64 @@ class DemoMonitor:
             return all(run.finished or run.failed_reason for run in self.runs)
 
 
+def start_system(stack: contextlib.ExitStack, args: argparse.Namespace, runs: List[RobotRun], out: Path
+                 ) -> List[ManagedProcess]:
+    """Start a private master (use_sim_time), the simulator, the map server, every robot's navigation and
+    behavior runner, and a rosbag recorder; ``stack`` stops them all (the recorder first). Sets this process's
+    ROS environment to the master. Returns the processes whose death ends a run (not the recorder)."""
+    logs = out / "logs"
+    logs.mkdir(parents=True, exist_ok=True)
+    master = stack.enter_context(PrivateMaster(ros_home=out / "ros_home"))
+    env = master.env
+    os.environ.update(env)
+    _set_param(master.uri, "/use_sim_time", True)
+    map_yaml = world_map(Path(args.world).stem)
+    robots_param = ",".join(f"{r.name}:{r.profile}:{r.pose[0]}:{r.pose[1]}:{math.degrees(r.pose[2]):.1f}"
+                            for r in runs if r.pose)
+    processes = [
+        ManagedProcess(["rosrun", "flex_nav", "sim", f"_world:={args.world}", f"_robots:={robots_param}",
+                        f"_rtf:={args.rtf}", f"_seed:={args.seed}", "_camera:=false",
+                        f"_gui:={'true' if args.gui else 'false'}"], env=env, log_path=logs / "sim.log"),
+        ManagedProcess(["rosrun", "flex_nav", "map_server", str(map_yaml)], env=env, log_path=logs / "map.log"),
+    ]
+    for run in runs:
+        processes.append(ManagedProcess(
+            ["roslaunch", "flex_nav", "flex_nav_robot.launch", f"robot:={run.name}", f"profile:={run.profile}",
+             "twist_relay:=true", f"autonomy:={args.autonomy}", f"behavior:={args.behavior}",
+             f"behavior_parameters:={behavior_parameters(args.behavior, run.profile)}"],
+            env=env, log_path=logs / f"{run.name}.log"))
+    bag_topics = [t for r in runs for t in (f"/{r.name}/ground_truth", f"/{r.name}/odom",
+                  f"/{r.name}/get_path_server/plan", f"/{r.name}/bumper_hits", f"/{r.name}/cmd_vel",
+                  f"/{r.name}/behavior_runner/transitions", f"/{r.name}/behavior_runner/status")]
+    # the recorder itself (not the rosbag wrapper script), so SIGINT reaches it and it closes the bag
+    recorder = "/usr/lib/rosbag/record" if Path("/usr/lib/rosbag/record").is_file() else "rosbag"
+    bag = ManagedProcess([recorder, *([] if recorder != "rosbag" else ["record"]), "-O", str(out / "run.bag"),
+                          "/tf", "/map", *bag_topics], env=env, log_path=logs / "rosbag.log")
+    for proc in processes:
+        stack.callback(proc.stop)
+    stack.callback(bag.stop, 10.0)  # stopped first (LIFO): SIGINT lets rosbag close the bag file
+    return processes
+
+
+def world_map(world_name: str) -> Path:
+    """The static map (map_server YAML) the simulator's world ships (sim/worlds/maps/<world>.yaml)."""
+    return REPO_ROOT / "sim" / "worlds" / "maps" / f"{world_name}.yaml"
+
+
+def wait_until_ready(monitor: DemoMonitor, processes: List[ManagedProcess], timeout_s: float = STARTUP_TIMEOUT_S
+                     ) -> Optional[str]:
+    """Wait until every robot's behavior waits for a goal; the reason if it did not happen, else None."""
+    deadline = time.monotonic() + timeout_s
+    while not monitor.all_waiting():
+        dead = [p for p in processes if not p.running()]
+        if dead:
+            return f"{' '.join(dead[0].argv[:4])} exited (log {dead[0].log_path})"
+        if time.monotonic() > deadline:
+            return f"not ready after {timeout_s:.0f} s"
+        time.sleep(0.2)
+    return None
+
+
 def behavior_parameters(behavior: str, profile: str) -> str:
     """The behavior parameter overrides (YAML) for a robot: its profile, for behaviors that take one."""
     from flex_nav.behavior.yaml_loader import load_behavior  # noqa: PLC0415
@@ -270,7 +335,7 @@ def write_picture(out: Path, map_yaml: Path, runs: List[RobotRun], title: str) -
     return path
 
 
-def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one linear script of the demo
+def main(argv: Optional[Sequence[str]] = None) -> int:
     args = parse_args(argv)
     from flex_nav_sim.world import load_world  # noqa: PLC0415
 
@@ -281,11 +346,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
     except FlexNavError as err:
         print(f"demo: {err}", file=sys.stderr)
         return 2
-    map_yaml = REPO_ROOT / "sim" / "worlds" / "maps" / f"{world.name}.yaml"
+    map_yaml = world_map(world.name)
     out = args.out or REPO_ROOT / "out" / time.strftime("demo-%Y%m%d-%H%M%S")
     out.mkdir(parents=True, exist_ok=True)
-    logs = out / "logs"
-    logs.mkdir(exist_ok=True)
     robots = ", ".join(f"{r.name} ({r.profile})" for r in runs)
     lap_text = " -> ".join(g for g, _ in runs[0].goals[: len(runs[0].goals) // args.laps])
     print(f"flex_nav demo: {args.behavior}, robots {robots} in world '{world.name}', {args.laps} lap(s) of "
@@ -293,36 +356,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
 
     with contextlib.ExitStack() as stack:
         signal.signal(signal.SIGTERM, _interrupt)
-        master = stack.enter_context(PrivateMaster(ros_home=out / "ros_home"))
-        env = master.env
-        os.environ.update(env)
-        _set_param(master.uri, "/use_sim_time", True)
-        robots_param = ",".join(f"{r.name}:{r.profile}:{r.pose[0]}:{r.pose[1]}:{math.degrees(r.pose[2]):.1f}"
-                                for r in runs if r.pose)
-        processes = [
-            ManagedProcess(["rosrun", "flex_nav", "sim", f"_world:={args.world}", f"_robots:={robots_param}",
-                            f"_rtf:={args.rtf}", f"_seed:={args.seed}", "_camera:=false",
-                            f"_gui:={'true' if args.gui else 'false'}"], env=env, log_path=logs / "sim.log"),
-            ManagedProcess(["rosrun", "flex_nav", "map_server", str(map_yaml)], env=env, log_path=logs / "map.log"),
-        ]
-        for run in runs:
-            processes.append(ManagedProcess(
-                ["roslaunch", "flex_nav", "flex_nav_robot.launch", f"robot:={run.name}", f"profile:={run.profile}",
-                 "twist_relay:=true", f"autonomy:={args.autonomy}",
-                 f"behavior:={args.behavior}",
-                 f"behavior_parameters:={behavior_parameters(args.behavior, run.profile)}"],
-                env=env, log_path=logs / f"{run.name}.log"))
-        bag_topics = [t for r in runs for t in (f"/{r.name}/ground_truth", f"/{r.name}/odom",
-                      f"/{r.name}/get_path_server/plan", f"/{r.name}/bumper_hits", f"/{r.name}/cmd_vel",
-                      f"/{r.name}/behavior_runner/transitions", f"/{r.name}/behavior_runner/status")]
-        # the recorder itself (not the rosbag wrapper script), so SIGINT reaches it and it closes the bag
-        recorder = "/usr/lib/rosbag/record" if Path("/usr/lib/rosbag/record").is_file() else "rosbag"
-        bag = ManagedProcess([recorder, *([] if recorder != "rosbag" else ["record"]), "-O", str(out / "run.bag"),
-                              "/tf", "/map", *bag_topics], env=env, log_path=logs / "rosbag.log")
-        for proc in processes:
-            stack.callback(proc.stop)
-        stack.callback(bag.stop, 10.0)  # stopped first (LIFO): SIGINT lets rosbag close the bag file
-
+        processes = start_system(stack, args, runs, out)
         from flex_nav.ros.node import init_node  # noqa: PLC0415
 
         init_node("nav_demo")
@@ -330,21 +364,17 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
 
         monitor = DemoMonitor(runs)
         deadline = time.monotonic() + args.timeout
-        startup_deadline = time.monotonic() + STARTUP_TIMEOUT_S
         try:
-            while not monitor.all_waiting():
-                dead = [p for p in processes if not p.running()]
-                if dead or time.monotonic() > startup_deadline:
-                    what = f"{dead[0].argv[2:4]} exited" if dead else f"not ready after {STARTUP_TIMEOUT_S:.0f} s"
-                    print(f"demo: startup failed: {what}; logs in {logs}", file=sys.stderr)
-                    return 2
-                time.sleep(0.2)
+            problem = wait_until_ready(monitor, processes)
+            if problem is not None:
+                print(f"demo: startup failed: {problem}; logs in {out / 'logs'}", file=sys.stderr)
+                return 2
             print(f"all robots wait for goals (wall {time.monotonic() - started:.1f} s)", flush=True)
             while not monitor.done() and time.monotonic() < deadline and not rospy.is_shutdown():
                 monitor.send_due_goals()
                 dead = [p for p in processes if not p.running()]
                 if dead:
-                    print(f"demo: {dead[0].argv[2:4]} exited; logs in {logs}", file=sys.stderr)
+                    print(f"demo: {' '.join(dead[0].argv[:4])} exited; logs in {out / 'logs'}", file=sys.stderr)
                     break
                 time.sleep(0.1)
         except KeyboardInterrupt:
