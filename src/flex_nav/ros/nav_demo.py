@@ -77,6 +77,8 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     parser.add_argument("--world", default="lab", help="world name in sim/worlds or a path (default %(default)s)")
     parser.add_argument("--robots", type=int, default=1, help="number of robots, 1..3 (default %(default)s)")
     parser.add_argument("--laps", type=int, default=1, help="laps of the goal loop (default %(default)s)")
+    parser.add_argument("--goals-per-robot", type=int, default=0,
+                        help="send each robot only its first N goals (0: all; default %(default)s)")
     parser.add_argument("--rtf", type=float, default=2.0, help="simulation real-time factor, 0 = as fast as possible")
     parser.add_argument("--autonomy", default="full", help="behavior autonomy: off, low, high, full")
     parser.add_argument("--timeout", type=float, default=900.0, help="[s] wall-time bound of the whole run")
@@ -335,7 +337,7 @@ def write_picture(out: Path, map_yaml: Path, runs: List[RobotRun], title: str) -
     return path
 
 
-def main(argv: Optional[Sequence[str]] = None) -> int:
+def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one linear script of the demo
     args = parse_args(argv)
     from flex_nav_sim.world import load_world  # noqa: PLC0415
 
@@ -343,6 +345,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     try:
         world = load_world(args.world)
         runs = plan_robots(world, args.profile_list, args.laps, [g for g in args.goals.split(",") if g])
+        if args.goals_per_robot > 0:
+            for run in runs:
+                run.goals = run.goals[: args.goals_per_robot]
     except FlexNavError as err:
         print(f"demo: {err}", file=sys.stderr)
         return 2
@@ -350,7 +355,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     out = args.out or REPO_ROOT / "out" / time.strftime("demo-%Y%m%d-%H%M%S")
     out.mkdir(parents=True, exist_ok=True)
     robots = ", ".join(f"{r.name} ({r.profile})" for r in runs)
-    lap_text = " -> ".join(g for g, _ in runs[0].goals[: len(runs[0].goals) // args.laps])
+    lap_text = " -> ".join(g for g, _ in runs[0].goals[: max(1, len(runs[0].goals) // args.laps)])
     print(f"flex_nav demo: {args.behavior}, robots {robots} in world '{world.name}', {args.laps} lap(s) of "
           f"{lap_text}, autonomy {args.autonomy}; output in {out}", flush=True)
 
