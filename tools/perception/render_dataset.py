@@ -29,7 +29,7 @@ from flex_nav.perception.preprocess import roi_patch
 from flex_nav.perception.roi import Roi
 
 PATCH_W, PATCH_H = 64, 64  # [px] the model input size (models/obstacle_classifier.yaml)
-SPLITS: Dict[str, Tuple[int, int]] = {"train": (0, 1500), "val": (1, 200), "test": (2, 300), "unseen": (3, 300)}
+SPLITS: Dict[str, Tuple[int, int]] = {"train": (0, 2000), "val": (1, 200), "test": (2, 300), "unseen": (3, 300)}
 CHUNK = 20  # samples per label in a chunk (one generator per chunk)
 SHEET_FRAMES = 24
 

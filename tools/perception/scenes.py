@@ -2,7 +2,9 @@
 
 Each sample is one pybullet scene in front of a robot at the origin facing +x: a floor, background
 walls, optional side distractors outside the region of interest, and one *target* that decides the
-label: a person (``person``), a box (``movable``) or nothing / a wall / fixed furniture (``clear``).
+label: a person (``person``), a low free-standing object that a robot could push (``movable``: boxes,
+crates, parcels, bins) or nothing / a wall / furniture (``clear``: tables, chairs, shelves, cabinets,
+pillars, benches, beds, door frames).
 The camera is one of the robot profiles' (``sim/robots/*.yaml``: OAK-D on the TurtleBot 4, Kinect on
 the Kobuki and Create 2) with a little height and pitch jitter, rendered offscreen with
 ER_TINY_RENDERER exactly as :class:`flex_nav_sim.sensors.Camera` does, under varied lighting.
@@ -40,13 +42,13 @@ PROFILES = ("turtlebot4", "kobuki", "create2")
 
 TRAIN_MODELS: Dict[str, Tuple[str, ...]] = {
     PERSON: ("capsule", "walker", "mjcf_humanoid"),
-    MOVABLE: ("box", "box_pair"),
-    CLEAR: ("empty", "wall", "table", "chair", "pillar", "bin", "cabinet", "shelf"),
+    MOVABLE: ("box", "box_pair", "bin"),
+    CLEAR: ("empty", "wall", "table", "chair", "pillar", "cabinet", "shelf", "coffee_table", "sofa"),
 }
 HELD_OUT: Dict[str, Tuple[str, ...]] = {
     PERSON: ("deepmimic_humanoid", "dress_walker"),
     MOVABLE: ("crate", "textured_cube", "taped_parcel"),
-    CLEAR: ("urdf_table", "bench", "plant", "door_frame"),
+    CLEAR: ("urdf_table", "bench", "bed", "door_frame"),
 }
 
 # -- colour palettes ----------------------------------------------------------------------------------
@@ -60,6 +62,7 @@ SHOES: Tuple[Vec3, ...] = ((0.05, 0.05, 0.05), (0.3, 0.2, 0.1), (0.9, 0.9, 0.9),
 BOXES: Tuple[Vec3, ...] = (
     DEFAULT_COLORS["box"][:3], (0.75, 0.58, 0.35), (0.65, 0.5, 0.3), (0.85, 0.7, 0.45), (0.9, 0.9, 0.88),
     (0.3, 0.45, 0.75), (0.75, 0.2, 0.2), (0.25, 0.55, 0.3), (0.9, 0.8, 0.2), (0.45, 0.45, 0.45),
+    (0.8, 0.8, 0.8), (0.62, 0.62, 0.64), (0.97, 0.97, 0.97),  # grey and white plastic
 )
 FURNITURE: Tuple[Vec3, ...] = (
     DEFAULT_COLORS["obstacle"][:3], DEFAULT_COLORS["wall"][:3], DEFAULT_COLORS["door"][:3], (0.9, 0.9, 0.9),
@@ -160,6 +163,7 @@ def person_walker(sc: Scene, x: float, y: float, yaw: float, dress: bool = False
     skin = jitter(rng, pick(rng, SKIN), 0.03)
     shoes = jitter(rng, pick(rng, SHOES), 0.03)
     legs = skin if dress and rng.random() < 0.6 else trousers
+    lower = rng.random()  # trousers, shorts (bare lower legs) or a long coat over the thighs
     for side, swing in ((1.0, stride), (-1.0, -stride)):
         hx, hy = local(x, y, yaw, 0.0, side * hip_w)
         length = hip_h / max(math.cos(swing), 0.5)
@@ -167,12 +171,20 @@ def person_walker(sc: Scene, x: float, y: float, yaw: float, dress: bool = False
         cx, cy = local(hx, hy, yaw, fwd, 0.0)
         sc.capsule((cx, cy, hip_h - 0.5 * length * math.cos(swing) + 0.02), leg_r, length - 2 * leg_r, legs,
                    yaw=yaw, pitch=-swing)
+        if not dress and 0.6 <= lower < 0.8:  # shorts: bare lower legs
+            kx, ky = local(hx, hy, yaw, 0.75 * length * math.sin(swing), 0.0)
+            sc.capsule((kx, ky, hip_h - 0.75 * length * math.cos(swing) + 0.02), leg_r * 1.02, 0.5 * length - 2 * leg_r,
+                       skin, yaw=yaw, pitch=-swing)
         foot_fwd = length * math.sin(swing) + 0.06
         fx, fy = local(hx, hy, yaw, foot_fwd, 0.0)
         sc.box((fx, fy, 0.04), (0.13 * s, 0.05 * s, 0.04), shoes, yaw)
     torso_h = rng.uniform(0.5, 0.62) * s
     width, depth = rng.uniform(0.34, 0.44) * s, rng.uniform(0.2, 0.28) * s
     sc.box((x, y, hip_h + torso_h / 2.0), (depth / 2.0, width / 2.0, torso_h / 2.0), shirt, yaw)
+    if not dress and lower >= 0.8:  # long coat (lab coat, scrubs gown) down to the knees
+        coat = jitter(rng, (0.93, 0.93, 0.93)) if rng.random() < 0.5 else shirt
+        half_h = (hip_h - 0.45 * s) / 2.0
+        sc.box((x, y, 0.45 * s + half_h + 0.05), (depth / 2.0 + 0.03, width / 2.0 + 0.02, half_h), coat, yaw)
     if dress:
         skirt_bottom = rng.uniform(0.35, 0.6) * s
         sc.cylinder((x, y, (hip_h + 0.05 + skirt_bottom) / 2.0), rng.uniform(0.2, 0.3) * s,
@@ -346,13 +358,30 @@ def furniture_color(rng: np.random.Generator) -> Rgba:
 
 
 def clear_wall(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A wall across the view (x, y = its point straight ahead): long, ending in view, or a corner."""
     rng = sc.rng
     height = rng.uniform(0.5, 2.5)
-    sc.wall((x, y), rng.uniform(3.0, 8.0), height, yaw + math.pi / 2.0 + rng.uniform(-0.6, 0.6),
-            jitter(rng, pick(rng, WALLS)))
-    if rng.random() < 0.3:  # closed door panel or skirting board
-        sc.box((x - 0.06 * math.cos(yaw), y - 0.06 * math.sin(yaw), min(height, 2.0) / 2.0),
-               (0.02, rng.uniform(0.4, 0.5), min(height, 2.0) / 2.0), jitter(rng, DEFAULT_COLORS["door"][:3]), yaw)
+    color = jitter(rng, pick(rng, WALLS))
+    along = math.atan2(y, x) + math.pi / 2.0 + rng.uniform(-0.6, 0.6)  # wall direction
+    kind = rng.random()
+    if kind < 0.5:
+        sc.wall((x, y), rng.uniform(8.0, 16.0), height, along, color)
+    else:
+        end = rng.uniform(-1.0, 1.0)  # [m] where the wall ends, along it from the point ahead
+        side = 1.0 if rng.random() < 0.5 else -1.0
+        length = 8.0
+        cx, cy = x + math.cos(along) * (end + side * length / 2.0), y + math.sin(along) * (end + side * length / 2.0)
+        sc.wall((cx, cy), length, height, along, color)
+        if kind < 0.8:  # a corner: a second wall going away from the robot at the end
+            ex, ey = x + math.cos(along) * end, y + math.sin(along) * end
+            away = along + side * math.pi / 2.0
+            if math.cos(away - math.atan2(ey, ex)) < 0.0:
+                away += math.pi
+            sc.wall((ex + math.cos(away) * 4.0, ey + math.sin(away) * 4.0), 8.0, height, away,
+                    jitter(rng, pick(rng, WALLS)))
+    if height >= 1.9 and rng.random() < 0.3:  # a closed door in a full-height wall
+        sc.box((x - 0.06 * math.cos(along - math.pi / 2.0), y - 0.06 * math.sin(along - math.pi / 2.0), 1.0),
+               (0.45, 0.02, 1.0), jitter(rng, DEFAULT_COLORS["door"][:3]), along)
 
 
 def clear_table(sc: Scene, x: float, y: float, yaw: float) -> None:
@@ -380,6 +409,31 @@ def clear_chair(sc: Scene, x: float, y: float, yaw: float) -> None:
     sc.box((bx, by, h + 0.25), (0.02, s / 2.0, 0.25), seat, yaw)
 
 
+def clear_coffee_table(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A low table (0.35-0.5 m) on four legs."""
+    rng = sc.rng
+    w, d, h = rng.uniform(0.8, 1.4), rng.uniform(0.5, 0.8), rng.uniform(0.35, 0.5)
+    top, legs = furniture_color(rng), furniture_color(rng)
+    sc.box((x, y, h - 0.025), (d / 2.0, w / 2.0, 0.025), top, yaw)
+    for fx in (d / 2.0 - 0.05, -d / 2.0 + 0.05):
+        for fy in (w / 2.0 - 0.05, -w / 2.0 + 0.05):
+            px, py = local(x, y, yaw, fx, fy)
+            sc.box((px, py, (h - 0.05) / 2.0), (0.025, 0.025, (h - 0.05) / 2.0), legs, yaw)
+
+
+def clear_sofa(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A sofa or waiting-room seat row: a wide seat block, a back and arms."""
+    rng = sc.rng
+    w, d, seat = rng.uniform(1.4, 2.2), rng.uniform(0.7, 0.9), rng.uniform(0.38, 0.45)
+    color = jitter(rng, pick(rng, (*FURNITURE, (0.3, 0.35, 0.5), (0.45, 0.3, 0.25))))
+    sc.box((x, y, seat / 2.0), (d / 2.0, w / 2.0, seat / 2.0), color, yaw)
+    bx, by = local(x, y, yaw, -d / 2.0 + 0.1, 0.0)
+    sc.box((bx, by, 0.42), (0.1, w / 2.0, 0.42), color, yaw)
+    for side in (1.0, -1.0):
+        ax, ay = local(x, y, yaw, 0.0, side * (w / 2.0 - 0.08))
+        sc.box((ax, ay, 0.3), (d / 2.0, 0.08, 0.3), color, yaw)
+
+
 def clear_pillar(sc: Scene, x: float, y: float, yaw: float) -> None:
     rng = sc.rng
     h = rng.uniform(2.0, 3.0)
@@ -390,11 +444,12 @@ def clear_pillar(sc: Scene, x: float, y: float, yaw: float) -> None:
         sc.box((x, y, h / 2.0), (half, half, h / 2.0), furniture_color(rng), yaw)
 
 
-def clear_bin(sc: Scene, x: float, y: float, yaw: float) -> None:
-    """A low cylinder: waste bin, cone, stool (the simulator's lab has bins and cones as static obstacles)."""
+def movable_bin(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A low cylinder: waste bin, bucket (the simulator's lab has bins and cones as low cylinders)."""
     rng = sc.rng
     h = rng.uniform(0.3, 0.6)
-    sc.cylinder((x, y, h / 2.0), rng.uniform(0.12, 0.25), h, furniture_color(rng))
+    color = box_color(rng) if rng.random() < 0.5 else furniture_color(rng)
+    sc.cylinder((x, y, h / 2.0), rng.uniform(0.12, 0.25), h, color)
 
 
 def clear_cabinet(sc: Scene, x: float, y: float, yaw: float) -> None:
@@ -437,15 +492,21 @@ def clear_bench(sc: Scene, x: float, y: float, yaw: float) -> None:
         sc.box((px, py, h / 2.0), (depth / 2.0 - 0.02, 0.03, h / 2.0), color, yaw)
 
 
-def clear_plant(sc: Scene, x: float, y: float, yaw: float) -> None:
-    """A pot with foliage."""
+def clear_bed(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A hospital bed: a mattress on a frame with four legs and a headboard."""
     rng = sc.rng
-    pot_h, pot_r = rng.uniform(0.3, 0.5), rng.uniform(0.15, 0.25)
-    sc.cylinder((x, y, pot_h / 2.0), pot_r, pot_h, furniture_color(rng))
-    green = jitter(rng, (0.2, 0.5, 0.2), 0.1)
-    for _ in range(int(rng.integers(2, 5))):
-        sc.sphere((x + rng.uniform(-0.1, 0.1), y + rng.uniform(-0.1, 0.1), pot_h + rng.uniform(0.1, 0.6)),
-                  rng.uniform(0.15, 0.3), green)
+    length, width = rng.uniform(1.9, 2.1), rng.uniform(0.85, 1.0)
+    frame_z, top_z = rng.uniform(0.25, 0.35), rng.uniform(0.5, 0.65)
+    frame = furniture_color(rng)
+    mattress = jitter(rng, pick(rng, ((0.9, 0.9, 0.9), (0.6, 0.75, 0.85), (0.6, 0.8, 0.7))))
+    sc.box((x, y, (frame_z + top_z) / 2.0), (width / 2.0, length / 2.0, (top_z - frame_z) / 2.0), mattress, yaw)
+    sc.box((x, y, frame_z - 0.03), (width / 2.0 + 0.02, length / 2.0 + 0.02, 0.03), frame, yaw)
+    for fx in (width / 2.0 - 0.04, -width / 2.0 + 0.04):
+        for fy in (length / 2.0 - 0.04, -length / 2.0 + 0.04):
+            px, py = local(x, y, yaw, fx, fy)
+            sc.box((px, py, (frame_z - 0.06) / 2.0), (0.025, 0.025, (frame_z - 0.06) / 2.0), frame, yaw)
+    hx, hy = local(x, y, yaw, 0.0, length / 2.0)
+    sc.box((hx, hy, 0.5), (width / 2.0, 0.02, 0.5), frame, yaw)
 
 
 def clear_door_frame(sc: Scene, x: float, y: float, yaw: float) -> None:
@@ -483,17 +544,19 @@ BUILDERS: Dict[str, Builder] = {
     "table": clear_table,
     "chair": clear_chair,
     "pillar": clear_pillar,
-    "bin": clear_bin,
+    "coffee_table": clear_coffee_table,
+    "sofa": clear_sofa,
+    "bin": movable_bin,
     "cabinet": clear_cabinet,
     "shelf": clear_shelf,
     "urdf_table": clear_urdf_table,
     "bench": clear_bench,
-    "plant": clear_plant,
+    "bed": clear_bed,
     "door_frame": clear_door_frame,
 }
 DISTANCES: Dict[str, Tuple[float, float]] = {  # [m] camera to target centre
     PERSON: (0.5, 2.2),
-    MOVABLE: (0.45, 1.8),
+    MOVABLE: (0.55, 1.8),
     CLEAR: (0.5, 2.5),
 }
 SIDE_DISTRACTORS = ("capsule", "walker", "box", "table", "chair", "pillar", "bin", "cabinet")
@@ -538,10 +601,10 @@ class Renderer:
 
     def _background(self, sc: Scene, spec: CameraSpec) -> None:
         rng = sc.rng
-        for _ in range(int(rng.integers(0, 4))):
+        for _ in range(int(rng.integers(0, 4))):  # room walls: long enough that their ends rarely show
             d = rng.uniform(2.8, 7.0)
             b = rng.uniform(-1.2, 1.2)
-            sc.wall((d * math.cos(b), d * math.sin(b)), rng.uniform(3.0, 10.0), rng.uniform(0.6, 2.5),
+            sc.wall((d * math.cos(b), d * math.sin(b)), rng.uniform(10.0, 20.0), rng.uniform(0.6, 2.5),
                     b + math.pi / 2.0 + rng.uniform(-0.5, 0.5), jitter(rng, pick(rng, WALLS)))
 
     def _side_distractors(self, sc: Scene, roi_half: float, spec: CameraSpec) -> None:

@@ -28,7 +28,7 @@ TRAIN_COMMAND = "python -m tools.perception.train --data build/dataset --seed {s
 
 
 def build_model(classes: int) -> Any:
-    """conv3x3 blocks 16-32-64-64 with batch norm, max pooling, global average pooling, dropout, linear."""
+    """conv3x3 blocks 16-32-64-96 with batch norm, max pooling, global average pooling, dropout, linear."""
     from torch import nn
 
     def block(cin: int, cout: int, pool: bool) -> List[Any]:
@@ -36,8 +36,8 @@ def build_model(classes: int) -> Any:
         return [*layers, nn.MaxPool2d(2)] if pool else layers
 
     return nn.Sequential(
-        *block(3, 16, True), *block(16, 32, True), *block(32, 64, True), *block(64, 64, False),
-        nn.AdaptiveAvgPool2d(1), nn.Flatten(), nn.Dropout(0.2), nn.Linear(64, classes),
+        *block(3, 16, True), *block(16, 32, True), *block(32, 64, True), *block(64, 96, False),
+        nn.AdaptiveAvgPool2d(1), nn.Flatten(), nn.Dropout(0.2), nn.Linear(96, classes),
     )
 
 

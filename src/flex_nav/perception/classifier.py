@@ -130,8 +130,8 @@ class ObstacleClassifier:
         class_map: Optional[Mapping[str, str]] = None,
     ) -> None:
         model_path = Path(model) if model is not None else DEFAULT_MODEL
+        self.session = make_session(model_path, "classifier model")  # first: a wrong path is the likelier mistake
         self.metadata = load_metadata(metadata if metadata is not None else metadata_path_for(model_path))
-        self.session = make_session(model_path, "classifier model")
         self.input_name, shape = image_input(self.session, f"classifier model {model_path}")
         size = static_size(shape)
         meta = self.metadata

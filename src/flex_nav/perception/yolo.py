@@ -37,6 +37,7 @@ from flex_nav.perception.roi import Roi
 
 LAYOUTS = ("auto", "raw", "end2end")
 DEFAULT_MAX_DETECTIONS = 300
+MAX_NMS_CANDIDATES = 3000  # best-scoring boxes that enter NMS (ultralytics caps at 30000 with a C++ NMS)
 
 
 @dataclass(frozen=True)
@@ -137,6 +138,9 @@ def decode(
         cx, cy, w, h = pred[0, mask], pred[1, mask], pred[2, mask], pred[3, mask]
         boxes = np.stack([cx - w / 2.0, cy - h / 2.0, cx + w / 2.0, cy + h / 2.0], axis=1)
         scores, classes = scores[mask], classes[mask]
+        if len(scores) > MAX_NMS_CANDIDATES:  # bound the NMS work on a degenerate output
+            top = np.argsort(-scores, kind="stable")[:MAX_NMS_CANDIDATES]
+            boxes, scores, classes = boxes[top], scores[top], classes[top]
         keep = classwise_nms(boxes, scores, classes, iou_threshold)[:max_detections]
     elif layout == "end2end":
         if out.shape[2] != 6:

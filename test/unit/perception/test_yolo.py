@@ -177,3 +177,15 @@ def test_dynamic_input_needs_input_size(tmp_path: Path) -> None:
         YoloObstacleDetector(path)
     det = YoloObstacleDetector(path, input_size=(64, 64))
     assert det.classify(np.zeros((240, 320, 3), np.uint8)).label == PERSON
+
+
+def test_decode_bounds_the_nms_work_and_the_detections() -> None:
+    n = 5000  # more candidates than MAX_NMS_CANDIDATES, none overlapping
+    out = np.zeros((1, 5, n), np.float32)
+    out[0, 0] = np.arange(n) * 10.0
+    out[0, 1], out[0, 2], out[0, 3] = 5.0, 4.0, 4.0
+    out[0, 4] = np.linspace(0.3, 0.9, n)
+    found = decode(out, 1, "raw", conf_threshold=0.25, iou_threshold=0.45, max_detections=300)
+    assert len(found) == 300
+    assert found.scores[0] == pytest.approx(0.9)
+    assert (np.diff(found.scores) <= 0).all(), "best first"

@@ -1,0 +1,78 @@
+#!/usr/bin/env python3
+"""rostest node for obstacle_classifier.test: the smoothed class and safe_to_push for a person and for a box."""
+
+import sys
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+from std_srvs.srv import SetBool
+
+from flex_nav.msg import ObstacleClass
+from flex_nav.ros.node import init_node
+
+WAIT_S = 60.0  # [s] the sim and two classifiers start on a shared 2-core machine
+
+
+class Latest:
+    def __init__(self, topic):
+        self.msgs = []
+        self.lock = threading.Lock()
+        self.sub = rospy.Subscriber(topic, ObstacleClass, self._on)
+
+    def _on(self, msg):
+        with self.lock:
+            self.msgs.append(msg)
+
+    def wait_for(self, predicate):
+        deadline = time.monotonic() + WAIT_S
+        while time.monotonic() < deadline:
+            with self.lock:
+                found = [m for m in self.msgs if predicate(m)]
+            if found:
+                return found[-1]
+            time.sleep(0.05)
+        with self.lock:
+            last = self.msgs[-1] if self.msgs else None
+        raise AssertionError(f"no matching message in {WAIT_S} s; {len(self.msgs)} received, last: {last}")
+
+
+def call(service, data):
+    rospy.wait_for_service(service, timeout=WAIT_S)
+    return rospy.ServiceProxy(service, SetBool)(data)
+
+
+class TestObstacleClassifier(unittest.TestCase):
+    def test_person_is_published_and_never_safe_to_push(self):
+        msg = Latest("/robot1/obstacle_class").wait_for(lambda m: m.votes >= 3)
+        self.assertEqual(msg.label, "person")
+        self.assertEqual(msg.window, 5)
+        self.assertEqual(list(msg.labels), ["person", "movable", "clear"])
+        self.assertLessEqual(sum(bytearray(msg.counts)), 5)
+        self.assertGreaterEqual(bytearray(msg.counts)[0], 3)
+        self.assertGreater(msg.confidence, 0.5)
+        self.assertEqual(msg.header.frame_id, "robot1/camera_rgb_optical_frame")
+        answer = call("/robot1/safe_to_push", False)
+        self.assertFalse(answer.success, answer.message)
+        self.assertIn("person", answer.message)
+        fresh = call("/robot1/safe_to_push", True)
+        self.assertFalse(fresh.success, fresh.message)
+        self.assertIn("person", fresh.message)
+
+    def test_box_is_published_and_safe_to_push(self):
+        msg = Latest("/robot2/obstacle_class").wait_for(lambda m: m.votes >= 3)
+        self.assertEqual(msg.label, "movable")
+        self.assertEqual(msg.frame_label, "movable")
+        answer = call("/robot2/safe_to_push", False)
+        self.assertTrue(answer.success, answer.message)
+        self.assertTrue(answer.message.startswith("safe: movable"), answer.message)
+        fresh = call("/robot2/safe_to_push", True)  # forget the window, wait for 5 new frames
+        self.assertTrue(fresh.success, fresh.message)
+        self.assertRegex(fresh.message, r"^safe: movable [3-5]/5 votes")
+
+
+if __name__ == "__main__":
+    init_node("test_obstacle_classifier", master_timeout_s=WAIT_S)
+    rostest.rosrun("flex_nav", "test_obstacle_classifier", TestObstacleClassifier, sys.argv)
