@@ -9,6 +9,9 @@ and so does every failure:
 - the robot pose cannot be had (``pose()`` raises a FlexNavError, e.g. NotReadyError) -> ABORTED with its
   message;
 - pure pursuit reports INVALID_INPUT -> ABORTED; GOAL_REACHED -> SUCCEEDED;
+- an obstacle on the path within ``blocked_distance_m`` [m] ahead for ``blocked_timeout_s`` [s] ->
+  ABORTED with a reason starting ``blocked`` (off when ``blocked_distance_m`` is 0; see
+  :mod:`flex_nav.follow.blocked`), so a behavior can classify the obstacle instead of waiting it out;
 - COLLISION_AHEAD -> zero command while blocked; ABORTED once blocked for ``collision_timeout`` [s]
   (0 aborts at once), so a person walking past does not end the goal but a wall does;
 - a non-finite command, or any exception raised while computing the tick -> ABORTED
@@ -27,8 +30,10 @@ from typing import Callable, Optional, Sequence, Tuple
 import numpy as np
 
 from flex_nav.exceptions import ConfigError, FlexNavError
+from flex_nav.follow.blocked import BlockedPathWatch, obstacle_on_path
 from flex_nav.follow.safety import SensorWatchdog
 from flex_nav.nav.costmap_grid import CostmapGeometry
+from flex_nav.nav.path import as_path, cumulative_lengths
 from flex_nav.nav.pure_pursuit import Command, PurePursuitParams, PursuitStatus, RegulatedPurePursuit
 
 Pose2D = Tuple[float, float, float]  # (x [m], y [m], yaw [rad])
@@ -72,6 +77,8 @@ class SafeFollower:
         collision_timeout_s: float,
         nominal_period_s: float,
         start_s: float,
+        blocked_distance_m: float = 0.0,
+        blocked_timeout_s: float = 0.5,
     ) -> None:
         for name, value in (("collision_timeout_s", collision_timeout_s), ("nominal_period_s", nominal_period_s)):
             if not math.isfinite(value) or value < 0.0:
@@ -84,6 +91,9 @@ class SafeFollower:
         self.nominal_period_s = nominal_period_s
         self._last_tick_s: Optional[float] = None
         self._blocked_since_s: Optional[float] = None
+        self.blocked = BlockedPathWatch(blocked_distance_m, blocked_timeout_s)
+        self._path: Optional[np.ndarray] = None
+        self._lengths = np.zeros(1)
 
     def set_path(self, poses: object) -> None:
         """Follow ``poses`` ((N, 2|3) in the controller's frame); ConfigError if empty or not finite.
@@ -91,13 +101,18 @@ class SafeFollower:
         The previous command is kept, so a replaced path continues smoothly.
         """
         self.pursuit.set_path(poses)
+        self._path = as_path(poses)
+        self._lengths = cumulative_lengths(self._path)
         self._blocked_since_s = None
+        self.blocked.reset()
 
     def stop(self) -> None:
         """The goal ended (or the robot was stopped): forget the path and the previous command."""
         self.pursuit.clear()
         self._last_tick_s = None
         self._blocked_since_s = None
+        self._path = None
+        self.blocked.reset()
 
     def tick(
         self,
@@ -140,6 +155,14 @@ class SafeFollower:
             return _stop(Outcome.SUCCEEDED, "goal reached", command)
         if status is PursuitStatus.INVALID_INPUT:
             return _stop(Outcome.ABORTED, command.reason, command)
+        if self.blocked.enabled and costs is not None and geometry is not None and self._path is not None:
+            s_robot = float(self._lengths[-1]) - command.distance_to_goal
+            obstacle = (obstacle_on_path(self._path, self._lengths, s_robot, distance_m=self.blocked.distance_m,
+                                         costs=costs, geometry=geometry)
+                        if math.isfinite(s_robot) else None)
+            reason = self.blocked.update(obstacle, now_s)
+            if reason is not None:
+                return _stop(Outcome.ABORTED, reason, command)
         if status is PursuitStatus.COLLISION_AHEAD:
             if self._blocked_since_s is None:
                 self._blocked_since_s = now_s

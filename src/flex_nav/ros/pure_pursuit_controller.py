@@ -21,7 +21,9 @@ follow it; a newer goal replacing the current one also starts from a zero twist.
 Parameters (private): ``global_frame`` ("map"), ``robot_base_frame`` ("base_footprint"),
 ``controller_frequency`` [Hz] (20), ``sensor_timeout`` [s] (0.5), ``collision_timeout`` [s] (2.0),
 ``transform_timeout`` [s] (0.2), ``topic_timeout`` [s] (2.0, FollowTopic: wait for the first Path),
-``feedback_frequency`` [Hz] (5), ``pure_pursuit/*`` (:class:`flex_nav.nav.pure_pursuit.PurePursuitParams`
+``feedback_frequency`` [Hz] (5), ``blocked_distance`` [m] (0: off; an obstacle on the path this far ahead
+aborts the goal with a reason starting ``blocked``), ``blocked_timeout`` [s] (0.5), ``pure_pursuit/*``
+(:class:`flex_nav.nav.pure_pursuit.PurePursuitParams`
 by name; unknown names are rejected).
 """
 
@@ -56,6 +58,7 @@ SOURCES = ("path", "topic")
 PARAMETERS = (
     "global_frame", "robot_base_frame", "controller_frequency", "sensor_timeout", "collision_timeout",
     "transform_timeout", "topic_timeout", "feedback_frequency", "local_costmap", "pure_pursuit",
+    "blocked_distance", "blocked_timeout",
 )
 
 
@@ -109,6 +112,8 @@ class PurePursuitController:
             collision_timeout_s=param_float("~collision_timeout", 2.0, 0.0, 600.0),
             nominal_period_s=self.period_s,
             start_s=rospy.get_time(),
+            blocked_distance_m=param_float("~blocked_distance", 0.0, 0.0, 100.0),
+            blocked_timeout_s=param_float("~blocked_timeout", 0.5, 0.0, 600.0),
         )
         self._wake = threading.Condition()  # odometry, paths and cancels wake the control loop
         self._odom: Optional[Odometry] = None
