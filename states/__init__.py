@@ -18,6 +18,9 @@ Modules (one state or one small family each):
   :mod:`timed_stop_state`, :mod:`pure_pursuit_state` (follows the ``plan`` in userdata);
 - monitors: :mod:`bumper_monitor_state` (bumper/cliff, configured by robot profile),
   :mod:`stuck_monitor_state`, :mod:`sensor_freshness_state`;
+- obstacles (push or avoid): :mod:`follow_until_blocked_state` (FollowPath with a ``blocked`` outcome),
+  :mod:`obstacle_class_state` (person / movable / clear from the obstacle classifier), :mod:`push_state`
+  (push a distance, fails fast on a heavy object, never pushes a person), :mod:`wait_path_clear_state`;
 - operator: :mod:`operator_decision_state`, :mod:`log_state`, :mod:`wait_state`.
 
 :func:`state_classes` imports them all and lists the concrete states (for documentation checks and tools);
@@ -38,6 +41,7 @@ STATE_MODULES = (
     "replan_state",
     "follow_path_state",
     "follow_topic_state",
+    "follow_until_blocked_state",
     "clear_costmaps_state",
     "move_distance_state",
     "rotate_angle_state",
@@ -50,6 +54,9 @@ STATE_MODULES = (
     "operator_decision_state",
     "log_state",
     "wait_state",
+    "obstacle_class_state",
+    "push_state",
+    "wait_path_clear_state",
 )
 
 # Constructor arguments for the states whose constructor has required parameters (for tools and checks).
@@ -57,6 +64,7 @@ EXAMPLE_PARAMS: Dict[str, Dict[str, Any]] = {
     "MoveDistanceState": {"distance_m": -0.25},
     "RotateAngleState": {"angle_rad": 1.57},
     "WaitState": {"wait_time_s": 1.0},
+    "PushState": {"distance_m": 0.5},
 }
 
 

@@ -34,7 +34,8 @@ EXPECTED = {
     "GetPoseState", "GetPathState", "FollowPathState", "FollowPlannerState", "FollowTopicState",
     "ClearCostmapsState", "MoveDistanceState", "RotateAngleState", "TimedTwistState", "TimedStopState",
     "PurePursuitState", "BumperMonitorState", "StuckMonitorState", "SensorFreshnessState",
-    "OperatorDecisionState", "LogState", "WaitState", "GoalListState", "ReplanState",
+    "OperatorDecisionState", "LogState", "WaitState", "GoalListState", "ReplanState", "FollowUntilBlockedState",
+    "ObstacleClassState", "PushState", "WaitPathClearState",
 }
 
 

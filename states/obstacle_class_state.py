@@ -1,0 +1,101 @@
+"""ObstacleClassState: what stands in front of the robot (person, movable object, clear), from perception.
+
+The class comes from the ``obstacle_class`` topic (flex_nav/ObstacleClass, published by the
+``obstacle_classifier`` node after every classified frame: the majority of its last frames). Only a
+message stamped no earlier than ``max_age_s`` before now counts, so a class seen before the robot got
+where it is does not decide. :class:`ClassReader` is the shared reading used by the push and wait states.
+"""
+
+from __future__ import annotations
+
+from typing import Optional
+
+from flex_nav.behavior.state import State
+from flex_nav.behavior.userdata import UserDataView
+from flex_nav.msg import ObstacleClass
+from flex_nav.perception.labels import CLEAR, MOVABLE, PERSON, UNKNOWN
+from flex_nav_states import validation
+from flex_nav_states.messages import message_age_s
+from flex_nav_states.proxy_types import SubscriptionLike, proxies_of
+
+DECIDED = (PERSON, MOVABLE, CLEAR)
+
+
+class ClassReader:
+    """The newest fresh ObstacleClass on one topic (helper of the perception states, not a state)."""
+
+    def __init__(self, owner: str, topic: str, max_age_s: float) -> None:
+        self.topic = validation.name(owner, "class_topic", topic)
+        self.max_age_s = validation.number(owner, "class_max_age_s", max_age_s, positive=True, unit="[s]")
+        self._sub: Optional[SubscriptionLike] = None
+
+    def start(self, state: State) -> None:
+        self._sub = proxies_of(state).subscription(self.topic, ObstacleClass)
+
+    def latest(self, state: State) -> Optional[ObstacleClass]:
+        """The newest message if it is at most max_age_s old on the behavior's clock, else None."""
+        if self._sub is None:
+            self.start(state)
+        sub = self._sub
+        assert sub is not None
+        msg = sub.last()
+        if msg is None or message_age_s(msg, sub, state.now_s()) > self.max_age_s:
+            return None
+        return msg
+
+    def person_seen(self, state: State) -> bool:
+        """True when the newest fresh message says person, by the vote or by its latest frame alone."""
+        msg = self.latest(state)
+        return msg is not None and PERSON in (msg.label, msg.frame_label)
+
+
+class ObstacleClassState(State):
+    """Reads the class of the region in front of the robot from the obstacle classifier.
+
+    Waits up to ``timeout_s`` after entry for a fresh message whose vote is decided (person, movable or
+    clear). A person seen by the latest frame alone already counts as person (never push a person on a
+    vote that lags). Nothing decided in time gives ``unknown``.
+
+    -- class_topic      str    flex_nav/ObstacleClass topic of the obstacle_classifier node.
+    -- class_max_age_s  float  [s] Older messages (by header stamp) do not count.
+    -- timeout_s        float  [s] How long to wait for a decided class.
+
+    #> obstacle_class  str  person, movable, clear or unknown.
+
+    <= person   A person is in front of the robot.
+    <= movable  A movable object (a box) is in front of the robot.
+    <= clear    Nothing the classifier knows is in front of the robot.
+    <= unknown  No fresh decided class within timeout_s (classifier silent or undecided).
+    """
+
+    def __init__(self, class_topic: str = "obstacle_class", class_max_age_s: float = 1.0,
+                 timeout_s: float = 2.0) -> None:
+        super().__init__(outcomes=[PERSON, MOVABLE, CLEAR, UNKNOWN], output_keys=["obstacle_class"], rate_hz=20.0)
+        owner = type(self).__name__
+        self._reader = ClassReader(owner, class_topic, class_max_age_s)
+        self._timeout_s = validation.number(owner, "timeout_s", timeout_s, positive=True, unit="[s]")
+        self._enter_s = 0.0
+
+    def on_start(self) -> None:
+        self._reader.start(self)
+
+    def on_enter(self, userdata: UserDataView) -> None:
+        self._enter_s = self.now_s()
+
+    def execute(self, userdata: UserDataView) -> Optional[str]:
+        msg = self._reader.latest(self)
+        label = UNKNOWN
+        if msg is not None:
+            label = PERSON if PERSON in (msg.label, msg.frame_label) else msg.label
+        if label in DECIDED:
+            userdata.obstacle_class = label
+            confidence = f" ({msg.votes}/{msg.window} votes, confidence {msg.confidence:.2f})" if msg else ""
+            self.log_info(f"obstacle class: {label}{confidence}")
+            return label
+        waited_s = self.now_s() - self._enter_s
+        if waited_s >= self._timeout_s:
+            userdata.obstacle_class = UNKNOWN
+            why = "no fresh message" if msg is None else f"undecided vote ({msg.label})"
+            self.log_warn(f"obstacle class unknown after {waited_s:.1f} s on {self._reader.topic}: {why}")
+            return UNKNOWN
+        return None

@@ -1,0 +1,159 @@
+"""PushState: push an obstacle straight ahead by a distance at a speed, closed loop on odometry.
+
+A push has three ways to fail, all ending in a zero twist: no progress on odometry within
+``stall_window_s`` (the object is too heavy: detected within about one window, the thesis needed 3 s),
+the whole push taking longer than ``distance_m / speed_mps + margin_s`` (progress too slow), and the
+perception seeing a person in front of the robot (the state never starts and never goes on pushing a
+person; it also refuses to start without a fresh class that is not person).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Optional
+
+from flex_nav.behavior.userdata import UserDataView
+from flex_nav.exceptions import ConfigError
+from flex_nav.perception.labels import PERSON
+from flex_nav_states import validation
+from flex_nav_states.messages import OdomSample, wrap_angle
+from flex_nav_states.motion_base import MotionBase, StallWatch
+from flex_nav_states.obstacle_class_state import ClassReader
+
+HEADING_GAIN = 1.0  # [1/s] yaw rate per radian of heading error (pushes straight)
+MAX_HEADING_RATE = 0.3  # [rad/s] bound of the heading correction
+
+
+class PushState(MotionBase):
+    """Pushes straight forward by ``distance_m`` at ``speed_mps`` and stops; fails fast on a heavy object.
+
+    Progress is the odometry displacement along the heading at the start. The class topic is read on
+    every tick: a person (by the vote or the latest frame) stops the push at once with ``person``; no
+    fresh class at entry also gives ``person`` without moving (unknown is treated as a person).
+    The robot stops (zero twist) on every exit.
+
+    -- distance_m        float  [m] How far to push (> 0).
+    -- speed_mps         float  [m/s] Pushing speed (> 0).
+    -- margin_s          float  [s] Timeout = distance_m / speed_mps + margin_s.
+    -- stall_window_s    float  [s] Fail when progress grew by less than stall_distance_m in this window.
+    -- stall_distance_m  float  [m] Least progress per stall window (> 0, below speed_mps x stall_window_s).
+    -- class_topic       str    flex_nav/ObstacleClass topic of the obstacle classifier.
+    -- class_max_age_s   float  [s] Older class messages do not count.
+    -- odom_topic        str    nav_msgs/Odometry topic.
+    -- odom_timeout_s    float  [s] Fail when no fresh odometry for this long.
+    -- cmd_topic         str    geometry_msgs/TwistStamped command topic.
+    -- frame_id          str    frame_id of the commands (the robot's base frame).
+
+    #> push_progress_m  float  [m] How far the robot got.
+
+    <= done    Pushed the whole distance.
+    <= failed  No progress (heavy object), too slow, or odometry missing; the reason is logged.
+    <= person  A person is in front (or no fresh class at entry): nothing or no more was pushed.
+    """
+
+    def __init__(
+        self,
+        distance_m: float,
+        speed_mps: float = 0.1,
+        *,
+        margin_s: float = 2.0,
+        stall_window_s: float = 1.0,
+        stall_distance_m: float = 0.02,
+        class_topic: str = "obstacle_class",
+        class_max_age_s: float = 1.0,
+        odom_topic: str = "odom",
+        odom_timeout_s: float = 0.5,
+        cmd_topic: str = "cmd_vel_stamped",
+        frame_id: str = "base_footprint",
+    ) -> None:
+        owner = type(self).__name__
+        super().__init__(
+            ["done", "failed", PERSON],
+            cmd_topic=cmd_topic,
+            frame_id=frame_id,
+            odom_topic=validation.name(owner, "odom_topic", odom_topic),
+            odom_timeout_s=odom_timeout_s,
+            output_keys=["push_progress_m"],
+        )
+        self._distance_m = validation.number(owner, "distance_m", distance_m, positive=True, unit="[m]")
+        self._speed_mps = validation.number(owner, "speed_mps", speed_mps, positive=True, unit="[m/s]")
+        margin = validation.number(owner, "margin_s", margin_s, minimum=0.0, unit="[s]")
+        self._timeout_s = self._distance_m / self._speed_mps + margin
+        window = validation.number(owner, "stall_window_s", stall_window_s, positive=True, unit="[s]")
+        stall = validation.number(owner, "stall_distance_m", stall_distance_m, positive=True, unit="[m]")
+        if stall >= self._speed_mps * window:
+            raise ConfigError(
+                f"{owner}: stall_distance_m {stall:g} m cannot be pushed in stall_window_s {window:g} s at "
+                f"speed_mps {self._speed_mps:g} m/s; lower it below {self._speed_mps * window:g} m"
+            )
+        self._stall = StallWatch(window, stall)
+        self._reader = ClassReader(owner, class_topic, class_max_age_s)
+        self._start: Optional[OdomSample] = None
+        self._progress_m = 0.0
+        self._checked = False
+
+    @property
+    def timeout_s(self) -> float:
+        """[s] distance_m / speed_mps + margin_s."""
+        return self._timeout_s
+
+    def on_start(self) -> None:
+        super().on_start()
+        self._reader.start(self)
+
+    def on_enter(self, userdata: UserDataView) -> None:
+        super().on_enter(userdata)
+        self._start = None
+        self._progress_m = 0.0
+        self._checked = False
+
+    def on_exit(self, userdata: UserDataView) -> None:
+        super().on_exit(userdata)
+        userdata.push_progress_m = self._progress_m
+
+    def on_resume(self, userdata: UserDataView) -> None:
+        super().on_resume(userdata)
+        self._stall.restart_window(self.now_s())
+
+    def execute(self, userdata: UserDataView) -> Optional[str]:
+        if not self._checked:
+            self._checked = True
+            if self._reader.latest(self) is None:
+                self.stop()
+                self.log_error(f"push refused: no fresh obstacle class on {self._reader.topic} (could be a person)")
+                return PERSON
+        if self._reader.person_seen(self):
+            self.stop()
+            self.log_warn(f"push stopped: a person is in front of the robot (pushed {self._progress_m:.2f} m)")
+            return PERSON
+        return self._drive()
+
+    def _drive(self) -> Optional[str]:
+        now = self.now_s()
+        sample = self.odometry()
+        if sample is None:
+            if self.odometry_lost():
+                self.log_error(f"push: {self.odometry_problem()}")
+                return "failed"
+            self.stop()
+            return None
+        if self._start is None:
+            self._start = sample
+            self._stall.reset(0.0, now)
+        start = self._start
+        self._progress_m = (sample.x - start.x) * math.cos(start.yaw) + (sample.y - start.y) * math.sin(start.yaw)
+        if self._progress_m >= self._distance_m:
+            self.log_info(f"pushed {self._progress_m:.2f} m")
+            return "done"
+        if self.elapsed_s() > self._timeout_s:
+            self.log_error(f"push timed out after {self._timeout_s:.1f} s at {self._progress_m:.2f} m "
+                           f"of {self._distance_m:g} m")
+            return "failed"
+        if self._stall.stalled(self._progress_m, now):
+            self.log_error(f"push stalled at {self._progress_m:.2f} m: less than {self._stall.min_progress:g} m "
+                           f"in {self._stall.window_s:g} s (object too heavy)")
+            return "failed"
+        heading_error = wrap_angle(sample.yaw - start.yaw)
+        w = max(-MAX_HEADING_RATE, min(MAX_HEADING_RATE, -HEADING_GAIN * heading_error))
+        self.send(self._speed_mps, w)
+        return None

@@ -1,0 +1,222 @@
+"""Push-or-avoid states: obstacle class, push (success, heavy-object stall, timeout, person never pushed),
+waiting for the path to clear, and FollowPath's `blocked` outcome."""
+
+from __future__ import annotations
+
+import genpy
+import pytest
+from actionlib_msgs.msg import GoalStatus
+from unit.states.states_testlib import Harness, KinematicRobot, path, twists
+
+from flex_nav.behavior import LogLevel
+from flex_nav.exceptions import ConfigError
+from flex_nav.msg import FollowPathAction, FollowPathResult, ObstacleClass
+from flex_nav_states.follow_until_blocked_state import FollowUntilBlockedState
+from flex_nav_states.obstacle_class_state import ObstacleClassState
+from flex_nav_states.push_state import PushState
+from flex_nav_states.wait_path_clear_state import WaitPathClearState
+
+STEP_S = 0.05  # [s]
+
+
+def class_msg(label: str, stamp_s: float, frame_label: str = "") -> ObstacleClass:
+    msg = ObstacleClass(label=label, frame_label=frame_label or label, votes=5, window=5, confidence=0.9)
+    msg.header.stamp = genpy.Time.from_sec(stamp_s)
+    return msg
+
+
+class Camera:
+    """Publishes the class ``label`` (a callable of the time since start) on obstacle_class every step."""
+
+    def __init__(self, h: Harness, label, frame_label=None) -> None:
+        self.h = h
+        self.sub = h.proxies.subscription("obstacle_class", ObstacleClass)
+        self.start_s = h.clock.now()
+        self.label = label if callable(label) else (lambda _t: label)
+        self.frame_label = frame_label if callable(frame_label) or frame_label is None else (lambda _t: frame_label)
+        self.publish()
+
+    def publish(self) -> None:
+        t = self.h.clock.now() - self.start_s
+        label = self.label(t)
+        if label is None:
+            return
+        frame = self.frame_label(t) if self.frame_label is not None else label
+        self.sub.inject(class_msg(label, self.h.clock.now(), frame))
+
+
+def run(h: Harness, camera: Camera, max_time_s: float, on_step=None):
+    end = h.clock.now() + max_time_s
+    while h.clock.now() <= end:
+        if h.tick():
+            return h.executor.result()
+        h.advance(STEP_S)
+        if on_step is not None:
+            on_step(h.clock.now() - camera.start_s)
+        camera.publish()
+    raise AssertionError(f"still running after {max_time_s} s: {h.log_text()}")
+
+
+# --- ObstacleClassState ---------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("label", ["person", "movable", "clear"])
+def test_class_state_reports_the_decided_label(label):
+    h = Harness(ObstacleClassState())
+    result = run(h.start(), Camera(h, label), 3.0)
+    assert result.outcome == label
+    assert result.outputs["obstacle_class"] == label
+
+
+def test_class_state_a_person_in_the_latest_frame_wins_over_the_vote():
+    h = Harness(ObstacleClassState())
+    assert run(h.start(), Camera(h, "movable", frame_label="person"), 3.0).outcome == "person"
+
+
+def test_class_state_waits_for_a_decided_vote():
+    h = Harness(ObstacleClassState(timeout_s=3.0))
+    start = h.clock.now()
+    result = run(h.start(), Camera(h, lambda t: "unknown" if t < 1.0 else "movable"), 5.0)
+    assert result.outcome == "movable"
+    assert h.clock.now() - start >= 1.0
+
+
+@pytest.mark.parametrize("label", ["unknown", None])
+def test_class_state_undecided_or_silent_is_unknown_after_the_timeout(label):
+    h = Harness(ObstacleClassState(timeout_s=1.5))
+    start = h.clock.now()
+    result = run(h.start(), Camera(h, label), 5.0)
+    assert result.outcome == "unknown"
+    assert 1.5 <= h.clock.now() - start <= 1.6
+    assert any("unknown" in t for t in h.texts(LogLevel.WARN))
+
+
+def test_class_state_ignores_a_stale_message():
+    h = Harness(ObstacleClassState(class_max_age_s=0.5, timeout_s=1.0))
+    h.proxies.subscription("obstacle_class", ObstacleClass).inject(class_msg("clear", h.clock.now() - 3.0))
+    assert run(h.start(), Camera(h, None), 3.0).outcome == "unknown"
+
+
+# --- PushState ------------------------------------------------------------------------------------------
+
+
+def push_harness(**params):
+    h = Harness(PushState(**params))
+    robot = KinematicRobot(h)
+    return h, robot
+
+
+def test_push_drives_the_distance_and_stops():
+    h, robot = push_harness(distance_m=0.5, speed_mps=0.2)
+    result = run(h.start(), Camera(h, "movable"), 10.0)
+    assert result.outcome == "done", h.log_text()
+    assert robot.x == pytest.approx(0.5, abs=0.03)
+    assert twists(h)[-1] == (0.0, 0.0)
+    assert max(v for v, _ in twists(h)) == pytest.approx(0.2)
+    assert result.outputs["push_progress_m"] == pytest.approx(0.5, abs=0.03)
+
+
+def test_push_against_a_heavy_object_fails_within_one_and_a_half_seconds():
+    h, robot = push_harness(distance_m=1.0, speed_mps=0.2, stall_window_s=1.0)
+    contact = {}
+
+    def heavy(t):
+        if t >= 0.5 and not robot.blocked:
+            robot.blocked = True  # the box does not move: odometry shows no progress
+            contact["s"] = h.clock.now()
+
+    result = run(h.start(), Camera(h, "movable"), 10.0, on_step=heavy)
+    assert result.outcome == "failed"
+    assert h.clock.now() - contact["s"] < 1.5
+    assert any("stalled" in t for t in h.texts(LogLevel.ERROR)), h.log_text()
+    assert twists(h)[-1] == (0.0, 0.0)
+
+
+def test_push_times_out_after_distance_over_speed_plus_margin():
+    state = PushState(distance_m=0.5, speed_mps=0.25, margin_s=1.0, stall_distance_m=0.005)
+    assert state.timeout_s == pytest.approx(3.0)
+    h = Harness(state)
+    robot = KinematicRobot(h)
+    robot.forced_velocity = (0.01, 0.0)  # creeps: progress every window but far too slow
+    start = h.clock.now()
+    result = run(h.start(), Camera(h, "movable"), 10.0)
+    assert result.outcome == "failed"
+    assert 3.0 <= h.clock.now() - start <= 3.1
+    assert any("timed out" in t for t in h.texts(LogLevel.ERROR)), h.log_text()
+
+
+@pytest.mark.parametrize("label, frame_label", [("person", "person"), ("movable", "person"), (None, None)])
+def test_push_never_moves_towards_a_person_or_without_a_class(label, frame_label):
+    h, robot = push_harness(distance_m=0.5)
+    result = run(h.start(), Camera(h, label, frame_label=frame_label), 3.0)
+    assert result.outcome == "person"
+    assert all(t == (0.0, 0.0) for t in twists(h))
+    assert robot.x == 0.0
+
+
+def test_push_stops_at_once_when_a_person_appears():
+    h, robot = push_harness(distance_m=1.0, speed_mps=0.2)
+    result = run(h.start(), Camera(h, lambda t: "movable" if t < 1.0 else "person"), 10.0)
+    assert result.outcome == "person"
+    assert twists(h)[-1] == (0.0, 0.0)
+    assert robot.x == pytest.approx(0.2, abs=0.03)
+
+
+@pytest.mark.parametrize("params, field", [({"distance_m": 0.0}, "distance_m"), ({"distance_m": -0.3}, "distance_m"),
+                                           ({"distance_m": 0.5, "speed_mps": 0.1, "stall_distance_m": 0.2},
+                                            "stall_distance_m")])
+def test_push_rejects_bad_parameters(params, field):
+    with pytest.raises(ConfigError, match=field):
+        PushState(**params)
+
+
+# --- WaitPathClearState ---------------------------------------------------------------------------------
+
+
+def test_wait_returns_clear_once_the_person_walked_away():
+    h = Harness(WaitPathClearState(patience_s=10.0, clear_for_s=1.0))
+    start = h.clock.now()
+    result = run(h.start(), Camera(h, lambda t: "person" if t < 3.0 else "clear"), 15.0)
+    assert result.outcome == "clear"
+    assert 4.0 <= h.clock.now() - start <= 4.2
+    assert result.outputs["waited_s"] == pytest.approx(h.clock.now() - start, abs=0.11)
+
+
+def test_wait_a_flicker_of_clear_does_not_count():
+    h = Harness(WaitPathClearState(patience_s=3.0, clear_for_s=1.0))
+    result = run(h.start(), Camera(h, lambda t: "clear" if int(t * 2) % 2 else "person"), 10.0)
+    assert result.outcome == "still_blocked"
+
+
+@pytest.mark.parametrize("label", ["person", None])
+def test_wait_gives_up_after_its_patience(label):
+    h = Harness(WaitPathClearState(patience_s=2.0, clear_for_s=0.5))
+    start = h.clock.now()
+    result = run(h.start(), Camera(h, label), 10.0)
+    assert result.outcome == "still_blocked"
+    assert 2.0 <= h.clock.now() - start <= 2.1
+    assert any("still blocked" in t for t in h.texts(LogLevel.WARN))
+
+
+def test_wait_blocking_labels_are_configurable_and_validated():
+    h = Harness(WaitPathClearState(patience_s=2.0, blocking=["person", "movable"]))
+    assert run(h.start(), Camera(h, "movable"), 10.0).outcome == "still_blocked"
+    with pytest.raises(ConfigError, match="blocking"):
+        WaitPathClearState(blocking=["chair"])
+
+
+# --- FollowUntilBlockedState ----------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("status, code, message, outcome", [
+    (GoalStatus.SUCCEEDED, FollowPathResult.SUCCESS, "goal reached", "done"),
+    (GoalStatus.ABORTED, FollowPathResult.FAILURE, "blocked: obstacle on the path 0.60 m ahead", "blocked"),
+    (GoalStatus.ABORTED, FollowPathResult.FAILURE, "stale odom: no message for 0.6 s", "failed"),
+    (GoalStatus.PREEMPTED, FollowPathResult.PREEMPT, "replaced", "preempted"),
+])
+def test_follow_until_blocked_maps_the_blocked_reason(status, code, message, outcome):
+    h = Harness(FollowUntilBlockedState(action_name="ctrl"), inputs={"plan": path([(0, 0), (1, 0)])})
+    client = h.proxies.client("ctrl", FollowPathAction)
+    client.respond(status, FollowPathResult(code=code, message=message), delay_s=0.5)
+    assert h.start().run(max_time_s=5.0).outcome == outcome
+    assert any(message in t for t in h.texts())
