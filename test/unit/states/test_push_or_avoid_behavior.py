@@ -1,0 +1,113 @@
+"""behaviors/push_or_avoid.yaml on fake servers: blocked -> movable: push and go on; person: back off, wait,
+never a forward command; heavy: the push stalls, back off, plan around; the tries are bounded."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from actionlib_msgs.msg import GoalStatus
+from geometry_msgs.msg import PoseStamped
+from unit.states.states_testlib import Harness, KinematicRobot, path, pose_stamped, twists
+from unit.states.test_states_obstacles import Camera
+
+from flex_nav.behavior.yaml_loader import load_behavior
+from flex_nav.msg import (
+    ClearCostmapAction,
+    ClearCostmapResult,
+    FollowPathAction,
+    FollowPathResult,
+    GetPathAction,
+    GetPathResult,
+)
+
+BEHAVIORS = Path(__file__).resolve().parents[3] / "behaviors"
+STEP_S = 0.05  # [s]
+BLOCKED = "blocked: obstacle on the path 0.90 m ahead at (2.00, 0.00) for 0.50 s (blocked_distance 1 m)"
+
+
+class Scene:
+    """The behavior with a kinematic robot, a camera and scripted planner / controller / costmap servers."""
+
+    def __init__(self, label, follow_results, plans=6, **parameters) -> None:
+        behavior = load_behavior(BEHAVIORS / "push_or_avoid.yaml", parameters=parameters)
+        self.h = Harness(behavior.root)
+        self.robot = KinematicRobot(self.h)
+        self.planner = self.h.proxies.client("get_path_server", GetPathAction)
+        for _ in range(plans):
+            self.planner.respond(GoalStatus.SUCCEEDED, GetPathResult(code=GetPathResult.SUCCESS,
+                                                                     plan=path([(0, 0), (3, 0)])), delay_s=0.1)
+        self.follower = self.h.proxies.client("pure_pursuit_path", FollowPathAction)
+        for status, code, message in follow_results:
+            self.follower.respond(status, FollowPathResult(code=code, message=message), delay_s=0.5)
+        for name in ("pure_pursuit_path/clear_costmap", "get_path_server/clear_costmap"):
+            clear = self.h.proxies.client(name, ClearCostmapAction)
+            for _ in range(6):
+                clear.respond(GoalStatus.SUCCEEDED, ClearCostmapResult(code=ClearCostmapResult.SUCCESS))
+        self.h.start()
+        self.camera = Camera(self.h, label)
+        self.h.proxies.subscription("move_base_simple/goal", PoseStamped).inject(
+            pose_stamped(3.0, 0.0, stamp_s=self.h.clock.now()))
+
+    def run_until(self, text: str, max_time_s: float, on_step=None) -> float:
+        """Tick until a log line contains ``text``; returns the time it took."""
+        start = self.h.clock.now()
+        while self.h.clock.now() - start <= max_time_s:
+            assert not self.h.tick(), self.h.log_text()
+            if any(text in t for t in self.h.texts()):
+                return self.h.clock.now() - start
+            self.h.advance(STEP_S)
+            if on_step is not None:
+                on_step()
+            self.camera.publish()
+        raise AssertionError(f"no {text!r} within {max_time_s} s:\n{self.h.log_text()}")
+
+    def visited(self) -> list:
+        return [t for t in self.h.texts() if t]
+
+
+BLOCKED_THEN_DONE = [(GoalStatus.ABORTED, FollowPathResult.FAILURE, BLOCKED),
+                     (GoalStatus.SUCCEEDED, FollowPathResult.SUCCESS, "goal reached")]
+
+
+def test_movable_obstacle_is_pushed_and_the_goal_reached():
+    scene = Scene("movable", BLOCKED_THEN_DONE, push_distance_m=0.8, push_speed_mps=0.2)
+    scene.run_until("goal reached", 30.0)
+    assert abs(scene.robot.x - 0.8) < 0.05  # pushed the whole distance
+    assert len(scene.follower.goals) == 2 and len(scene.planner.goals) == 2  # plan, replan after the push
+    assert any("pushed 0.8" in t for t in scene.h.texts())
+
+
+def test_person_is_never_pushed_the_robot_backs_off_waits_and_goes_on():
+    scene = Scene(lambda t: "person" if t < 4.0 else "clear", BLOCKED_THEN_DONE, backoff_m=-0.3)
+    scene.run_until("goal reached", 30.0)
+    assert all(v <= 0.0 for v, _ in twists(scene.h))  # never a forward command (the controller is faked)
+    assert abs(scene.robot.x + 0.3) < 0.03
+    assert any("path clear" in t for t in scene.h.texts())
+    assert len(scene.follower.goals) == 2
+
+
+def test_heavy_obstacle_push_stalls_then_backs_off_and_plans_around():
+    scene = Scene("movable", BLOCKED_THEN_DONE, push_distance_m=1.0, push_speed_mps=0.2, backoff_m=-0.3)
+
+    def heavy():
+        if scene.robot.x >= 0.3 and scene.robot.v > 0.0:
+            scene.robot.blocked = True  # touches the heavy box: no progress any more
+        elif scene.robot.blocked and any("stalled" in t for t in scene.h.texts()):
+            scene.robot.blocked = False  # it can back off
+
+    scene.run_until("goal reached", 40.0, on_step=heavy)
+    texts = scene.h.texts()
+    assert any("stalled" in t for t in texts) and any("planning around it" in t for t in texts)
+    assert abs(scene.robot.x - 0.0) < 0.05  # 0.3 m pushed, 0.3 m backed off
+    assert len(scene.planner.goals) == 2
+
+
+def test_tries_are_bounded_then_the_recovery_chain_runs():
+    always_blocked = [(GoalStatus.ABORTED, FollowPathResult.FAILURE, BLOCKED)] * 8
+    scene = Scene("clear", always_blocked, plans=8, max_tries=2.0)
+    scene.run_until("aborting the goal", 60.0)
+    texts = scene.h.texts()
+    assert len(scene.follower.goals) == 4  # 3 tries + the last one after the recovery chain
+    chain = [next(i for i, t in enumerate(texts) if t.startswith(prefix))
+             for prefix in ("cleared 2 costmap(s)", "turned +", "moved -0.2")]
+    assert chain == sorted(chain), scene.h.log_text()  # clear both, spin, (wait), back up
