@@ -107,6 +107,27 @@ class TestBehaviorRunner(unittest.TestCase):
         self.assertIn(BehaviorStatus.RUNNING, codes)
 
 
+class TestFlexBEBehaviorClass(unittest.TestCase):
+    def test_flexbe_behavior_class_runs_to_its_outcome(self):
+        statuses = []
+        rospy.Subscriber("/flexbe/behavior_runner/status", BehaviorStatus, statuses.append)
+        deadline = time.monotonic() + WAIT_S
+        while time.monotonic() < deadline and not any(m.code == BehaviorStatus.FINISHED for m in list(statuses)):
+            time.sleep(0.05)
+        finished = [m for m in list(statuses) if m.code == BehaviorStatus.FINISHED]
+        self.assertTrue(finished, f"no FINISHED status; got {[(m.behavior, m.code, m.reason) for m in statuses]}")
+        self.assertEqual((finished[-1].behavior, finished[-1].outcome), ("Count", "finished"))
+
+    def test_remote_start_of_a_python_class_is_refused(self):
+        code, out = operator("start", "py:os:system")
+        self.assertEqual(code, 1, out)
+        self.assertIn("not a file", out)
+
+
+class AllRunnerTests(TestBehaviorRunner, TestFlexBEBehaviorClass):
+    """Both groups in one rostest node (rostest.rosrun takes one TestCase class)."""
+
+
 if __name__ == "__main__":
     init_node("test_behavior_runner", master_timeout_s=WAIT_S)
-    rostest.rosrun("flex_nav", "test_behavior_runner", TestBehaviorRunner, sys.argv)
+    rostest.rosrun("flex_nav", "test_behavior_runner", AllRunnerTests, sys.argv)

@@ -3,7 +3,9 @@
 ``rosrun flex_nav behavior_runner _behavior:=NAME_OR_PATH _autonomy:=LEVEL`` starts one at once; without
 ``~behavior`` the runner waits for a ``start`` command. Parameters (private):
 
-- ``~behavior`` (str, ""): behavior name (looked up in ``~behavior_path``) or YAML file
+- ``~behavior`` (str, ""): behavior name (looked up in ``~behavior_path``), YAML file, or a FlexBE behavior class
+  as ``py:package.module:ClassName`` (built with :func:`flex_nav.compat.flexbe_core.build_behavior`; only from
+  this parameter, never from a remote ``start`` command)
 - ``~autonomy`` (str/int, "full"): initial autonomy level (off, low, high, full or 0..3)
 - ``~supervised`` (bool, true): enforce autonomy levels (false: every transition fires by itself)
 - ``~parameters`` (dict, {}): behavior parameter overrides, e.g. ``{backup_distance: 0.1}``
@@ -15,12 +17,14 @@ Commands arrive on ``~command`` (BehaviorCommand); every command is answered on 
 What the behavior does is published by :class:`~flex_nav.ros.operator_interface.OperatorPublisher`.
 Each run gets its own :class:`~flex_nav.ros.proxies.RosProxies`, shut down (goals cancelled, topics
 unregistered) when it ends, so runs never share connections. Command arguments are plain strings;
-``KEY=VALUE`` values are parsed with ``yaml.safe_load`` (never eval'd).
+``KEY=VALUE`` values are parsed with ``yaml.safe_load`` (never eval'd). The runner installs flex_nav's
+``smach`` / ``flexbe_core`` aliases (unless the real packages exist), so state libraries written for them load.
 """
 
 from __future__ import annotations
 
 import concurrent.futures
+import importlib
 import threading
 from pathlib import Path
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
@@ -30,7 +34,11 @@ import yaml
 
 from flex_nav.behavior.autonomy import Autonomy
 from flex_nav.behavior.behavior import Behavior
+from flex_nav.behavior.context import BehaviorContext
 from flex_nav.behavior.executor import BehaviorExecutor, BehaviorResult
+from flex_nav.compat import install_aliases
+from flex_nav.compat.flexbe_core.behavior import Behavior as FlexBEBehavior
+from flex_nav.compat.flexbe_core.behavior import build_behavior
 from flex_nav.exceptions import BehaviorError, ConfigError, FlexNavError, choices_message
 from flex_nav.msg import BehaviorCommand
 from flex_nav.ros.operator_interface import OperatorPublisher
@@ -38,6 +46,7 @@ from flex_nav.ros.proxies import RosProxies
 from flex_nav.ros.ros_clock import RosClock
 
 PACKAGE_BEHAVIORS = Path(__file__).resolve().parents[3] / "behaviors"
+PYTHON_PREFIX = "py:"  # ~behavior given as a FlexBE behavior class: py:package.module:ClassName
 COMMAND_APPLY_TIMEOUT_S = 2.0  # [s] bound on waiting for the executor to apply a command
 STOP_TIMEOUT_S = 5.0  # [s] bound on waiting for a preempted behavior to exit its states
 
@@ -49,6 +58,23 @@ def load_behavior_file(name_or_path: str, parameters: Dict[str, Any], search_pat
     from flex_nav.behavior.yaml_loader import load_behavior  # noqa: PLC0415 - keeps the node's import light
 
     return load_behavior(name_or_path, parameters=parameters, search_path=list(search_path))
+
+
+def flexbe_behavior_class(spec: str) -> type:
+    """The FlexBE behavior class named ``package.module:ClassName``; ConfigError saying what is wrong."""
+    module_name, sep, class_name = spec.partition(":")
+    if not sep or not module_name or not class_name:
+        raise ConfigError(f"FlexBE behavior {spec!r} must be given as package.module:ClassName")
+    install_aliases()
+    try:
+        module = importlib.import_module(module_name)
+    except ImportError as err:
+        raise ConfigError(f"FlexBE behavior {spec!r}: cannot import {module_name}: {err}") from err
+    found = getattr(module, class_name, None)
+    if not (isinstance(found, type) and issubclass(found, FlexBEBehavior)):
+        classes = [n for n, v in vars(module).items() if isinstance(v, type) and issubclass(v, FlexBEBehavior)]
+        raise ConfigError(choices_message(f"FlexBE behavior class in {module_name}", class_name, classes))
+    return found
 
 
 def parse_assignments(items: Sequence[str]) -> Dict[str, Any]:
@@ -76,6 +102,7 @@ class BehaviorRunner:
         self.supervised = supervised
         self.loader = loader
         self.on_done = on_done
+        install_aliases()  # smach / flexbe_core state libraries in YAML behaviors import flex_nav's
         self.operator = OperatorPublisher()
         self._lock = threading.Lock()
         self._executor: Optional[BehaviorExecutor] = None
@@ -93,11 +120,17 @@ class BehaviorRunner:
         with self._lock:
             if self._thread is not None and self._thread.is_alive():
                 raise ConfigError(f"behavior {self._name!r} is still running; stop it first")
-            behavior = self.loader(name_or_path, dict(parameters or {}), self.search_path)
             proxies = RosProxies()
+            context = BehaviorContext(name_or_path, autonomy=level, supervised=self.supervised, clock=RosClock(),
+                                      proxies=proxies)
+            if name_or_path.startswith(PYTHON_PREFIX):
+                behavior = build_behavior(flexbe_behavior_class(name_or_path[len(PYTHON_PREFIX):]),
+                                          parameters=dict(parameters or {}), context=context)
+            else:
+                behavior = self.loader(name_or_path, dict(parameters or {}), self.search_path)
+            context.name = behavior.name
             executor = BehaviorExecutor(
-                behavior, inputs=dict(inputs or {}), clock=RosClock(), autonomy=level,
-                supervised=self.supervised, proxies=proxies, should_stop=rospy.is_shutdown,
+                behavior, inputs=dict(inputs or {}), context=context, should_stop=rospy.is_shutdown
             )
             self.operator.attach(executor.context.hooks, behavior.name, int(level))
             self._executor, self._proxies, self._name = executor, proxies, behavior.name
@@ -158,7 +191,7 @@ class BehaviorRunner:
         if command == "start":
             if not args:
                 raise ConfigError("start needs a behavior name or file")
-            if "/" in args[0] or args[0].endswith((".yaml", ".yml")):
+            if "/" in args[0] or args[0].endswith((".yaml", ".yml")) or args[0].startswith(PYTHON_PREFIX):
                 raise ConfigError(
                     f"start takes a behavior name from the search path, not a file: {args[0]!r} "
                     f"(search path: {', '.join(str(p) for p in self.search_path)})"
