@@ -8,14 +8,16 @@ where it is does not decide. :class:`ClassReader` is the shared reading used by 
 
 from __future__ import annotations
 
+import math
 from typing import Optional
 
 from flex_nav.behavior.state import State
 from flex_nav.behavior.userdata import UserDataView
+from flex_nav.exceptions import ConfigError
 from flex_nav.msg import ObstacleClass
 from flex_nav.perception.labels import CLEAR, MOVABLE, PERSON, UNKNOWN
 from flex_nav_states import validation
-from flex_nav_states.messages import message_age_s
+from flex_nav_states.messages import message_age_s, stamp_s
 from flex_nav_states.proxy_types import SubscriptionLike, proxies_of
 
 DECIDED = (PERSON, MOVABLE, CLEAR)
@@ -32,14 +34,18 @@ class ClassReader:
     def start(self, state: State) -> None:
         self._sub = proxies_of(state).subscription(self.topic, ObstacleClass)
 
-    def latest(self, state: State) -> Optional[ObstacleClass]:
-        """The newest message if it is at most max_age_s old on the behavior's clock, else None."""
+    def latest(self, state: State, not_before_s: float = -math.inf) -> Optional[ObstacleClass]:
+        """The newest message if it is at most max_age_s old on the behavior's clock (and, for a stamped
+        message, stamped at or after ``not_before_s`` [s]), else None."""
         if self._sub is None:
             self.start(state)
         sub = self._sub
         assert sub is not None
         msg = sub.last()
         if msg is None or message_age_s(msg, sub, state.now_s()) > self.max_age_s:
+            return None
+        stamp = stamp_s(msg)
+        if stamp > 0.0 and stamp < not_before_s:
             return None
         return msg
 
@@ -53,12 +59,15 @@ class ObstacleClassState(State):
     """Reads the class of the region in front of the robot from the obstacle classifier.
 
     Waits up to ``timeout_s`` after entry for a fresh message whose vote is decided (person, movable or
-    clear). A person seen by the latest frame alone already counts as person (never push a person on a
-    vote that lags). Nothing decided in time gives ``unknown``.
+    clear). A person seen by the latest frame alone already counts as person at once (never push a person
+    on a vote that lags); any other label counts only from a message stamped ``settle_s`` after entry, so
+    the vote is made of frames taken after the robot stopped in front of the obstacle, not while it was
+    approaching or turning. Nothing decided in time gives ``unknown``.
 
     -- class_topic      str    flex_nav/ObstacleClass topic of the obstacle_classifier node.
     -- class_max_age_s  float  [s] Older messages (by header stamp) do not count.
-    -- timeout_s        float  [s] How long to wait for a decided class.
+    -- settle_s         float  [s] Labels other than person count from messages stamped this long after entry.
+    -- timeout_s        float  [s] How long to wait for a decided class (longer than settle_s).
 
     #> obstacle_class  str  person, movable, clear or unknown.
 
@@ -68,12 +77,16 @@ class ObstacleClassState(State):
     <= unknown  No fresh decided class within timeout_s (classifier silent or undecided).
     """
 
-    def __init__(self, class_topic: str = "obstacle_class", class_max_age_s: float = 1.0,
+    def __init__(self, class_topic: str = "obstacle_class", class_max_age_s: float = 1.0, settle_s: float = 0.0,
                  timeout_s: float = 2.0) -> None:
         super().__init__(outcomes=[PERSON, MOVABLE, CLEAR, UNKNOWN], output_keys=["obstacle_class"], rate_hz=20.0)
         owner = type(self).__name__
         self._reader = ClassReader(owner, class_topic, class_max_age_s)
+        self._settle_s = validation.number(owner, "settle_s", settle_s, minimum=0.0, unit="[s]")
         self._timeout_s = validation.number(owner, "timeout_s", timeout_s, positive=True, unit="[s]")
+        if self._timeout_s <= self._settle_s:
+            raise ConfigError(f"{owner}: timeout_s {self._timeout_s:g} s must be longer than settle_s "
+                              f"{self._settle_s:g} s")
         self._enter_s = 0.0
 
     def on_start(self) -> None:
@@ -83,10 +96,14 @@ class ObstacleClassState(State):
         self._enter_s = self.now_s()
 
     def execute(self, userdata: UserDataView) -> Optional[str]:
-        msg = self._reader.latest(self)
         label = UNKNOWN
-        if msg is not None:
-            label = PERSON if PERSON in (msg.label, msg.frame_label) else msg.label
+        msg = self._reader.latest(self)
+        if msg is not None and PERSON in (msg.label, msg.frame_label):
+            label = PERSON
+        else:
+            msg = self._reader.latest(self, not_before_s=self._enter_s + self._settle_s)
+            if msg is not None:
+                label = msg.label
         if label in DECIDED:
             userdata.obstacle_class = label
             confidence = f" ({msg.votes}/{msg.window} votes, confidence {msg.confidence:.2f})" if msg else ""

@@ -111,3 +111,13 @@ def test_tries_are_bounded_then_the_recovery_chain_runs():
     chain = [next(i for i, t in enumerate(texts) if t.startswith(prefix))
              for prefix in ("cleared 2 costmap(s)", "turned +", "moved -0.2")]
     assert chain == sorted(chain), scene.h.log_text()  # clear both, spin, (wait), back up
+
+
+def test_a_follow_failure_that_is_not_blocked_is_not_classified_and_nothing_is_pushed():
+    stale = [(GoalStatus.ABORTED, FollowPathResult.FAILURE, "robot pose unknown: no odometry received yet"),
+             (GoalStatus.SUCCEEDED, FollowPathResult.SUCCESS, "goal reached")]
+    scene = Scene("movable", stale)
+    scene.run_until("goal reached", 30.0)
+    assert all(v == 0.0 for v, _ in twists(scene.h))  # no push: only the (faked) controller drives
+    assert not any("obstacle class" in t for t in scene.h.texts())
+    assert len(scene.follower.goals) == 2

@@ -220,3 +220,23 @@ def test_follow_until_blocked_maps_the_blocked_reason(status, code, message, out
     client.respond(status, FollowPathResult(code=code, message=message), delay_s=0.5)
     assert h.start().run(max_time_s=5.0).outcome == outcome
     assert any(message in t for t in h.texts())
+
+
+def test_class_state_settle_ignores_the_vote_taken_while_approaching():
+    h = Harness(ObstacleClassState(settle_s=1.0, timeout_s=3.0))
+    start = h.clock.now()
+    result = run(h.start(), Camera(h, lambda t: "clear" if t < 0.8 else "movable"), 5.0)
+    assert result.outcome == "movable"  # without settle_s it would be the approach's "clear"
+    assert h.clock.now() - start >= 1.0
+
+
+def test_class_state_settle_does_not_delay_a_person():
+    h = Harness(ObstacleClassState(settle_s=1.0, timeout_s=3.0))
+    start = h.clock.now()
+    assert run(h.start(), Camera(h, "movable", frame_label="person"), 5.0).outcome == "person"
+    assert h.clock.now() - start < 0.2
+
+
+def test_class_state_timeout_must_exceed_settle():
+    with pytest.raises(ConfigError, match="settle_s"):
+        ObstacleClassState(settle_s=2.0, timeout_s=2.0)
