@@ -1,0 +1,95 @@
+"""What one scenario run measured (:class:`RunResult`) and the robot's clearance to people.
+
+People in the simulator are kinematic and scripted, so where each one was at a simulated time follows
+from the world file alone: standing at the first waypoint until it starts walking (its ``start`` time or
+its first ``start_walking`` event), then :meth:`Person.pose_after` of the time walked. ``stop_walking``
+events are taken into account as well. The clearance is the centre distance minus the person's radius
+and the robot's radius (negative = overlap).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+from typing import Any, Dict, List, Sequence, Tuple
+
+ROBOT_RADIUS_M = 0.171  # [m] TurtleBot 4 (sim/robots/turtlebot4.yaml)
+
+
+@dataclass
+class RunResult:
+    """One run of one scenario with one behavior and one seed."""
+
+    world: str
+    behavior: str
+    seed: int
+    success: bool = False
+    time_s: float = math.nan  # [s] simulated time from the goal to arrival (NaN if not reached)
+    path_m: float = 0.0  # [m] distance driven (ground truth)
+    pushes_tried: int = 0
+    pushes_succeeded: int = 0
+    people_contacts: int = 0  # contacts that began between the robot and a person
+    min_people_clearance_m: float = math.inf  # [m] smallest robot-person gap (inf: no person in the world)
+    note: str = ""  # why it ended when not reached
+    picture: str = ""
+
+    def to_dict(self) -> Dict[str, Any]:
+        values = asdict(self)
+        for key in ("time_s", "min_people_clearance_m"):  # JSON has no NaN / inf
+            value = values[key]
+            values[key] = None if not math.isfinite(value) else value
+        return values
+
+    @classmethod
+    def from_dict(cls, values: Dict[str, Any]) -> RunResult:
+        data = dict(values)
+        data["time_s"] = math.nan if data.get("time_s") is None else float(data["time_s"])
+        clearance = data.get("min_people_clearance_m")
+        data["min_people_clearance_m"] = math.inf if clearance is None else float(clearance)
+        return cls(**data)
+
+
+def walking_intervals(person: Any, events: Sequence[Any]) -> List[Tuple[float, float]]:
+    """[(start, end)] simulated times [s] while ``person`` walks (end inf: until the end)."""
+    if not person.walks:
+        return []
+    changes: List[Tuple[float, bool]] = []
+    if person.start_time is not None:
+        changes.append((float(person.start_time), True))
+    for event in events:
+        if event.target == person.name and event.action in ("start_walking", "stop_walking"):
+            changes.append((float(event.time), event.action == "start_walking"))
+    changes.sort(key=lambda c: c[0])
+    intervals: List[Tuple[float, float]] = []
+    start = None
+    for when, walking in changes:
+        if walking and start is None:
+            start = when
+        elif not walking and start is not None:
+            intervals.append((start, when))
+            start = None
+    if start is not None:
+        intervals.append((start, math.inf))
+    return intervals
+
+
+def person_position(person: Any, intervals: Sequence[Tuple[float, float]], sim_s: float) -> Tuple[float, float]:
+    """(x, y) [m] of ``person`` at simulated time ``sim_s``."""
+    walked = sum(max(0.0, min(sim_s, end) - start) for start, end in intervals)
+    x, y, _yaw = person.pose_after(walked)
+    return x, y
+
+
+def people_clearance(world: Any, trajectory: Sequence[Tuple[float, float, float]], goal_sim_s: float = 0.0,
+                     robot_radius_m: float = ROBOT_RADIUS_M) -> float:
+    """Smallest gap [m] between the robot (trajectory of (sim s, x, y) from ``goal_sim_s`` on) and any person
+    of ``world``; inf without people or samples."""
+    best = math.inf
+    for person in world.people:
+        intervals = walking_intervals(person, world.events)
+        for t, x, y in trajectory:
+            if t < goal_sim_s:
+                continue
+            px, py = person_position(person, intervals, t)
+            best = min(best, math.hypot(x - px, y - py) - person.radius - robot_radius_m)
+    return best

@@ -1,0 +1,78 @@
+"""Scenario evaluation: people positions and clearance from the world file, result round trip, the table."""
+
+import csv
+import io
+import math
+
+import pytest
+
+from flex_nav.eval.metrics import RunResult, people_clearance, person_position, walking_intervals
+from flex_nav.eval.table import to_csv, to_markdown
+from flex_nav_sim.world import load_world
+
+
+def test_s3_person_stands_in_the_door_until_the_event_then_walks():
+    world = load_world("s3_person_in_door")
+    person = world.people[0]
+    intervals = walking_intervals(person, world.events)
+    assert intervals == [(25.0, math.inf)]
+    assert person_position(person, intervals, 10.0) == pytest.approx((5.0, 2.0))
+    assert person_position(person, intervals, 24.9) == pytest.approx((5.0, 2.0))
+    x, y = person_position(person, intervals, 27.0)  # 2 s at 0.6 m/s along the first leg
+    assert math.hypot(x - 5.0, y - 2.0) == pytest.approx(1.2, abs=0.01)
+
+
+def test_clearance_is_centre_distance_minus_both_radii():
+    world = load_world("s3_person_in_door")
+    radius = world.people[0].radius
+    trajectory = [(0.0, 1.5, 2.0), (5.0, 4.0, 2.0), (6.0, 3.0, 2.0)]
+    assert people_clearance(world, trajectory, robot_radius_m=0.2) == pytest.approx(1.0 - radius - 0.2)
+    assert people_clearance(world, trajectory[:1], goal_sim_s=1.0) == math.inf  # no sample after the goal
+
+
+def test_a_world_without_people_has_infinite_clearance():
+    assert people_clearance(load_world("s1_light_box_door"), [(0.0, 1.0, 1.0)]) == math.inf
+
+
+def test_walker_with_a_start_time_and_a_stop_event():
+    class P:
+        name, walks, start_time = "p", True, 2.0
+
+    class E:
+        def __init__(self, time, action):
+            self.time, self.action, self.target = time, action, "p"
+
+    assert walking_intervals(P, [E(5.0, "stop_walking"), E(8.0, "start_walking")]) == [(2.0, 5.0), (8.0, math.inf)]
+
+
+def results():
+    return [
+        RunResult("s1", "move_base_like", 0, success=False, note="goal given up", path_m=3.0),
+        RunResult("s1", "push_or_avoid", 0, success=True, time_s=40.0, path_m=8.0, pushes_tried=1,
+                  pushes_succeeded=1),
+        RunResult("s1", "push_or_avoid", 1, success=True, time_s=50.0, path_m=9.0, pushes_tried=2,
+                  pushes_succeeded=1, min_people_clearance_m=0.4),
+    ]
+
+
+def test_result_round_trips_through_json_values():
+    for result in results():
+        assert RunResult.from_dict(result.to_dict()).to_dict() == result.to_dict()
+    back = RunResult.from_dict(results()[0].to_dict())
+    assert math.isnan(back.time_s) and back.min_people_clearance_m == math.inf
+
+
+def test_csv_has_one_row_per_run_and_empty_cells_for_missing_values():
+    rows = list(csv.DictReader(io.StringIO(to_csv(results()))))
+    assert len(rows) == 3
+    assert rows[0]["time_s"] == "" and rows[0]["success"] == "False"
+    assert rows[2]["pushes_tried"] == "2"
+
+
+def test_markdown_summarises_per_scenario_and_behavior():
+    text = to_markdown(results())
+    lines = text.splitlines()
+    assert lines[0].startswith("| scenario | behavior | success | time to goal [s]")
+    assert "| s1 | move_base_like | 0/1 | - | - | 0/0 | 0 | - |" in lines
+    assert "| s1 | push_or_avoid | 2/2 | 45.0 | 8.5 | 3/2 | 0 | 0.40 |" in lines
+    assert "s1 / move_base_like / seed 0: goal given up" in text
