@@ -21,10 +21,12 @@ furniture colours (greys, whites, wood, muted blue), which is what lets the mode
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
+import sys
 from dataclasses import dataclass
-from typing import Any, Callable, Dict, List, Sequence, Tuple
+from typing import Any, Callable, Dict, Iterator, List, Sequence, Tuple
 
 import numpy as np
 import pybullet
@@ -199,6 +201,24 @@ def person_walker(sc: Scene, x: float, y: float, yaw: float, dress: bool = False
     sc.sphere((x, y, shoulder + 0.15 * s), 0.1 * s, skin)
 
 
+@contextlib.contextmanager
+def quiet_output() -> Iterator[None]:
+    """Silence file descriptors 1 and 2 (pybullet's C code prints its warnings there, around sys.stdout)."""
+    sys.stdout.flush()
+    sys.stderr.flush()
+    saved = [os.dup(1), os.dup(2)]
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    try:
+        os.dup2(devnull, 1)
+        os.dup2(devnull, 2)
+        yield
+    finally:
+        os.dup2(saved[0], 1)
+        os.dup2(saved[1], 2)
+        for fd in (*saved, devnull):
+            os.close(fd)
+
+
 def _color_links(sc: Scene, body: int, colors: Callable[[str], Rgba]) -> None:
     sc.c.changeVisualShape(body, -1, rgbaColor=list(colors("base")))
     for j in range(sc.c.getNumJoints(body)):
@@ -265,8 +285,9 @@ def person_deepmimic(sc: Scene, x: float, y: float, yaw: float) -> None:
     rng, c = sc.rng, sc.c
     scale = rng.uniform(0.22, 0.27)
     orn = c.getQuaternionFromEuler([math.pi / 2.0, 0.0, yaw])
-    body = c.loadURDF(os.path.join(DATA, "humanoid", "humanoid.urdf"), [x, y, 1.0], orn, globalScaling=scale,
-                      useFixedBase=True)
+    with quiet_output():  # the URDF parser warns about every joint without an axis
+        body = c.loadURDF(os.path.join(DATA, "humanoid", "humanoid.urdf"), [x, y, 1.0], orn, globalScaling=scale,
+                          useFixedBase=True)
     stride = rng.uniform(-0.6, 0.6)
     for j in range(c.getNumJoints(body)):
         name = c.getJointInfo(body, j)[1].decode()
