@@ -29,6 +29,8 @@ from flex_nav_states.messages import OdomSample, message_age_s, odom_sample, sam
 from flex_nav_states.proxy_types import PublisherLike, SubscriptionLike, proxies_of
 
 MOTION_RATE_HZ = 20.0  # [Hz] default rate of the motion states (a twist_relay times out after 0.5 s)
+AUTO_TIMEOUT_FACTOR = 2.0  # timeout_s 0: this many times the nominal duration ...
+AUTO_TIMEOUT_MARGIN_S = 2.0  # [s] ... plus this margin
 
 
 class StallWatch:
@@ -58,6 +60,35 @@ class StallWatch:
     @property
     def best(self) -> float:
         return self._best
+
+
+def closed_loop_timeout(owner: str, timeout_s: float, *, amount: float, amount_name: str, speed: float,
+                        speed_name: str) -> float:
+    """[s] The timeout of a closed-loop move of ``amount`` at ``speed``: ``timeout_s``, or when 0 twice the nominal
+    duration plus a margin; ConfigError when it is shorter than the nominal duration."""
+    timeout = validation.number(owner, "timeout_s", timeout_s, minimum=0.0, unit="[s]")
+    nominal_s = abs(amount) / speed
+    if timeout == 0.0:
+        return AUTO_TIMEOUT_FACTOR * nominal_s + AUTO_TIMEOUT_MARGIN_S
+    if timeout < nominal_s:
+        raise ConfigError(
+            f"{owner}: timeout_s {timeout:g} s is shorter than |{amount_name}| / {speed_name} = {nominal_s:.2f} s"
+        )
+    return timeout
+
+
+def stall_watch(owner: str, stall_window_s: float, *, progress_name: str, min_progress: float, unit: str,
+                slowest_speed: float) -> StallWatch:
+    """A StallWatch for ``min_progress`` [unit] per ``stall_window_s`` [s]; ConfigError when that progress cannot be
+    made in the window at ``slowest_speed`` [unit/s] (the watch would fire on a robot that moves as told)."""
+    window = validation.number(owner, "stall_window_s", stall_window_s, positive=True, unit="[s]")
+    least = validation.number(owner, progress_name, min_progress, positive=True, unit=f"[{unit}]")
+    if least >= slowest_speed * window:
+        raise ConfigError(
+            f"{owner}: {progress_name} {least:g} {unit} cannot be made in stall_window_s {window:g} s at the "
+            f"slowest commanded speed {slowest_speed:g} {unit}/s; lower it below {slowest_speed * window:g} {unit}"
+        )
+    return StallWatch(window, least)
 
 
 class MotionBase(State):

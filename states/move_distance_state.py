@@ -9,14 +9,12 @@ from flex_nav.behavior.userdata import UserDataView
 from flex_nav.exceptions import ConfigError
 from flex_nav_states import validation
 from flex_nav_states.messages import OdomSample, wrap_angle
-from flex_nav_states.motion_base import MotionBase, StallWatch
+from flex_nav_states.motion_base import MotionBase, closed_loop_timeout, stall_watch
 
 SLOWDOWN_GAIN = 1.5  # [1/s] commanded speed = gain x remaining distance near the end (capped at speed_mps)
 MIN_SPEED_MPS = 0.05  # [m/s] slowest commanded speed (below this many bases do not move)
 HEADING_GAIN = 1.0  # [1/s] yaw rate per radian of heading error (keeps the line straight)
 MAX_HEADING_RATE = 0.5  # [rad/s] bound of the heading correction
-AUTO_TIMEOUT_FACTOR = 2.0  # timeout_s 0: this many times the nominal duration ...
-AUTO_TIMEOUT_MARGIN_S = 2.0  # [s] ... plus this margin
 
 
 class MoveDistanceState(MotionBase):
@@ -68,24 +66,11 @@ class MoveDistanceState(MotionBase):
             raise ConfigError(f"{owner}: distance_m must not be 0 [m]")
         self._speed_mps = validation.number(owner, "speed_mps", speed_mps, positive=True, unit="[m/s]")
         self._tolerance_m = validation.number(owner, "tolerance_m", tolerance_m, positive=True, unit="[m]")
-        timeout = validation.number(owner, "timeout_s", timeout_s, minimum=0.0, unit="[s]")
-        nominal_s = abs(self._distance_m) / self._speed_mps
-        if timeout == 0.0:
-            timeout = AUTO_TIMEOUT_FACTOR * nominal_s + AUTO_TIMEOUT_MARGIN_S
-        elif timeout < nominal_s:
-            raise ConfigError(
-                f"{owner}: timeout_s {timeout:g} s is shorter than |distance_m| / speed_mps = {nominal_s:.2f} s"
-            )
-        self._timeout_s = timeout
-        window = validation.number(owner, "stall_window_s", stall_window_s, positive=True, unit="[s]")
-        stall = validation.number(owner, "stall_distance_m", stall_distance_m, positive=True, unit="[m]")
-        slowest = min(MIN_SPEED_MPS, self._speed_mps)
-        if stall >= slowest * window:
-            raise ConfigError(
-                f"{owner}: stall_distance_m {stall:g} m cannot be driven in stall_window_s {window:g} s at the "
-                f"slowest commanded speed {slowest:g} m/s; lower it below {slowest * window:g} m"
-            )
-        self._stall = StallWatch(window, stall)
+        self._timeout_s = closed_loop_timeout(owner, timeout_s, amount=self._distance_m, amount_name="distance_m",
+                                              speed=self._speed_mps, speed_name="speed_mps")
+        self._stall = stall_watch(owner, stall_window_s, progress_name="stall_distance_m",
+                                  min_progress=stall_distance_m, unit="m",
+                                  slowest_speed=min(MIN_SPEED_MPS, self._speed_mps))
         self._start: Optional[OdomSample] = None
         self._progress_m = 0.0
 

@@ -9,12 +9,10 @@ from flex_nav.behavior.userdata import UserDataView
 from flex_nav.exceptions import ConfigError
 from flex_nav_states import validation
 from flex_nav_states.messages import wrap_angle
-from flex_nav_states.motion_base import MotionBase, StallWatch
+from flex_nav_states.motion_base import MotionBase, closed_loop_timeout, stall_watch
 
 SLOWDOWN_GAIN = 1.5  # [1/s] commanded yaw rate = gain x remaining angle near the end (capped)
 MIN_RATE_RADPS = 0.15  # [rad/s] slowest commanded yaw rate (static friction)
-AUTO_TIMEOUT_FACTOR = 2.0  # timeout_s 0: this many times the nominal duration ...
-AUTO_TIMEOUT_MARGIN_S = 2.0  # [s] ... plus this margin
 
 
 class RotateAngleState(MotionBase):
@@ -66,25 +64,11 @@ class RotateAngleState(MotionBase):
         self._speed = validation.number(owner, "angular_speed_radps", angular_speed_radps, positive=True,
                                         unit="[rad/s]")
         self._tolerance_rad = validation.number(owner, "tolerance_rad", tolerance_rad, positive=True, unit="[rad]")
-        timeout = validation.number(owner, "timeout_s", timeout_s, minimum=0.0, unit="[s]")
-        nominal_s = abs(self._angle_rad) / self._speed
-        if timeout == 0.0:
-            timeout = AUTO_TIMEOUT_FACTOR * nominal_s + AUTO_TIMEOUT_MARGIN_S
-        elif timeout < nominal_s:
-            raise ConfigError(
-                f"{owner}: timeout_s {timeout:g} s is shorter than |angle_rad| / angular_speed_radps = "
-                f"{nominal_s:.2f} s"
-            )
-        self._timeout_s = timeout
-        window = validation.number(owner, "stall_window_s", stall_window_s, positive=True, unit="[s]")
-        stall = validation.number(owner, "stall_angle_rad", stall_angle_rad, positive=True, unit="[rad]")
-        slowest = min(MIN_RATE_RADPS, self._speed)
-        if stall >= slowest * window:
-            raise ConfigError(
-                f"{owner}: stall_angle_rad {stall:g} rad cannot be turned in stall_window_s {window:g} s at the "
-                f"slowest commanded rate {slowest:g} rad/s; lower it below {slowest * window:g} rad"
-            )
-        self._stall = StallWatch(window, stall)
+        self._timeout_s = closed_loop_timeout(owner, timeout_s, amount=self._angle_rad, amount_name="angle_rad",
+                                              speed=self._speed, speed_name="angular_speed_radps")
+        self._stall = stall_watch(owner, stall_window_s, progress_name="stall_angle_rad",
+                                  min_progress=stall_angle_rad, unit="rad",
+                                  slowest_speed=min(MIN_RATE_RADPS, self._speed))
         self._last_yaw: Optional[float] = None
         self._turned_rad = 0.0
 

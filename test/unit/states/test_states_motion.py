@@ -353,3 +353,13 @@ def test_pure_pursuit_preempt_publishes_zero():
 def test_pure_pursuit_parameters_are_validated(params, match):
     with pytest.raises(ConfigError, match=match):
         PurePursuitState(**params)
+
+
+def test_closed_loop_limits_are_checked_at_construction():
+    with pytest.raises(ConfigError, match=r"timeout_s 5 s is shorter than \|distance_m\| / speed_mps = 10.00 s"):
+        MoveDistanceState(distance_m=1.0, speed_mps=0.1, timeout_s=5.0)
+    with pytest.raises(ConfigError, match=r"stall_distance_m 1 m cannot be made in stall_window_s 1 s"):
+        MoveDistanceState(distance_m=1.0, stall_distance_m=1.0)
+    with pytest.raises(ConfigError, match=r"stall_angle_rad 2 rad cannot be made"):
+        RotateAngleState(angle_rad=1.0, stall_angle_rad=2.0)
+    assert MoveDistanceState(distance_m=-0.5, speed_mps=0.25)._timeout_s == pytest.approx(2.0 * 2.0 + 2.0)
