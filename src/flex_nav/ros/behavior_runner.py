@@ -106,7 +106,6 @@ class BehaviorRunner:
         self.operator = OperatorPublisher()
         self._lock = threading.Lock()
         self._executor: Optional[BehaviorExecutor] = None
-        self._proxies: Optional[RosProxies] = None
         self._thread: Optional[threading.Thread] = None
         self._name = ""
         self._command_sub = rospy.Subscriber("~command", BehaviorCommand, self._on_command, queue_size=10)
@@ -123,17 +122,21 @@ class BehaviorRunner:
             proxies = RosProxies()
             context = BehaviorContext(name_or_path, autonomy=level, supervised=self.supervised, clock=RosClock(),
                                       proxies=proxies)
-            if name_or_path.startswith(PYTHON_PREFIX):
-                behavior = build_behavior(flexbe_behavior_class(name_or_path[len(PYTHON_PREFIX):]),
-                                          parameters=dict(parameters or {}), context=context)
-            else:
-                behavior = self.loader(name_or_path, dict(parameters or {}), self.search_path)
-            context.name = behavior.name
-            executor = BehaviorExecutor(
-                behavior, inputs=dict(inputs or {}), context=context, should_stop=rospy.is_shutdown
-            )
+            try:
+                if name_or_path.startswith(PYTHON_PREFIX):
+                    behavior = build_behavior(flexbe_behavior_class(name_or_path[len(PYTHON_PREFIX):]),
+                                              parameters=dict(parameters or {}), context=context)
+                else:
+                    behavior = self.loader(name_or_path, dict(parameters or {}), self.search_path)
+                context.name = behavior.name
+                executor = BehaviorExecutor(
+                    behavior, inputs=dict(inputs or {}), context=context, should_stop=rospy.is_shutdown
+                )
+            except BaseException:
+                proxies.shutdown()  # connections a state made while being built must not outlive a failed start
+                raise
             self.operator.attach(executor.context.hooks, behavior.name, int(level))
-            self._executor, self._proxies, self._name = executor, proxies, behavior.name
+            self._executor, self._name = executor, behavior.name
             self._thread = threading.Thread(
                 target=self._run, args=(executor, proxies), name=f"behavior {behavior.name}", daemon=True
             )
