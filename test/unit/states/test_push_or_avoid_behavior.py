@@ -121,3 +121,15 @@ def test_a_follow_failure_that_is_not_blocked_is_not_classified_and_nothing_is_p
     assert all(v == 0.0 for v, _ in twists(scene.h))  # no push: only the (faked) controller drives
     assert not any("obstacle class" in t for t in scene.h.texts())
     assert len(scene.follower.goals) == 2
+
+
+def test_following_without_progress_ends_as_stuck_and_is_replanned_not_classified():
+    scene = Scene("movable", [])  # the controller never answers and the robot does not move
+    took = scene.run_until("goal sent: plan to", 1.0)
+    assert took < 1.0
+    scene.run_until("robot stuck", 15.0)
+    scene.follower.respond(GoalStatus.SUCCEEDED, FollowPathResult(code=FollowPathResult.SUCCESS, message="ok"))
+    scene.run_until("goal reached", 10.0)
+    assert scene.follower.cancels == 1  # the stuck attempt's goal was cancelled
+    assert len(scene.follower.goals) == 2 and len(scene.planner.goals) == 2
+    assert all(v == 0.0 for v, _ in twists(scene.h))  # nothing pushed
