@@ -11,6 +11,8 @@ from pathlib import Path
 import rosgraph
 import rostest
 
+from flex_nav_sim.world import available_worlds
+
 SIM = Path(__file__).resolve().parents[2] / "scripts" / "sim"
 RUN_TIMEOUT_S = 60.0  # [s] a rejected start must end well within this
 
@@ -38,7 +40,9 @@ class TestSimBadInput(unittest.TestCase):
 
     def test_unknown_world(self):
         err = self.run_sim("_world:=moon")
-        self.assertIn("world 'moon' is not valid (valid: corridor, lab, open_room, two_rooms)", err)
+        shipped = ", ".join(available_worlds())
+        self.assertIn("corridor, lab, open_room", shipped)
+        self.assertIn(f"world 'moon' is not valid (valid: {shipped})", err)
 
     def test_unknown_profile(self):
         err = self.run_sim("_world:=lab", "_robots:=robot1:roomba")

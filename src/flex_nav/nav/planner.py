@@ -55,6 +55,8 @@ class PlannerParams:
     unknown_cost: int = 252  # cell cost used for NO_INFORMATION cells when allow_unknown
     diagonal_factor: float = math.sqrt(2.0)  # cost multiplier of a diagonal move (1..2)
     goal_tolerance: float = 0.0  # [m] move a blocked goal to a passable cell this close
+    start_escape: float = 0.0  # [m] a start on an impassable, not lethal cell (e.g. inscribed, next to a bumper
+    #   contact) may leave through such cells within this distance (move_base's planner clears the robot's cell)
     smooth: bool = False  # shortcut the grid path along straight lines where that costs no more
     smoothing_slack: float = 0.0  # shortcuts may cost this fraction more than the path they replace
     simplify: bool = False  # drop poses in the middle of straight runs
@@ -63,6 +65,7 @@ class PlannerParams:
         _finite(self.neutral_cost, "neutral_cost", low=1e-9)
         _finite(self.cost_factor, "cost_factor", low=0.0)
         _finite(self.goal_tolerance, "goal_tolerance", low=0.0)
+        _finite(self.start_escape, "start_escape", low=0.0)
         _finite(self.smoothing_slack, "smoothing_slack", low=0.0)
         _finite(self.diagonal_factor, "diagonal_factor", low=1.0)
         if self.diagonal_factor > 2.0:
@@ -146,6 +149,9 @@ class GridPlanner:
         start_cell = geometry.world_to_cell(start[0], start[1])
         goal_cell = geometry.world_to_cell(goal[0], goal[1])
         start_cost = int(costs[start_cell])
+        if not self.passable(start_cost) and start_cost < LETHAL and self.params.start_escape > 0.0:
+            costs = self._escape_costs(costs, geometry, start_cell)
+            start_cost = int(costs[start_cell])
         if not self.passable(start_cost):
             return PlanResult(
                 PlanStatus.START_BLOCKED,
@@ -183,6 +189,22 @@ class GridPlanner:
             expanded,
             (int(goal_cell[0]), int(goal_cell[1])),
         )
+
+    def _escape_costs(self, costs: np.ndarray, geometry: CostmapGeometry, start: Tuple[int, int]) -> np.ndarray:
+        """A copy of ``costs`` where the impassable, not lethal cells within ``start_escape`` of the start are
+        made passable at the highest passable cost, so the path can leave them (costly, so it leaves them fast)."""
+        radius = math.ceil(self.params.start_escape / geometry.resolution)
+        rows = slice(max(0, start[0] - radius), min(costs.shape[0], start[0] + radius + 1))
+        cols = slice(max(0, start[1] - radius), min(costs.shape[1], start[1] + radius + 1))
+        rr, cc = np.mgrid[rows, cols]
+        near = (rr - start[0]) ** 2 + (cc - start[1]) ** 2 <= radius * radius
+        window = costs[rows, cols]
+        blocked = near & (window >= self.params.lethal_cost) & (window < LETHAL)
+        if not blocked.any():
+            return costs
+        escaped = costs.copy()
+        escaped[rows, cols][blocked] = self.params.lethal_cost - 1
+        return escaped
 
     def plan_cells(
         self, costs: np.ndarray, start: Tuple[int, int], goal: Tuple[int, int]

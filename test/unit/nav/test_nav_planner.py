@@ -288,3 +288,28 @@ def test_full_queue_storage_is_grown_and_the_search_repeated():
     cost, _, expanded = planner.plan_cells(costs, s, g)
     assert cost == GridPlanner().plan_cells(costs, s, g)[0] and expanded > 0
     assert len(planner._heap) > 2 and len(planner._stack) > 1
+
+
+def test_start_escape_leaves_an_inscribed_start_but_nothing_else_changes():
+    # the robot backed off a bumper contact and stands on an inscribed cell, as in a bumper recovery
+    geo = CostmapGeometry(40, 20, RES)
+    costs = np.zeros((20, 40), dtype=np.uint8)
+    costs[8:13, 8:13] = INSCRIBED  # around the start
+    costs[10, 10] = INSCRIBED
+    costs[:, 30] = INSCRIBED  # a wall of inscribed cells far from the start
+    costs[5, 30] = 0  # with one free gap
+    start, goal = (1.05, 1.05), (3.55, 1.05)
+    strict = GridPlanner(PlannerParams())
+    assert strict.plan(costs, geo, start, goal).status is PlanStatus.START_BLOCKED
+    escaping = GridPlanner(PlannerParams(start_escape=0.3))
+    result = escaping.plan(costs, geo, start, goal)
+    assert result.status is PlanStatus.SUCCESS
+    crossed = [tuple(c) for c in result.cells if costs[tuple(c)] >= INSCRIBED]
+    assert crossed and all(math.hypot(r - 10, c - 10) <= 3.0 for r, c in crossed)  # only near the start
+    assert (5, 30) in [tuple(c) for c in result.cells]  # the far wall is still only passable at its gap
+    assert costs[10, 10] == INSCRIBED  # the caller's costmap is not modified
+    lethal = costs.copy()
+    lethal[10, 10] = LETHAL
+    assert escaping.plan(lethal, geo, start, goal).status is PlanStatus.START_BLOCKED  # never out of a lethal cell
+    with pytest.raises(ConfigError, match="start_escape"):
+        PlannerParams(start_escape=-1.0)
