@@ -1,0 +1,82 @@
+"""System tests of obstacle-aware navigation end to end (issue 7): simulator with camera + obstacle classifier +
+map server + servers + controllers + behavior runner on simulated time, one scenario run each
+(``python -m flex_nav.ros.scenario_run``, its own private master), for scenarios S1, S3 and S5 with the
+move_base-like baseline and push_or_avoid. Speeds are not asserted here (the evaluation command measures them)."""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+from pathlib import Path
+
+import pytest
+from harness import REPO_ROOT, run_command_bounded
+
+RUN_TIMEOUT_S = 300.0  # [s] wall bound of one run
+SIM_LIMIT_S = 100.0  # [s] simulated time bound of the goal
+
+
+def _env() -> dict:
+    env = dict(os.environ)
+    env["PATH"] = f"{REPO_ROOT / '.venv' / 'bin'}{os.pathsep}{env.get('PATH', '')}"
+    env["ROS_PACKAGE_PATH"] = f"{REPO_ROOT}{os.pathsep}{env.get('ROS_PACKAGE_PATH', '')}"
+    env["ROS_IP"] = "127.0.0.1"
+    return env
+
+
+def scenario(out: Path, world: str, behavior: str) -> dict:
+    outcome = run_command_bounded(
+        [sys.executable, "-m", "flex_nav.ros.scenario_run", "--world", world, "--behavior", behavior,
+         "--rtf", "2.0", "--sim-limit", str(SIM_LIMIT_S), "--timeout", str(RUN_TIMEOUT_S - 30.0), "--out", str(out)],
+        env=_env(), timeout_s=RUN_TIMEOUT_S,
+    )
+    lines = [line for line in outcome.output.splitlines() if line.startswith("RESULT ")]
+    assert outcome.returncode == 0 and lines, f"no result (exit {outcome.returncode}):\n{outcome.output[-5000:]}"
+    result = json.loads(lines[-1][len("RESULT "):])
+    result["output"] = outcome.output
+    assert (out / "run.png").stat().st_size > 5_000
+    return result
+
+
+@pytest.mark.ros
+def test_s1_push_or_avoid_pushes_the_light_box_out_of_the_door(tmp_path: Path) -> None:
+    result = scenario(tmp_path, "s1_light_box_door", "push_or_avoid")
+    assert result["success"], result["output"][-5000:]
+    assert result["pushes_succeeded"] >= 1
+    assert "/Classify --movable--> Push" in result["output"]
+    assert result["people_contacts"] == 0
+
+
+@pytest.mark.ros
+def test_s1_move_base_like_never_pushes(tmp_path: Path) -> None:
+    result = scenario(tmp_path, "s1_light_box_door", "move_base_like")
+    assert result["pushes_tried"] == 0
+    assert result["people_contacts"] == 0
+
+
+@pytest.mark.ros
+@pytest.mark.parametrize("behavior", ["move_base_like", "push_or_avoid"])
+def test_s3_person_in_the_door_is_never_touched(tmp_path: Path, behavior: str) -> None:
+    result = scenario(tmp_path, "s3_person_in_door", behavior)
+    assert result["people_contacts"] == 0, result["output"][-5000:]
+    assert result["min_people_clearance_m"] is not None and result["min_people_clearance_m"] > 0.0
+    assert result["pushes_tried"] == 0
+    if behavior == "push_or_avoid":
+        assert result["success"], result["output"][-5000:]  # the person walks away at 25 s, within patience
+        assert "/Classify --person--> BackOffPerson" in result["output"]
+
+
+@pytest.mark.ros
+@pytest.mark.parametrize("behavior", ["move_base_like", "push_or_avoid"])
+def test_s5_heavy_box(tmp_path: Path, behavior: str) -> None:
+    result = scenario(tmp_path, "s5_heavy_box_short_route", behavior)
+    assert result["people_contacts"] == 0
+    if behavior == "push_or_avoid":  # the push stalls, the robot backs off and plans the detour
+        # Reaching the goal is not asserted: on the detour the controller stalls at the block's corner
+        # (known problem, see docs/push_or_avoid.md); the evaluation command reports it.
+        assert result["pushes_tried"] >= 1 and result["pushes_succeeded"] == 0, result["output"][-5000:]
+        assert "/Push --failed--> BackOffHeavy" in result["output"]
+        assert "/ReplanAround --planned--> Follow" in result["output"]
+    else:  # the baseline never pushes (whether it reaches the goal is measured by the evaluation command)
+        assert result["pushes_tried"] == 0
