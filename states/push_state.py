@@ -13,11 +13,10 @@ import math
 from typing import Optional
 
 from flex_nav.behavior.userdata import UserDataView
-from flex_nav.exceptions import ConfigError
 from flex_nav.perception.labels import PERSON
 from flex_nav_states import validation
 from flex_nav_states.messages import OdomSample, wrap_angle
-from flex_nav_states.motion_base import MotionBase, StallWatch
+from flex_nav_states.motion_base import MotionBase, stall_watch
 from flex_nav_states.obstacle_class_state import ClassReader
 
 HEADING_GAIN = 1.0  # [1/s] yaw rate per radian of heading error (pushes straight)
@@ -79,14 +78,8 @@ class PushState(MotionBase):
         self._speed_mps = validation.number(owner, "speed_mps", speed_mps, positive=True, unit="[m/s]")
         margin = validation.number(owner, "margin_s", margin_s, minimum=0.0, unit="[s]")
         self._timeout_s = self._distance_m / self._speed_mps + margin
-        window = validation.number(owner, "stall_window_s", stall_window_s, positive=True, unit="[s]")
-        stall = validation.number(owner, "stall_distance_m", stall_distance_m, positive=True, unit="[m]")
-        if stall >= self._speed_mps * window:
-            raise ConfigError(
-                f"{owner}: stall_distance_m {stall:g} m cannot be pushed in stall_window_s {window:g} s at "
-                f"speed_mps {self._speed_mps:g} m/s; lower it below {self._speed_mps * window:g} m"
-            )
-        self._stall = StallWatch(window, stall)
+        self._stall = stall_watch(owner, stall_window_s, progress_name="stall_distance_m",
+                                  min_progress=stall_distance_m, unit="m", slowest_speed=self._speed_mps)
         self._reader = ClassReader(owner, class_topic, class_max_age_s)
         self._start: Optional[OdomSample] = None
         self._progress_m = 0.0
