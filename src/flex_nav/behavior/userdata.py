@@ -171,8 +171,8 @@ class ReadOnlyObject:
         return str(object.__getattribute__(self, "_ro_target"))
 
 
-class ReadOnlySequence(Sequence[Any]):
-    """Read-only view of a list or tuple; items come back read-only; mutators refuse. No copy."""
+class _ContainerView:
+    """What the read-only container views share: the wrapped object, and isinstance() seeing its type."""
 
     __slots__ = ("_ro_target",)
 
@@ -182,6 +182,15 @@ class ReadOnlySequence(Sequence[Any]):
     @property  # type: ignore[misc]
     def __class__(self) -> type:
         return type(object.__getattribute__(self, "_ro_target"))
+
+    def __repr__(self) -> str:
+        return repr(object.__getattribute__(self, "_ro_target"))
+
+
+class ReadOnlySequence(_ContainerView, Sequence[Any]):
+    """Read-only view of a list or tuple; items come back read-only; mutators refuse. No copy."""
+
+    __slots__ = ()
 
     def __getitem__(self, index: Any) -> Any:
         target = object.__getattribute__(self, "_ro_target")
@@ -216,21 +225,12 @@ class ReadOnlySequence(Sequence[Any]):
     def __hash__(self) -> int:
         return hash(object.__getattribute__(self, "_ro_target"))
 
-    def __repr__(self) -> str:
-        return repr(object.__getattribute__(self, "_ro_target"))
 
 
-class ReadOnlyMapping(Mapping[Any, Any]):
+class ReadOnlyMapping(_ContainerView, Mapping[Any, Any]):
     """Read-only view of a dict; values come back read-only; mutators refuse. No copy."""
 
-    __slots__ = ("_ro_target",)
-
-    def __init__(self, target: Any) -> None:
-        object.__setattr__(self, "_ro_target", target)
-
-    @property  # type: ignore[misc]
-    def __class__(self) -> type:
-        return type(object.__getattribute__(self, "_ro_target"))
+    __slots__ = ()
 
     def __getitem__(self, key: Any) -> Any:
         return readonly(object.__getattribute__(self, "_ro_target")[key])
@@ -261,21 +261,12 @@ class ReadOnlyMapping(Mapping[Any, Any]):
 
     __hash__ = None  # type: ignore[assignment]  # unhashable, like dict
 
-    def __repr__(self) -> str:
-        return repr(object.__getattribute__(self, "_ro_target"))
 
 
-class ReadOnlySet(AbstractSet[Any]):
+class ReadOnlySet(_ContainerView, AbstractSet[Any]):
     """Read-only view of a set (elements are hashable, returned as they are); mutators refuse. No copy."""
 
-    __slots__ = ("_ro_target",)
-
-    def __init__(self, target: Any) -> None:
-        object.__setattr__(self, "_ro_target", target)
-
-    @property  # type: ignore[misc]
-    def __class__(self) -> type:
-        return type(object.__getattribute__(self, "_ro_target"))
+    __slots__ = ()
 
     def __contains__(self, item: object) -> bool:
         return item in object.__getattribute__(self, "_ro_target")
@@ -297,8 +288,6 @@ class ReadOnlySet(AbstractSet[Any]):
 
     __hash__ = None  # type: ignore[assignment]  # unhashable, like set
 
-    def __repr__(self) -> str:
-        return repr(object.__getattribute__(self, "_ro_target"))
 
 
 _VIEW_TYPES = frozenset({ReadOnlyObject, ReadOnlySequence, ReadOnlyMapping, ReadOnlySet})
