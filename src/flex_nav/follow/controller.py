@@ -15,7 +15,11 @@ and so does every failure:
 - COLLISION_AHEAD -> zero command while blocked; ABORTED once blocked for ``collision_timeout`` [s]
   (0 aborts at once), so a person walking past does not end the goal but a wall does;
 - a non-finite command, or any exception raised while computing the tick -> ABORTED
-  ("internal error ..."), so a bug stops the robot instead of leaving it on its last command.
+  ("internal error ..."), so a bug stops the robot instead of leaving it on its last command;
+- with a ``yielding`` rule (off by default; :mod:`flex_nav.follow.yielding`) and the moving tracks passed
+  to :meth:`SafeFollower.tick`, people walking into the path are given way to: while the rule is active its
+  command replaces the controller's, and neither the blocked-path watch nor the collision timeout runs
+  (a person crossing is waited for, not reported as a blocked path).
 
 Pure: the node passes times (one clock, [s]) and callables for the pose and the local costmap.
 """
@@ -25,19 +29,25 @@ from __future__ import annotations
 import enum
 import math
 from dataclasses import dataclass
-from typing import Callable, Optional, Sequence, Tuple
+from typing import Callable, List, Optional, Sequence, Tuple
 
 import numpy as np
 
 from flex_nav.exceptions import ConfigError, FlexNavError
 from flex_nav.follow.blocked import BlockedPathWatch, obstacle_on_path
 from flex_nav.follow.safety import SensorWatchdog
+from flex_nav.follow.yielding import YieldRule
 from flex_nav.nav.costmap_grid import CostmapGeometry
 from flex_nav.nav.path import as_path, cumulative_lengths
 from flex_nav.nav.pure_pursuit import Command, PurePursuitParams, PursuitStatus, RegulatedPurePursuit
+from flex_nav.perception.moving_obstacles import Track
 
 Pose2D = Tuple[float, float, float]  # (x [m], y [m], yaw [rad])
 LocalCostmap = Optional[Tuple[np.ndarray, CostmapGeometry]]
+
+
+def _no_tracks() -> List[Track]:
+    return []
 
 
 class Outcome(enum.Enum):
@@ -79,6 +89,7 @@ class SafeFollower:
         start_s: float,
         blocked_distance_m: float = 0.0,
         blocked_timeout_s: float = 0.5,
+        yielding: Optional[YieldRule] = None,
     ) -> None:
         for name, value in (("collision_timeout_s", collision_timeout_s), ("nominal_period_s", nominal_period_s)):
             if not math.isfinite(value) or value < 0.0:
@@ -113,6 +124,8 @@ class SafeFollower:
         self._blocked_since_s = None
         self._path = None
         self.blocked.reset()
+        if self.yielding is not None:
+            self.yielding.reset()
 
     def tick(
         self,
@@ -120,10 +133,12 @@ class SafeFollower:
         pose: Callable[[], Pose2D],
         velocity: Tuple[float, float],
         local_costmap: Callable[[], LocalCostmap],
+        tracks: Callable[[], Sequence[Track]] = _no_tracks,
     ) -> Decision:
-        """One control step at ``now_s``; never raises (an exception becomes an ABORTED decision)."""
+        """One control step at ``now_s``; never raises (an exception becomes an ABORTED decision).
+        ``tracks``: the moving-obstacle tracks in the path's frame, used only with a ``yielding`` rule."""
         try:
-            decision = self._tick(now_s, pose, velocity, local_costmap)
+            decision = self._tick(now_s, pose, velocity, local_costmap, tracks)
         except FlexNavError as err:  # an expected failure with its own reason (no transform, bad input)
             decision = _stop(Outcome.ABORTED, str(err))
         except Exception as err:
@@ -138,6 +153,7 @@ class SafeFollower:
         pose: Callable[[], Pose2D],
         velocity: Tuple[float, float],
         local_costmap: Callable[[], LocalCostmap],
+        tracks: Callable[[], Sequence[Track]],
     ) -> Decision:
         problem = self.watchdog.problem(now_s)
         if problem is not None:
@@ -155,6 +171,9 @@ class SafeFollower:
             return _stop(Outcome.SUCCEEDED, "goal reached", command)
         if status is PursuitStatus.INVALID_INPUT:
             return _stop(Outcome.ABORTED, command.reason, command)
+        given_way = self._give_way(now_s, robot, command, tracks, costmap)
+        if given_way is not None:
+            return given_way
         if self.blocked.enabled and costs is not None and geometry is not None and self._path is not None:
             s_robot = float(self._lengths[-1]) - command.distance_to_goal
             obstacle = (obstacle_on_path(self._path, self._lengths, s_robot, distance_m=self.blocked.distance_m,
@@ -174,6 +193,25 @@ class SafeFollower:
         if not (math.isfinite(command.v) and math.isfinite(command.w)):
             return _stop(Outcome.ABORTED, f"internal error: non-finite command ({command.v}, {command.w})", command)
         return Decision(command.v, command.w, Outcome.RUNNING, command.reason, command)
+
+    def _give_way(self, now_s: float, robot: Pose2D, command: Command, tracks: Callable[[], Sequence[Track]],
+                  costmap: LocalCostmap) -> Optional[Decision]:
+        """The yield rule's decision while it is active (people to give way to), else None (also when off)."""
+        if self.yielding is None or self._path is None or not math.isfinite(command.distance_to_goal):
+            return None
+        costs, geometry = costmap if costmap is not None else (None, None)
+        given_way = self.yielding.decide(
+            now_s, robot, (command.v, command.w), path=self._path, lengths=self._lengths,
+            s_robot=float(self._lengths[-1]) - command.distance_to_goal, tracks=tracks(), costs=costs,
+            geometry=geometry)
+        if not given_way.active:
+            return None
+        self.blocked.reset()  # a person crossing is waited for, not a blocked path
+        self._blocked_since_s = None
+        if not (math.isfinite(given_way.v) and math.isfinite(given_way.w)):
+            return _stop(Outcome.ABORTED, f"internal error: non-finite yield command ({given_way.v}, {given_way.w})",
+                         command)
+        return Decision(given_way.v, given_way.w, Outcome.RUNNING, given_way.reason, command)
 
 
 def warm_up(params: PurePursuitParams) -> None:

@@ -22,7 +22,9 @@ Parameters (private): ``global_frame`` ("map"), ``robot_base_frame`` ("base_foot
 ``controller_frequency`` [Hz] (20), ``sensor_timeout`` [s] (0.5), ``collision_timeout`` [s] (2.0),
 ``transform_timeout`` [s] (0.2), ``topic_timeout`` [s] (2.0, FollowTopic: wait for the first Path),
 ``feedback_frequency`` [Hz] (5), ``blocked_distance`` [m] (0: off; an obstacle on the path this far ahead
-aborts the goal with a reason starting ``blocked``), ``blocked_timeout`` [s] (0.5), ``pure_pursuit/*``
+aborts the goal with a reason starting ``blocked``), ``blocked_timeout`` [s] (0.5), ``yield_to_people`` (false;
+true: track moving obstacles in the scan and give way to them, ``yielding/*`` and ``people_tracker/*``, see
+:mod:`flex_nav.ros.moving_obstacles_ros`), ``pure_pursuit/*``
 (:class:`flex_nav.nav.pure_pursuit.PurePursuitParams`
 by name; unknown names are rejected).
 """
@@ -51,14 +53,15 @@ from flex_nav.ros.conversions import pose_of_xy_yaw
 from flex_nav.ros.costmap_ros import CostmapROS
 from flex_nav.ros.frames import frame_pose, path_in_frame
 from flex_nav.ros.goal_server import RESULT_ABORTED, RESULT_SUCCEEDED, GoalServer, GoalTicket
-from flex_nav.ros.params import param_float, param_str, reject_unknown
+from flex_nav.ros.moving_obstacles_ros import MovingObstaclesROS, yield_rule
+from flex_nav.ros.params import param_bool, param_float, param_str, reject_unknown
 from flex_nav.ros.topic_path import TopicPath, TopicPaths
 
 SOURCES = ("path", "topic")
 PARAMETERS = (
     "global_frame", "robot_base_frame", "controller_frequency", "sensor_timeout", "collision_timeout",
     "transform_timeout", "topic_timeout", "feedback_frequency", "local_costmap", "pure_pursuit",
-    "blocked_distance", "blocked_timeout",
+    "blocked_distance", "blocked_timeout", "yield_to_people", "yielding", "people_tracker",
 )
 
 
@@ -105,6 +108,10 @@ class PurePursuitController:
         params = pursuit_params(raw, self.costmap)
         warm_up(params)
         sensors = ["odom", "scan"] if self.costmap.scan_topic else ["odom"]
+        yield_to_people = param_bool("~yield_to_people", False)  # --- yielding (moving_obstacles_ros)
+        self.people = MovingObstaclesROS(self.tf_buffer, self.global_frame) if yield_to_people else None
+        yielding = (yield_rule(self.costmap.inflation.inscribed_radius, params.desired_linear_vel)
+                    if yield_to_people else None)  # --- end of yielding
         self.follower = SafeFollower(
             params,
             sensors=sensors,
@@ -114,6 +121,7 @@ class PurePursuitController:
             start_s=rospy.get_time(),
             blocked_distance_m=param_float("~blocked_distance", 0.0, 0.0, 100.0),
             blocked_timeout_s=param_float("~blocked_timeout", 0.5, 0.0, 600.0),
+            yielding=yielding,
         )
         self._wake = threading.Condition()  # odometry, paths and cancels wake the control loop
         self._odom: Optional[Odometry] = None
@@ -264,6 +272,11 @@ class PurePursuitController:
         scan_s = self.costmap.last_scan_received_s
         if scan_s is not None and self.costmap.scan_topic:
             self.follower.watchdog.saw("scan", scan_s)
+        if self.people is not None:
+            decision = self.follower.tick(rospy.get_time(), self._robot_pose, self._velocity(), self._local_costmap,
+                                          self.people.tracks)
+            self.people.log_change(decision.reason)
+            return decision
         return self.follower.tick(rospy.get_time(), self._robot_pose, self._velocity(), self._local_costmap)
 
     def _feedback(self, ticket: GoalTicket, decision: Decision, source: Optional[TopicPath]) -> None:

@@ -3,7 +3,8 @@
 Starts a private master (simulated time), the simulator with the robot's camera, the map server, the robot's
 navigation and behavior runner (TurtleBot 4 profile) and the ``obstacle_classifier`` in the robot's
 namespace; sets ``pure_pursuit_path``'s ``~blocked_distance`` (blocked-path detection, used by
-push_or_avoid; move_base_like drives with ``pure_pursuit_topic``, which keeps it off) and, for both
+push_or_avoid; move_base_like drives with ``pure_pursuit_topic``, which keeps it off) and its
+``~yield_to_people`` (give way to moving people, :mod:`flex_nav.follow.yielding`; also push_or_avoid only) and, for both
 behaviors, a bumper memory of 5 s in the costmaps (the default 60 s would keep the contacts of a pushed
 box as obstacles in the door it was pushed through; no scenario has obstacles only the bumper finds). Sends the world's
 ``goal`` once the behavior waits for one and records until the behavior is done with it or ``--sim-limit``
@@ -106,6 +107,7 @@ def start(stack: contextlib.ExitStack, args: argparse.Namespace, run: RobotRun) 
     params = rosgraph.Master("/scenario_run", master_uri=master.uri)
     params.setParam("/use_sim_time", True)
     params.setParam(f"/{ROBOT}/pure_pursuit_path/blocked_distance", BLOCKED_DISTANCE_M)
+    params.setParam(f"/{ROBOT}/pure_pursuit_path/yield_to_people", True)  # push_or_avoid's follower
     for costmap in ("get_path_server/global_costmap", "pure_pursuit_path/local_costmap",
                     "pure_pursuit_topic/local_costmap"):
         params.setParam(f"/{ROBOT}/{costmap}/bumper_memory", BUMPER_MEMORY_S)

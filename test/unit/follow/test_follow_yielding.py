@@ -1,0 +1,162 @@
+"""The yield rule: stop before a walking person's way, step out of it, never toward them; and SafeFollower with it."""
+
+import math
+
+import numpy as np
+import pytest
+
+from flex_nav.exceptions import ConfigError
+from flex_nav.follow.controller import Outcome, SafeFollower
+from flex_nav.follow.yielding import YieldMode, YieldParams, YieldRule, arc_positions
+from flex_nav.nav.costmap_grid import LETHAL, CostmapGeometry
+from flex_nav.nav.path import cumulative_lengths
+from flex_nav.nav.pure_pursuit import PurePursuitParams
+from flex_nav.perception.moving_obstacles import Track
+
+PATH = np.array([[0.0, 0.0], [10.0, 0.0]])  # along +x
+LENGTHS = cumulative_lengths(PATH)
+PARAMS = YieldParams(robot_radius_m=0.17, speed_mps=0.26, margin_m=0.1, start_margin_m=0.05, resume_after_s=0.5)
+R = 0.17 + 0.2 + 0.1  # robot radius + person radius + margin
+
+
+def person(x, y, vx, vy, track_id=1, radius=0.2):
+    return Track(track_id, x, y, vx, vy, radius, 0.0, 10)
+
+
+def decide(rule, x, tracks, now_s=0.0, command=(0.26, 0.0), yaw=0.0, costs=None, geometry=None):
+    return rule.decide(now_s, (x, 0.0, yaw), command, path=PATH, lengths=LENGTHS, s_robot=x, tracks=tracks,
+                       costs=costs, geometry=geometry)
+
+
+def test_no_people_or_people_far_from_the_way_leave_the_command_alone():
+    rule = YieldRule(PARAMS)
+    assert decide(rule, 1.0, []) .mode is YieldMode.FREE
+    walking_away = person(3.0, -0.8, 0.0, -0.8)  # has crossed, walks away
+    standing = person(2.0, 0.0, 0.05, 0.0)  # too slow: left to the costmap
+    d = decide(rule, 1.0, [walking_away, standing])
+    assert d.mode is YieldMode.FREE and (d.v, d.w) == (0.26, 0.0)
+
+
+def test_a_person_about_to_cross_ahead_slows_the_robot_before_the_corridor():
+    rule = YieldRule(PARAMS)
+    crossing = person(3.0, -2.5, 0.0, 0.8)  # reaches the path at x = 3 in 3.1 s, as the robot would
+    far = decide(rule, 1.0, [crossing])
+    assert far.mode is YieldMode.FREE  # the person will have passed when the robot gets there
+    d = decide(rule, 2.0, [crossing])
+    assert d.mode is YieldMode.SLOW and d.track_id == 1
+    # stopping distance at the capped speed ends before the corridor edge (3 - R from the crossing point)
+    stop_at = 2.0 + d.v**2 / (2 * PARAMS.decel_mps2)
+    assert stop_at < 3.0 - R + 1e-6
+    near_x = 3.0 - R - 0.07
+    near = decide(rule, near_x, [crossing])
+    assert near.mode is YieldMode.SLOW and near.v < 0.26
+    assert near_x + near.v**2 / (2 * PARAMS.decel_mps2) < 3.0 - R + 1e-6
+
+
+def test_at_the_corridor_edge_the_robot_waits_and_only_turns_in_place():
+    rule = YieldRule(PARAMS)
+    crossing = person(3.0, -2.0, 0.0, 0.8)
+    d = decide(rule, 3.0 - R - 0.02, [crossing], command=(0.26, 0.1))
+    assert d.mode is YieldMode.WAIT and d.v == 0.0
+
+
+def test_resumes_only_after_the_way_stayed_clear():
+    rule = YieldRule(PARAMS)
+    assert decide(rule, 2.4, [person(3.0, -1.0, 0.0, 0.8)], now_s=0.0).mode is not YieldMode.FREE
+    passed = [person(3.0, 1.5, 0.0, 0.8)]  # crossed and walking away
+    held = decide(rule, 2.4, passed, now_s=0.2)
+    assert held.mode is YieldMode.WAIT and held.v == 0.0 and "resuming" in held.reason
+    assert decide(rule, 2.4, passed, now_s=0.8).mode is YieldMode.FREE
+    rule.reset()
+    assert decide(rule, 2.4, passed, now_s=0.81).mode is YieldMode.FREE
+
+
+@pytest.mark.parametrize("x, y, vx, vy", [(3.4, -1.5, 0.0, 0.8), (6.0, 0.0, -0.8, 0.0), (4.0, -1.0, -0.55, 0.55)])
+def test_standing_in_the_way_of_an_approaching_person_backs_away(x, y, vx, vy):
+    rule = YieldRule(PARAMS)
+    # the person's way runs through the robot (at x = 3) and just ahead of it: going on meets them too
+    d = decide(rule, 3.0, [person(x, y, vx, vy)], command=(0.0, 0.0))
+    assert d.mode is YieldMode.ESCAPE and d.v < 0.0, d
+    # backing up is away from the person's way: its closest approach grows
+    times = rule.times
+    future = np.stack((x + vx * times, y + vy * times), axis=1)
+    moved = arc_positions((3.0, 0.0, 0.0), d.v, d.w, times)
+    assert np.min(np.hypot(*(moved - future).T)) > np.min(np.hypot(*(np.array([3.0, 0.0]) - future).T))
+
+
+def test_never_toward_a_person_even_when_it_would_help_with_another():
+    rule = YieldRule(PARAMS)
+    # one person comes at the robot head-on along the path; another walks up slowly behind it
+    ahead = person(4.5, 0.0, -0.8, 0.0, track_id=1)
+    behind = person(2.0, -0.2, 0.3, 0.0, track_id=2)
+    d = decide(rule, 3.0, [ahead, behind], command=(0.0, 0.0))
+    assert d.v <= 0.0 or d.mode is not YieldMode.ESCAPE  # never forward into the person ahead
+    moved = arc_positions((3.0, 0.0, 0.0), d.v, d.w, rule.times)
+    walker = np.stack((2.0 + 0.3 * rule.times, np.full_like(rule.times, -0.2)), axis=1)
+    gap_moving = np.hypot(*(moved - walker).T).min() - R
+    gap_standing = np.hypot(*(np.array([3.0, 0.0]) - walker).T).min() - R
+    assert gap_moving >= min(gap_standing, 0.0) - 1e-9  # nor back into the one behind
+
+
+def test_going_on_is_an_escape_when_the_person_comes_from_behind():
+    rule = YieldRule(PARAMS)
+    # a person walks the path's direction fast, right behind the robot: backing up would be toward them
+    d = decide(rule, 3.0, [person(2.0, 0.0, 0.9, 0.0)], command=(0.26, 0.0))
+    assert d.v >= 0.0
+    if d.mode is YieldMode.ESCAPE:
+        assert "along the path" in d.reason or "forward" in d.reason
+
+
+def test_an_obstacle_behind_forbids_backing_up():
+    rule = YieldRule(PARAMS)
+    geometry = CostmapGeometry(100, 100, 0.05, 0.0, -2.5)
+    costs = np.zeros(geometry.shape, dtype=np.uint8)
+    rows, cols = geometry.world_to_cells(np.array([2.85, 2.85, 2.85]), np.array([-0.05, 0.0, 0.05]))
+    costs[rows, cols] = LETHAL
+    d = decide(rule, 3.0, [person(3.0, -2.5, 0.0, 0.8)], command=(0.0, 0.0), costs=costs, geometry=geometry)
+    assert not (d.mode is YieldMode.ESCAPE and d.v < 0.0 and d.w == 0.0)
+
+
+def test_parameters_are_validated_with_the_valid_names():
+    with pytest.raises(ConfigError, match="horizon_s"):
+        YieldParams(horizon_s=0.0)
+    with pytest.raises(ConfigError, match="valid: .*margin_m"):
+        YieldParams.from_mapping({"margins": 0.1})
+    assert YieldParams.from_mapping({"horizon_s": 5}).horizon_s == 5.0
+
+
+# ------------------------------------------------------------------ in SafeFollower
+PURSUIT = PurePursuitParams(desired_linear_vel=0.26, lookahead_dist=0.5, goal_dist_tol=0.1, use_final_heading=False)
+
+
+def follower(yielding):
+    return SafeFollower(PURSUIT, sensors=("odom",), sensor_timeout_s=0.5, collision_timeout_s=1.0,
+                        nominal_period_s=0.05, start_s=0.0, blocked_distance_m=0.7, yielding=yielding)
+
+
+def test_safe_follower_gives_way_and_the_blocked_watch_stays_quiet():
+    f = follower(YieldRule(PARAMS))
+    f.set_path(np.array([[0.0, 0.0, 0.0], [10.0, 0.0, 0.0]]))
+    crossing = [person(3.0, -1.5, 0.0, 0.8)]
+    geometry = CostmapGeometry(60, 60, 0.05, 1.0, -1.5)
+    costs = np.zeros(geometry.shape, dtype=np.uint8)
+    rows, cols = geometry.world_to_cells(np.array([3.0]), np.array([0.0]))  # the person's marks on the path
+    costs[rows[0] - 4:rows[0] + 5, cols[0] - 4:cols[0] + 5] = LETHAL
+    for k in range(40):  # 2 s standing at the edge with the path "blocked" by the person's marks
+        now = 0.05 * (k + 1)
+        f.watchdog.saw("odom", now)
+        d = f.tick(now, lambda: (2.52, 0.0, 0.0), (0.0, 0.0), lambda: (costs, geometry), lambda: crossing)
+        assert d.outcome is Outcome.RUNNING and d.v == 0.0 and d.reason.startswith("yielding")
+
+
+def test_safe_follower_without_the_rule_ignores_tracks():
+    f = follower(None)
+    f.set_path(np.array([[0.0, 0.0, 0.0], [10.0, 0.0, 0.0]]))
+    f.watchdog.saw("odom", 0.05)
+    d = f.tick(0.05, lambda: (2.45, 0.0, 0.0), (0.26, 0.0), lambda: None, lambda: [person(3.0, -1.5, 0.0, 0.8)])
+    assert d.outcome is Outcome.RUNNING and d.v > 0.0 and not d.reason.startswith("yielding")
+
+
+def test_arc_positions_follow_a_circle():
+    pos = arc_positions((0.0, 0.0, 0.0), 0.2, 0.4, np.array([0.0, math.pi / 0.4]))
+    assert pos[1] == pytest.approx([0.0, 1.0], abs=1e-9)  # half a circle of radius 0.5
