@@ -103,18 +103,20 @@ class SafeFollower:
         self._last_tick_s: Optional[float] = None
         self._blocked_since_s: Optional[float] = None
         self.blocked = BlockedPathWatch(blocked_distance_m, blocked_timeout_s)
+        self.yielding = yielding  # give way to moving tracks (None: off)
         self._path: Optional[np.ndarray] = None
         self._lengths = np.zeros(1)
 
     def set_path(self, poses: object) -> None:
         """Follow ``poses`` ((N, 2|3) in the controller's frame); ConfigError if empty or not finite.
 
-        The previous command is kept, so a replaced path continues smoothly.
+        The previous command is kept, so a replaced path continues smoothly. So is the time the robot has
+        been held by a collision ahead: a planner that replaces the path every second must not keep a
+        robot standing in front of an obstacle from ever reaching ``collision_timeout``.
         """
         self.pursuit.set_path(poses)
         self._path = as_path(poses)
         self._lengths = cumulative_lengths(self._path)
-        self._blocked_since_s = None
         self.blocked.reset()
 
     def stop(self) -> None:

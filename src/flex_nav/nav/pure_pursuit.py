@@ -19,6 +19,9 @@ the local costmap (all in the path's frame) and returns a :class:`Command` ``(v 
 6. the arc the command would drive is projected ahead (up to the carrot, at most
    ``max_allowed_time_to_collision_up_to_carrot`` [s]) and checked cell by cell on the costmap: any cell
    at or above INSCRIBED (or unknown, unless ``allow_unknown``) gives COLLISION_AHEAD and a zero command.
+   A robot that already stands on an INSCRIBED (not LETHAL) cell, e.g. right after a bumper contact was
+   marked at its edge, may leave: for the first ``collision_escape_dist`` [m] of the arc only LETHAL cells
+   count (the planner's ``start_escape`` lets its plans leave such a start the same way).
 
 Every failure returns a zero command. One instance per controller (it keeps the pruning index and the
 previous command); :meth:`set_path` starts a new path.
@@ -35,7 +38,7 @@ import numpy as np
 from numba import njit
 
 from flex_nav.exceptions import ConfigError, choices_message
-from flex_nav.nav.costmap_grid import INSCRIBED, MAX_NON_OBSTACLE, NO_INFORMATION, CostmapGeometry
+from flex_nav.nav.costmap_grid import INSCRIBED, LETHAL, MAX_NON_OBSTACLE, NO_INFORMATION, CostmapGeometry
 from flex_nav.nav.path import as_path, closest_point, cumulative_lengths, lookahead_point
 
 
@@ -99,6 +102,7 @@ class PurePursuitParams:
     use_collision_detection: bool = True
     max_allowed_time_to_collision_up_to_carrot: float = 1.0  # [s]
     allow_unknown: bool = False  # unknown cells do not count as collisions
+    collision_escape_dist: float = 0.0  # [m] from an inscribed start cell, only lethal cells collide this far
     goal_dist_tol: float = 0.25  # [m]
     yaw_goal_tolerance: float = 0.25  # [rad]
     use_final_heading: bool = True  # turn to the last pose's yaw at the goal
@@ -285,7 +289,8 @@ class RegulatedPurePursuit:
         # 6. forward collision check of the commanded arc
         if p.use_collision_detection and costs is not None and geometry is not None and v > 0.0:
             horizon = min(p.max_allowed_time_to_collision_up_to_carrot, math.sqrt(d2) / v)
-            hit = _arc_collision(x, y, yaw, v, w, horizon, costs, geometry, p.allow_unknown)
+            hit = _arc_collision(x, y, yaw, v, w, horizon, costs, geometry, p.allow_unknown,
+                                 p.collision_escape_dist)
             if hit is not None:
                 return _zero(
                     PursuitStatus.COLLISION_AHEAD,
@@ -347,14 +352,22 @@ def _arc_collision(  # noqa: PLR0917 - the arc's parameters, in the order of the
     costs: np.ndarray,
     geometry: CostmapGeometry,
     allow_unknown: bool,
+    escape_dist: float = 0.0,
 ) -> Optional[Tuple[float, float]]:
     """First point of the arc driven at (v, w) for ``horizon`` [s] whose cell is in collision, or None.
 
     Sampled every half cell of travel; cells off the costmap are not checked (nothing is known there).
+    When the robot's own cell is INSCRIBED (not LETHAL), the arc's first ``escape_dist`` [m] collide only
+    on LETHAL cells.
     """
     steps = max(1, math.ceil(v * horizon / (0.5 * geometry.resolution)))
+    escape_time = 0.0  # [s] of the arc during which inscribed cells are passable
+    cell = geometry.world_to_cell(x, y)
+    if escape_dist > 0.0 and geometry.in_bounds(cell) and INSCRIBED <= int(costs[cell]) < LETHAL:
+        escape_time = escape_dist / v
     found, hx, hy = _arc_kernel(
-        x, y, yaw, v, w, horizon, steps, costs, geometry.origin_x, geometry.origin_y, geometry.resolution, allow_unknown
+        x, y, yaw, v, w, horizon, steps, costs, geometry.origin_x, geometry.origin_y, geometry.resolution,
+        allow_unknown, escape_time,
     )
     return (hx, hy) if found else None
 
@@ -373,6 +386,7 @@ def _arc_kernel(  # noqa: PLR0917 - compiled kernel
     origin_y: float,
     resolution: float,
     allow_unknown: bool,
+    escape_time: float,
 ) -> Tuple[bool, float, float]:  # pragma: no cover - compiled
     height, width = costs.shape
     cos_y = math.cos(yaw)
@@ -395,7 +409,7 @@ def _arc_kernel(  # noqa: PLR0917 - compiled kernel
         if cost == NO_INFORMATION:
             if not allow_unknown:
                 return True, px, py
-        elif cost >= INSCRIBED:
+        elif cost >= LETHAL or (cost >= INSCRIBED and t > escape_time):
             return True, px, py
     return False, 0.0, 0.0
 

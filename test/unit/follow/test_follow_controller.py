@@ -150,6 +150,21 @@ def test_collision_clears_and_resets_patience():
     assert f.tick(2.5, at(0.5), (0.0, 0.0), blocked_costmap).outcome is Outcome.RUNNING  # patience restarted
 
 
+def test_replaced_path_does_not_restart_collision_patience():
+    """A planner replacing the path every second must not keep a blocked robot waiting forever."""
+    f = follower(collision_timeout_s=1.0)
+    f.set_path(STRAIGHT)
+    fresh(f, 1.0)
+    assert f.tick(1.0, at(0.5), (0.3, 0.0), blocked_costmap).outcome is Outcome.RUNNING
+    f.set_path(STRAIGHT)
+    fresh(f, 1.5)
+    assert f.tick(1.5, at(0.5), (0.0, 0.0), blocked_costmap).outcome is Outcome.RUNNING
+    f.set_path(STRAIGHT)
+    fresh(f, 2.0)
+    d = f.tick(2.0, at(0.5), (0.0, 0.0), blocked_costmap)
+    assert d.outcome is Outcome.ABORTED and d.stops and "blocked for 1.00 s" in d.reason
+
+
 def test_zero_collision_timeout_aborts_at_once():
     f = follower(collision_timeout_s=0.0)
     f.set_path(STRAIGHT)

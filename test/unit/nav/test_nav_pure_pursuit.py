@@ -125,6 +125,30 @@ def test_collision_ahead_stops_the_robot():
     assert off.step((0.0, 0.0, 0.0), (0.5, 0.0), 1.0, costs, geo).status is PursuitStatus.FOLLOWING
 
 
+def test_robot_on_an_inscribed_cell_may_escape_through_inscribed_cells_only():
+    """Right after a bumper contact the robot's own cell is inscribed; it may drive out through inscribed
+    cells within collision_escape_dist, never into a lethal cell, and only when it starts inscribed."""
+    costs, geo = free_costmap()
+    row, col = geo.world_to_cell(0.0, 0.0)
+    costs[row - 4 : row + 5, col - 4 : col + 8] = INSCRIBED  # around the robot and 0.35 m ahead
+    assert controller().step((0.0, 0.0, 0.0), (0.5, 0.0), 1.0, costs, geo).status is PursuitStatus.COLLISION_AHEAD
+    escaping = controller(collision_escape_dist=0.5)
+    cmd = escaping.step((0.0, 0.0, 0.0), (0.5, 0.0), 1.0, costs, geo)
+    assert cmd.status is PursuitStatus.FOLLOWING and cmd.v > 0.0
+    # a lethal cell inside the escape distance still collides
+    costs[geo.world_to_cell(0.2, 0.0)] = LETHAL
+    assert controller(collision_escape_dist=0.5).step((0.0, 0.0, 0.0), (0.5, 0.0), 1.0, costs,
+                                                      geo).status is PursuitStatus.COLLISION_AHEAD
+    # inscribed cells beyond the escape distance collide again
+    costs[geo.world_to_cell(0.2, 0.0)] = INSCRIBED
+    assert controller(collision_escape_dist=0.1).step((0.0, 0.0, 0.0), (0.5, 0.0), 1.0, costs,
+                                                      geo).status is PursuitStatus.COLLISION_AHEAD
+    # from a free cell, inscribed cells ahead collide whatever the escape distance
+    costs[row, col] = 0
+    assert controller(collision_escape_dist=0.5).step((0.0, 0.0, 0.0), (0.5, 0.0), 1.0, costs,
+                                                      geo).status is PursuitStatus.COLLISION_AHEAD
+
+
 def test_unknown_ahead_is_a_collision_unless_allowed():
     costs, geo = free_costmap()
     costs[:, geo.world_to_cell(0.3, 0.0).col :] = NO_INFORMATION
