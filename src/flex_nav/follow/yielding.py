@@ -14,8 +14,9 @@ up from the controller's command to ``speed_mps`` at ``accel_mps2``. Each contro
 2. otherwise, while the path ahead enters a conflicting person's corridor farther than ``stop_buffer_m``
    [m] ahead -> SLOW: the speed is capped so the robot stops, at ``decel_mps2``, before the corridor (the
    turn rate is scaled with it: same curvature);
-3. at or inside the corridor, if standing still keeps R to every predicted person -> WAIT (no forward
-   motion; the controller's turn in place is kept: a round robot turning takes no more room);
+3. at or inside the corridor, if standing still keeps R (less ``escape_tolerance_m``) to every predicted
+   person -> WAIT (no forward motion; the controller's turn in place is kept: a round robot turning takes
+   no more room);
 4. otherwise the robot is in the way of an approaching person -> ESCAPE: of a few short motions (back up
    straight or on a gentle arc, go on along the path) the one that keeps the largest predicted
    clearance (ties: the one that meets the person latest) is commanded, but only a motion that never
@@ -64,7 +65,8 @@ class YieldParams:
     escape_turn_radps: float = 0.3  # [rad/s] turn rate of the arc escapes
     check_s: float = 1.0  # [s] escape motions: costmap check and direction test over this time
     min_gain_m: float = 0.02  # [m] an escape must keep this much more clearance than standing still
-    resume_after_s: float = 0.5  # [s] conflict-free time before the controller drives again
+    resume_after_s: float = 0.3  # [s] conflict-free time before the controller drives again
+    escape_tolerance_m: float = 0.05  # [m] standing this far inside R still waits (no back-and-forth on noise)
     start_margin_m: float = 0.05  # [m] extra clearance the way must have to start again after yielding
 
     def __post_init__(self) -> None:
@@ -76,7 +78,7 @@ class YieldParams:
                     or value <= 0.0:
                 raise ConfigError(f"yield parameter {name} must be a finite number > 0, got {value!r}")
         for name in ("margin_m", "stop_buffer_m", "escape_turn_radps", "min_gain_m", "resume_after_s",
-                     "start_margin_m"):
+                     "start_margin_m", "escape_tolerance_m"):
             value = getattr(self, name)
             if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value) \
                     or value < 0.0:
@@ -218,7 +220,7 @@ class YieldRule:
                                  f"({track.speed:.2f} m/s)", track.track_id)
         here = np.repeat(np.array([[pose[0], pose[1]]]), len(self.times), axis=0)
         stand_clear = people.clearance(here)
-        if float(stand_clear.min()) >= 0.0:
+        if float(stand_clear.min()) >= -p.escape_tolerance_m:
             return YieldDecision(0.0, w_cmd, YieldMode.WAIT,
                                  f"yielding: waiting for track {track.track_id} ({track.speed:.2f} m/s) to pass",
                                  track.track_id)

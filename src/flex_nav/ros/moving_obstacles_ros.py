@@ -7,7 +7,8 @@ obstacle are not tracked. Scan points are carried into the controller's global f
 stamp, then tracked by :class:`flex_nav.perception.moving_obstacles.MovingObstacleTracker` (its parameters by
 name under ``~people_tracker/``). The yield rule's parameters are :class:`flex_nav.follow.yielding.YieldParams`
 by name under ``~yielding/``; ``robot_radius_m`` defaults to the local costmap's inscribed radius and
-``speed_mps`` to pure pursuit's ``desired_linear_vel``.
+``speed_mps`` to pure pursuit's ``desired_linear_vel``. Publishes std_msgs/Bool ``~yielding``: True on every
+control tick spent giving way, False once when that ends (for a progress monitor, see ``StuckMonitorState``).
 """
 
 from __future__ import annotations
@@ -22,6 +23,7 @@ import rospy
 import tf2_ros
 from nav_msgs.msg import OccupancyGrid
 from sensor_msgs.msg import LaserScan as LaserScanMsg
+from std_msgs.msg import Bool
 
 from flex_nav.exceptions import ConfigError
 from flex_nav.follow.yielding import YieldParams, YieldRule
@@ -67,6 +69,7 @@ class MovingObstaclesROS:
         self.lock = threading.Lock()
         self.tracker = MovingObstacleTracker(params)
         self._last_kind = ""  # the kind of yielding last logged ("" = none)
+        self.yielding_publisher = rospy.Publisher("~yielding", Bool, queue_size=1)
         scan_topic = param_str(TRACKER_NS + "scan_topic", "scan")
         map_topic = param_str(TRACKER_NS + "map_topic", "map")
         self._subscribers = [rospy.Subscriber(scan_topic, LaserScanMsg, self._on_scan, queue_size=1)]
@@ -107,9 +110,12 @@ class MovingObstaclesROS:
         with self.lock:
             self.tracker.update_scan(xs, ys, (t.x, t.y), msg.header.stamp.to_sec(), wrap=bool(full_circle))
 
-    def log_change(self, reason: str) -> None:
-        """Log when the follower starts or stops giving way, or changes how (its reason's first words)."""
+    def report(self, reason: str) -> None:
+        """One control tick's reason: ``~yielding`` True while giving way (every tick, so it goes stale when
+        the controller stops), False once when it ends; a log line when it starts, ends or changes how."""
         yielding = reason.startswith("yielding")
+        if yielding or self._last_kind:
+            self.yielding_publisher.publish(Bool(data=yielding))
         track = re.search(r"track \d+", reason)
         kind = " ".join([*reason.split()[:2], track.group(0) if track else ""]) if yielding else ""
         if kind != self._last_kind:

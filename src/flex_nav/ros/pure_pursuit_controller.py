@@ -275,7 +275,7 @@ class PurePursuitController:
         if self.people is not None:
             decision = self.follower.tick(rospy.get_time(), self._robot_pose, self._velocity(), self._local_costmap,
                                           self.people.tracks)
-            self.people.log_change(decision.reason)
+            self.people.report(decision.reason)
             return decision
         return self.follower.tick(rospy.get_time(), self._robot_pose, self._velocity(), self._local_costmap)
 

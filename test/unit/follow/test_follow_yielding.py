@@ -120,7 +120,7 @@ def test_an_obstacle_behind_forbids_backing_up():
 def test_parameters_are_validated_with_the_valid_names():
     with pytest.raises(ConfigError, match="horizon_s"):
         YieldParams(horizon_s=0.0)
-    with pytest.raises(ConfigError, match="valid: .*margin_m"):
+    with pytest.raises(ConfigError, match=r"valid: .*margin_m"):
         YieldParams.from_mapping({"margins": 0.1})
     assert YieldParams.from_mapping({"horizon_s": 5}).horizon_s == 5.0
 

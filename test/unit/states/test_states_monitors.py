@@ -339,3 +339,21 @@ def test_get_pose_parameters_are_validated(params, match):
 def test_odometry_type_is_the_one_states_subscribe():
     h = Harness(StuckMonitorState()).start()
     assert h.proxies.sub("odom").msg_type is Odometry
+
+
+def test_stuck_monitor_waiting_on_purpose_restarts_the_window_while_fresh():
+    from std_msgs.msg import Bool  # noqa: PLC0415
+
+    h = Harness(StuckMonitorState(window_s=2.0, odom_timeout_s=1.0, waiting_topic="pure_pursuit_path/yielding"))
+    robot = KinematicRobot(h)
+    robot.blocked = True
+    h.start()
+    waiting = h.proxies.sub("pure_pursuit_path/yielding")
+    for _ in range(50):  # 5 s standing still, giving way: not stuck
+        waiting.inject(Bool(data=True))
+        assert not h.tick()
+        h.advance(0.1)
+    waiting.inject(Bool(data=False))  # done giving way, still not moving: stuck after the window
+    start = h.clock.now()
+    assert h.run(max_time_s=5.0).outcome == "stuck"
+    assert 1.9 <= h.clock.now() - start <= 2.3
