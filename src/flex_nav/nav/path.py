@@ -64,8 +64,10 @@ def closest_point(
     max_arc: float = math.inf,
     lengths: np.ndarray | None = None,
 ) -> PathPoint:
-    """The point of the path nearest to (x, y) [m], searching segments from ``start_index`` whose start lies
-    less than ``max_arc`` [m] of arc beyond it (a bounded window keeps following monotonic and fast).
+    """The point of the path nearest to (x, y) [m], searching segment ``start_index`` and the segments after
+    it whose start lies less than ``max_arc`` [m] of arc beyond that segment's end (a bounded window keeps
+    following monotonic and fast). Measured from the segment's end, not its start, so that a segment longer
+    than the window (planners return sparse paths) never hides the next one.
 
     Ties go to the earliest segment.
     """
@@ -74,7 +76,8 @@ def closest_point(
     start_index = min(max(int(start_index), 0), n - 1)
     if n == 1:
         return PathPoint(0, 0.0, float(path[0, 0]), float(path[0, 1]), 0.0, math.hypot(x - path[0, 0], y - path[0, 1]))
-    stop = n - 1 if math.isinf(max_arc) else int(np.searchsorted(lengths, lengths[start_index] + max_arc, "left"))
+    window_end = lengths[min(start_index + 1, n - 1)] + max_arc
+    stop = n - 1 if math.isinf(max_arc) else int(np.searchsorted(lengths, window_end, "left"))
     stop = min(max(stop, start_index + 1), n - 1)
     index, t, px, py, d2 = _closest_on_segments(path, start_index, stop, float(x), float(y))
     seg = lengths[index + 1] - lengths[index]

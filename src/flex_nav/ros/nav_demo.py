@@ -26,7 +26,7 @@ import threading
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, List, Optional, Sequence, Tuple
+from typing import Any, List, Mapping, Optional, Sequence, Tuple
 
 from flex_nav.exceptions import ConfigError, FlexNavError, choices_message
 from flex_nav.private_master import PrivateMaster
@@ -285,17 +285,25 @@ def start_system(stack: contextlib.ExitStack, args: argparse.Namespace, runs: Li
              "twist_relay:=true", f"autonomy:={args.autonomy}", f"behavior:={args.behavior}",
              f"behavior_parameters:={behavior_parameters(args.behavior, run.profile)}"],
             env=env, log_path=logs / f"{run.name}.log"))
-    bag_topics = [t for r in runs for t in (f"/{r.name}/ground_truth", f"/{r.name}/odom",
-                  f"/{r.name}/get_path_server/plan", f"/{r.name}/bumper_hits", f"/{r.name}/cmd_vel",
-                  f"/{r.name}/behavior_runner/transitions", f"/{r.name}/behavior_runner/status")]
-    # the recorder itself (not the rosbag wrapper script), so SIGINT reaches it and it closes the bag
-    recorder = "/usr/lib/rosbag/record" if Path("/usr/lib/rosbag/record").is_file() else "rosbag"
-    bag = ManagedProcess([recorder, *([] if recorder != "rosbag" else ["record"]), "-O", str(out / "run.bag"),
-                          "/tf", "/map", *bag_topics], env=env, log_path=logs / "rosbag.log")
     for proc in processes:
         stack.callback(proc.stop)
-    stack.callback(bag.stop, 10.0)  # stopped first (LIFO): SIGINT lets rosbag close the bag file
+    start_recorder(stack, out / "run.bag", [r.name for r in runs], env, logs / "rosbag.log")
     return processes
+
+
+def start_recorder(stack: contextlib.ExitStack, bag: Path, robots: Sequence[str], env: Mapping[str, str],
+                   log_path: Path) -> ManagedProcess:
+    """Record the robots' ground truth, odometry, plans, bumper hits, commands and behavior topics (plus /tf
+    and /map) to ``bag``; registered on ``stack`` so that it stops before what was registered earlier."""
+    topics = [t for name in robots for t in (
+        f"/{name}/ground_truth", f"/{name}/odom", f"/{name}/get_path_server/plan", f"/{name}/bumper_hits",
+        f"/{name}/cmd_vel", f"/{name}/behavior_runner/transitions", f"/{name}/behavior_runner/status")]
+    # the recorder itself (not the rosbag wrapper script), so SIGINT reaches it and it closes the bag
+    recorder = "/usr/lib/rosbag/record" if Path("/usr/lib/rosbag/record").is_file() else "rosbag"
+    proc = ManagedProcess([recorder, *([] if recorder != "rosbag" else ["record"]), "-O", str(bag),
+                           "/tf", "/map", *topics], env=env, log_path=log_path)
+    stack.callback(proc.stop, 10.0)  # stopped first (LIFO): SIGINT lets rosbag close the bag file
+    return proc
 
 
 def world_map(world_name: str) -> Path:

@@ -35,6 +35,7 @@ from flex_nav.ros.nav_demo import (
     DemoMonitor,
     RobotRun,
     behavior_parameters,
+    start_recorder,
     wait_until_ready,
     world_map,
     write_picture,
@@ -57,6 +58,7 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     parser.add_argument("--sim-limit", type=float, default=150.0, help="[s] simulated time bound of the goal")
     parser.add_argument("--timeout", type=float, default=600.0, help="[s] wall-time bound of the whole run")
     parser.add_argument("--out", type=Path, required=True, help="output directory")
+    parser.add_argument("--bag", action="store_true", help="record run.bag (commands, odometry, plans, ...)")
     return parser.parse_args(argv)
 
 
@@ -128,6 +130,8 @@ def start(stack: contextlib.ExitStack, args: argparse.Namespace, run: RobotRun) 
     ]
     for proc in processes:
         stack.callback(proc.stop)
+    if args.bag:
+        start_recorder(stack, args.out / "run.bag", [ROBOT], env, logs / "rosbag.log")
     return processes
 
 

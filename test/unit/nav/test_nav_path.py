@@ -48,10 +48,15 @@ def test_closest_point_projects_on_segments():
     # the search starts at start_index: earlier segments are ignored
     r = closest_point(L_PATH, 1.0, 0.1, start_index=1)
     assert r.index == 1 and (r.x, r.y) == (3.0, 0.1)
-    # a bounded window does not see far segments
+    # a bounded window does not see far segments (it ends max_arc beyond the start segment's end)
     long = np.column_stack([np.linspace(0, 10, 101), np.zeros(101)])
     w = closest_point(long, 9.0, 0.0, max_arc=1.0)
-    assert w.x == pytest.approx(1.0)
+    assert w.x == pytest.approx(1.1)
+    # ... but a segment longer than the window never hides the next one (sparse planner paths): a robot
+    # past the corner of a 3 m segment finds the segment after it
+    sparse = np.array([[5.0, 0.0], [2.0, 0.0], [1.9, 0.4], [1.9, 5.0]])
+    c = closest_point(sparse, 1.95, 0.6, start_index=0, max_arc=1.0)
+    assert c.index == 2 and c.x == pytest.approx(1.9) and c.y == pytest.approx(0.6)
     single = closest_point(np.array([[1.0, 1.0]]), 1.0, 2.0)
     assert single.distance == 1.0
 

@@ -231,3 +231,25 @@ def test_closed_loop_follows_an_l_path_within_limits():
     assert math.hypot(x - 2.0, y - 2.0) <= params.goal_dist_tol
     assert abs(math.atan2(math.sin(yaw - math.pi / 2), math.cos(yaw - math.pi / 2))) <= params.yaw_goal_tolerance
     assert worst_track < 0.4
+
+
+def test_closed_loop_turns_the_corner_of_a_sparse_path():
+    """A planner's sparse path: a 2.7 m segment (longer than the search window) then a short dog-leg and a
+    turn. The robot must take the turn, not turn back and forth at the end of the long segment."""
+    path = np.array([[5.55, 0.53], [2.83, 0.53], [2.73, 0.58], [2.68, 0.58], [2.53, 0.73], [2.48, 0.93],
+                     [2.43, 1.13], [2.43, 5.58]])
+    params = PurePursuitParams(lookahead_dist=0.5, max_lookahead_dist=0.9, use_final_heading=False)
+    ctl = RegulatedPurePursuit(params)
+    ctl.set_path(path)
+    x, y, yaw, v, w = 5.55, 0.53, math.pi, 0.0, 0.0
+    for _ in range(2000):
+        cmd = ctl.step((x, y, yaw), (v, w), DT)
+        if cmd.status is PursuitStatus.GOAL_REACHED:
+            break
+        v, w = cmd.v, cmd.w
+        yaw += w * DT
+        x += v * math.cos(yaw) * DT
+        y += v * math.sin(yaw) * DT
+    else:
+        pytest.fail(f"goal not reached; robot at ({x:.2f}, {y:.2f})")
+    assert math.hypot(x - 2.43, y - 5.58) <= params.goal_dist_tol
