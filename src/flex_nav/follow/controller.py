@@ -19,7 +19,8 @@ and so does every failure:
 - with a ``yielding`` rule (off by default; :mod:`flex_nav.follow.yielding`) and the moving tracks passed
   to :meth:`SafeFollower.tick`, people walking into the path are given way to: while the rule is active its
   command replaces the controller's, and neither the blocked-path watch nor the collision timeout runs
-  (a person crossing is waited for, not reported as a blocked path).
+  (a person crossing is waited for, not reported as a blocked path); nor does an obstacle on the path
+  that a walking person explains (see :meth:`YieldRule.explains`) count as blocking it.
 
 Pure: the node passes times (one clock, [s]) and callables for the pose and the local costmap.
 """
@@ -173,7 +174,8 @@ class SafeFollower:
             return _stop(Outcome.SUCCEEDED, "goal reached", command)
         if status is PursuitStatus.INVALID_INPUT:
             return _stop(Outcome.ABORTED, command.reason, command)
-        given_way = self._give_way(now_s, robot, command, tracks, costmap)
+        moving = list(tracks()) if self.yielding is not None else []
+        given_way = self._give_way(now_s, robot, command, moving, costmap)
         if given_way is not None:
             return given_way
         if self.blocked.enabled and costs is not None and geometry is not None and self._path is not None:
@@ -181,6 +183,9 @@ class SafeFollower:
             obstacle = (obstacle_on_path(self._path, self._lengths, s_robot, distance_m=self.blocked.distance_m,
                                          costs=costs, geometry=geometry)
                         if math.isfinite(s_robot) else None)
+            if obstacle is not None and self.yielding is not None and self.yielding.explains(
+                    (obstacle.x, obstacle.y), moving):
+                obstacle = None  # a person walking: the yield rule gives way, nothing to classify
             reason = self.blocked.update(obstacle, now_s)
             if reason is not None:
                 return _stop(Outcome.ABORTED, reason, command)
@@ -196,7 +201,7 @@ class SafeFollower:
             return _stop(Outcome.ABORTED, f"internal error: non-finite command ({command.v}, {command.w})", command)
         return Decision(command.v, command.w, Outcome.RUNNING, command.reason, command)
 
-    def _give_way(self, now_s: float, robot: Pose2D, command: Command, tracks: Callable[[], Sequence[Track]],
+    def _give_way(self, now_s: float, robot: Pose2D, command: Command, tracks: Sequence[Track],
                   costmap: LocalCostmap) -> Optional[Decision]:
         """The yield rule's decision while it is active (people to give way to), else None (also when off)."""
         if self.yielding is None or self._path is None or not math.isfinite(command.distance_to_goal):
@@ -204,7 +209,7 @@ class SafeFollower:
         costs, geometry = costmap if costmap is not None else (None, None)
         given_way = self.yielding.decide(
             now_s, robot, (command.v, command.w), path=self._path, lengths=self._lengths,
-            s_robot=float(self._lengths[-1]) - command.distance_to_goal, tracks=tracks(), costs=costs,
+            s_robot=float(self._lengths[-1]) - command.distance_to_goal, tracks=tracks, costs=costs,
             geometry=geometry)
         if not given_way.active:
             return None

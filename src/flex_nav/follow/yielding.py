@@ -19,10 +19,11 @@ up from the controller's command to ``speed_mps`` at ``accel_mps2``. Each contro
    no more room);
 4. otherwise the robot is in the way of an approaching person -> ESCAPE: of a few short motions (back up
    straight or on a gentle arc, go on along the path) the one that keeps the largest predicted
-   clearance (ties: the one that meets the person latest) is commanded, but only a motion that never
-   carries the robot toward a person: its predicted closest approach to every moving track is at least
-   that of standing still or keeps R (toward a person's way is toward the person, even when it is away
-   from where the person is now), it keeps more clearance than standing still, and its robot centres over
+   clearance (ties: the one that meets the person latest; the motion of the previous tick is preferred by
+   a little, so the robot does not dither between two ways out) is commanded, but only a motion that never
+   carries the robot toward a person: into the predicted way of anyone that standing still keeps clear of
+   (toward a person's way is toward the person, even when it is away from where the person is now); it
+   must keep more clearance than standing still, and its robot centres over
    ``check_s`` [s] stay off the local costmap's obstacle cells (cells next to a moving track are its own
    marks and do not count). Without such a motion the robot waits.
 
@@ -44,7 +45,9 @@ from flex_nav.perception.moving_obstacles import Track
 
 Pose2D = Tuple[float, float, float]  # (x [m], y [m], yaw [rad])
 LATER_WEIGHT = 0.05  # [m/s] a later first violation is worth this much clearance per second (ties only)
+COMMIT_BONUS_M = 0.05  # [m] the escape motion chosen on the previous tick is worth this much more
 OWN_MARKS_MARGIN_M = 0.15  # [m] costmap cells this far beyond a moving track's body are its own marks
+TRAIL_S = 0.5  # [s] a moving track's marks may lag this far behind it
 
 
 @dataclass(frozen=True)
@@ -169,16 +172,33 @@ class YieldRule:
         count = math.floor(params.horizon_s / params.time_step_s + 1e-9) + 1
         self.times = np.arange(count) * params.time_step_s
         self._last_conflict_s: Optional[float] = None
+        self._last_escape = ""  # the escape motion of the previous tick ("" = none)
 
     def reset(self) -> None:
-        """Forget the last conflict (a new goal starts free)."""
+        """Forget the last conflict and escape (a new goal starts free)."""
         self._last_conflict_s = None
+        self._last_escape = ""
 
     def moving(self, pose: Pose2D, tracks: Sequence[Track]) -> List[Track]:
         """The tracks the rule gives way to: fast enough and near enough."""
         p = self.params
         return [t for t in tracks
                 if t.speed >= p.min_track_speed_mps and math.hypot(t.x - pose[0], t.y - pose[1]) <= p.max_range_m]
+
+    def explains(self, point: Tuple[float, float], tracks: Sequence[Track]) -> bool:
+        """True when a moving track accounts for an obstacle at ``point`` (x, y) [m]: within its radius plus
+        ``OWN_MARKS_MARGIN_M`` of where it is or was ``TRAIL_S`` [s] ago (a costmap keeps a walker's marks
+        until a beam clears them)."""
+        p = self.params
+        x, y = point
+        for t in tracks:
+            if t.speed < p.min_track_speed_mps:
+                continue
+            a = np.array([t.x - t.vx * TRAIL_S, t.y - t.vy * TRAIL_S])
+            b = np.array([t.x, t.y])
+            if float(_segment_distance(np.array([[x, y]]), a, b)[0]) <= t.radius + OWN_MARKS_MARGIN_M:
+                return True
+        return False
 
     def decide(
         self,
@@ -221,6 +241,7 @@ class YieldRule:
         here = np.repeat(np.array([[pose[0], pose[1]]]), len(self.times), axis=0)
         stand_clear = people.clearance(here)
         if float(stand_clear.min()) >= -p.escape_tolerance_m:
+            self._last_escape = ""
             return YieldDecision(0.0, w_cmd, YieldMode.WAIT,
                                  f"yielding: waiting for track {track.track_id} ({track.speed:.2f} m/s) to pass",
                                  track.track_id)
@@ -283,14 +304,17 @@ class YieldRule:
                 continue
             clearance = people.clearance(positions)
             each = clearance.min(axis=1)
-            if np.any((each < stand_each - 1e-6) & (each < 0.0)):
-                continue  # never toward a person: no one's clearance may shrink below R
+            if np.any((each < 0.0) & (stand_each >= 0.0)):
+                continue  # never toward a person: not into the way of anyone standing still keeps clear of
             if not self._free_of_obstacles(positions[check], people, costs, geometry):
                 continue
             score = self._score(clearance)
+            if name == self._last_escape:
+                score += COMMIT_BONUS_M  # keep to one way out: dithering between two is the worst of both
             if score > stand_score + p.min_gain_m and (best is None or score > best[0]):
                 best = (score, name, v, w)
         track = people.tracks[int(threatening[0])] if threatening.size else people.tracks[0]
+        self._last_escape = best[1] if best is not None else ""
         if best is None:
             return YieldDecision(0.0, 0.0, YieldMode.WAIT,
                                  f"yielding: in the way of track {track.track_id} ({track.speed:.2f} m/s) "

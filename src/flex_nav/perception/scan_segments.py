@@ -8,6 +8,8 @@ than a gap threshold. The threshold grows with range (neighbouring beams of one 
 Each kept segment gives the centre of the round body it is the visible front of: the beams see the near
 half of a circle of radius r, whose mean point lies ``(1 - pi/4) r`` behind the nearest point, i.e.
 ``(pi/4) r`` in front of the centre; the centre is the mean point moved ``(pi/4) r`` away from the sensor.
+A segment wider than ``split_width_m`` [m] (but not too wide) is taken for bodies side by side (two people
+walking past each other) and cut into equal pieces, one body each.
 r is half the segment's width plus one beam spacing (the visible chord of a circle seen from a distance
 is its diameter, less up to one beam spacing at each edge).
 
@@ -34,11 +36,12 @@ class SegmentParams:
     gap_per_m: float = 0.04  # [m per m of range] added to ``gap_m``: far beams are farther apart
     min_points: int = 2  # fewer hits than this are noise
     max_width_m: float = 0.9  # [m] wider segments are walls or furniture (dropped)
+    split_width_m: float = 0.55  # [m] wider segments are bodies side by side: cut into equal pieces
     min_radius_m: float = 0.1  # [m] smallest body radius reported
     max_radius_m: float = 0.4  # [m] largest body radius reported
 
     def __post_init__(self) -> None:
-        for name in ("gap_m", "max_width_m", "min_radius_m", "max_radius_m"):
+        for name in ("gap_m", "max_width_m", "split_width_m", "min_radius_m", "max_radius_m"):
             value = getattr(self, name)
             if not math.isfinite(value) or value <= 0.0:
                 raise ConfigError(f"segment parameter {name} must be a finite number > 0 [m], got {value!r}")
@@ -117,13 +120,24 @@ def _segments_of_run(xs: np.ndarray, ys: np.ndarray, sensor: Tuple[float, float]
         spread = math.hypot(float(px.max() - px.min()), float(py.max() - py.min()))
         if max(width, spread) > params.max_width_m:
             continue
-        spacing = width / (len(run) - 1) if len(run) > 1 else 0.0
-        radius = min(max(0.5 * (width + spacing), params.min_radius_m), params.max_radius_m)
-        mx, my = float(px.mean()), float(py.mean())
-        dx, dy = mx - sensor_x, my - sensor_y
-        dist = math.hypot(dx, dy)
-        shift = (math.pi / 4.0) * radius
-        if dist > 1e-9:
-            mx, my = mx + shift * dx / dist, my + shift * dy / dist
-        found.append(Segment(mx, my, radius, len(run)))
+        pieces = max(1, math.ceil(width / params.split_width_m - 1e-9))
+        if pieces > 1 and len(run) >= 2 * pieces:  # bodies side by side: equal pieces
+            found.extend(_body(xs[piece], ys[piece], sensor, params) for piece in np.array_split(run, pieces))
+        else:
+            found.append(_body(px, py, sensor, params))
     return found
+
+
+def _body(px: np.ndarray, py: np.ndarray, sensor: Tuple[float, float], params: SegmentParams) -> Segment:
+    """The round body whose visible front is the points (``px``, ``py``); see the module docstring."""
+    sensor_x, sensor_y = sensor
+    width = math.hypot(px[-1] - px[0], py[-1] - py[0])
+    spacing = width / (len(px) - 1) if len(px) > 1 else 0.0
+    radius = min(max(0.5 * (width + spacing), params.min_radius_m), params.max_radius_m)
+    mx, my = float(px.mean()), float(py.mean())
+    dx, dy = mx - sensor_x, my - sensor_y
+    dist = math.hypot(dx, dy)
+    shift = (math.pi / 4.0) * radius
+    if dist > 1e-9:
+        mx, my = mx + shift * dx / dist, my + shift * dy / dist
+    return Segment(mx, my, radius, len(px))

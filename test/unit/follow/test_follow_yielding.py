@@ -160,3 +160,34 @@ def test_safe_follower_without_the_rule_ignores_tracks():
 def test_arc_positions_follow_a_circle():
     pos = arc_positions((0.0, 0.0, 0.0), 0.2, 0.4, np.array([0.0, math.pi / 0.4]))
     assert pos[1] == pytest.approx([0.0, 1.0], abs=1e-9)  # half a circle of radius 0.5
+
+
+def test_an_obstacle_on_the_path_explained_by_a_walking_person_does_not_block():
+    rule = YieldRule(PARAMS)
+    walking, standing = person(3.0, 0.3, 0.0, 0.8), person(3.0, 0.0, 0.0, 0.0, track_id=2)
+    assert rule.explains((3.0, 0.0), [walking])  # its marks, 0.3 m behind it
+    assert not rule.explains((3.0, 0.0), [standing])  # a standing person is an obstacle for the behavior
+    assert not rule.explains((3.0, -1.0), [walking])
+    f = follower(rule)
+    f.set_path(np.array([[0.0, 0.0, 0.0], [10.0, 0.0, 0.0]]))
+    geometry = CostmapGeometry(60, 60, 0.05, 1.0, -1.5)
+    costs = np.zeros(geometry.shape, dtype=np.uint8)
+    rows, cols = geometry.world_to_cells(np.array([2.4]), np.array([0.0]))
+    costs[rows[0] - 2:rows[0] + 3, cols[0] - 2:cols[0] + 3] = LETHAL  # marks 0.4 m ahead, on the path
+    leaving = [person(2.4, 0.45, 0.0, 0.8)]  # the walker that left them, now beside the path, walking away
+    outcomes = []
+    for k in range(30):
+        now = 0.05 * (k + 1)
+        f.watchdog.saw("odom", now)
+        outcomes.append(f.tick(now, lambda: (2.0, 0.0, 0.0), (0.0, 0.0), lambda: (costs, geometry),
+                               lambda: leaving).outcome)
+    assert set(outcomes) == {Outcome.RUNNING}
+    still = follower(rule)  # the same marks with nobody walking: blocked
+    still.set_path(np.array([[0.0, 0.0, 0.0], [10.0, 0.0, 0.0]]))
+    for k in range(30):
+        now = 0.05 * (k + 1)
+        still.watchdog.saw("odom", now)
+        end = still.tick(now, lambda: (2.0, 0.0, 0.0), (0.0, 0.0), lambda: (costs, geometry))
+        if end.outcome is not Outcome.RUNNING:
+            break
+    assert end.outcome is Outcome.ABORTED and end.reason.startswith("blocked")

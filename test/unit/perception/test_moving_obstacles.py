@@ -4,37 +4,13 @@ import math
 
 import numpy as np
 import pytest
+from unit.perception.scan_synth import ray_scan
 
 from flex_nav.exceptions import ConfigError
 from flex_nav.nav.grid_map import GridMap
 from flex_nav.perception.moving_obstacles import MovingObstacleTracker, TrackerParams
 from flex_nav.perception.scan_segments import SegmentParams, segments
 from flex_nav.perception.static_mask import StaticMask
-
-ANGLES = np.radians(np.arange(-180.0, 180.0, 1.0))  # 360 beams, 1 degree
-
-
-def ray_scan(sensor, circles, room=None):
-    """Beam end points (NaN: no return) of a 360-beam scan from ``sensor`` (x, y) hitting ``circles``
-    [(x, y, r)] and, if given, the walls of the axis-aligned ``room`` (xmin, ymin, xmax, ymax)."""
-    sx, sy = sensor
-    dx, dy = np.cos(ANGLES), np.sin(ANGLES)
-    best = np.full(ANGLES.shape, np.inf)
-    for cx, cy, r in circles:
-        ox, oy = sx - cx, sy - cy
-        b = ox * dx + oy * dy
-        c = ox * ox + oy * oy - r * r
-        disc = b * b - c
-        with np.errstate(invalid="ignore"):
-            t = -b - np.sqrt(disc)
-        best = np.where((disc >= 0) & (t > 0) & (t < best), t, best)
-    if room is not None:
-        xmin, ymin, xmax, ymax = room
-        with np.errstate(divide="ignore", invalid="ignore"):
-            for t in ((xmin - sx) / dx, (xmax - sx) / dx, (ymin - sy) / dy, (ymax - sy) / dy):
-                best = np.where((t > 0) & (t < best), t, best)
-    best = np.where(np.isfinite(best) & (best < 12.0), best, np.nan)
-    return sx + best * dx, sy + best * dy
 
 
 def test_a_round_body_gives_one_segment_at_its_centre():
