@@ -66,8 +66,8 @@ def run(start_s, limit_s=120.0):
             tracker.update_scan(xs, ys, (x, y), t)
             next_scan += SCAN_PERIOD
         follower.watchdog.saw("odom", t)
-        now = t
-        decision = follower.tick(t, lambda: (x, y, yaw), (v, w), lambda: None, lambda: tracker.tracks(now))
+        decision = follower.tick(t, lambda pose=(x, y, yaw): pose, (v, w), lambda: None,
+                                 lambda now=t: tracker.tracks(now))
         if decision.outcome is not Outcome.RUNNING:
             return decision, t - start_s, min_gap, reasons
         reasons.add(decision.reason.split(":")[0])
@@ -96,7 +96,7 @@ def blind_min_gap(start_s):
         min_gap = min(min_gap, *(math.hypot(px - x, py - 4.0) - PERSON_RADIUS - ROBOT_RADIUS
                                  for px, py in (walker(a, b, s, t) for a, b, s in PEOPLE)))
         follower.watchdog.saw("odom", t)
-        v = follower.tick(t, lambda: (x, 4.0, 0.0), (v, 0.0), lambda: None).v
+        v = follower.tick(t, lambda pose=(x, 4.0, 0.0): pose, (v, 0.0), lambda: None).v
         x, t = x + v * DT, t + DT
     return min_gap
 
