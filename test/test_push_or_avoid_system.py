@@ -1,7 +1,8 @@
 """System tests of obstacle-aware navigation end to end (issue 7): simulator with camera + obstacle classifier +
 map server + servers + controllers + behavior runner on simulated time, one scenario run each
 (``python -m flex_nav.ros.scenario_run``, its own private master), for scenarios S1, S3 and S5 with the
-move_base-like baseline and push_or_avoid. Speeds are not asserted here (the evaluation command measures them)."""
+move_base-like baseline and push_or_avoid, and S6 (people walking across) with push_or_avoid. Speeds are not
+asserted here (the evaluation command measures them)."""
 
 from __future__ import annotations
 
@@ -80,3 +81,12 @@ def test_s5_heavy_box(tmp_path: Path, behavior: str) -> None:
         assert "/ReplanAround --planned--> Follow" in result["output"]
     else:  # the baseline never pushes (whether it reaches the goal is measured by the evaluation command)
         assert result["pushes_tried"] == 0
+
+
+@pytest.mark.ros
+def test_s6_push_or_avoid_gives_way_to_people_walking_across(tmp_path: Path) -> None:
+    # four scripted, blind people cross the robot's way; pure_pursuit_path tracks them and gives way
+    result = scenario(tmp_path, "s6_people_crossing", "push_or_avoid")
+    assert result["people_contacts"] == 0, result["output"][-5000:]
+    assert result["min_people_clearance_m"] is not None and result["min_people_clearance_m"] > 0.0
+    assert result["success"], result["output"][-5000:]
