@@ -4,6 +4,12 @@ As costmap_2d's ObstacleLayer: all rays of an observation are cleared first (eve
 cell to the end cell, at most ``raytrace_range`` [m] long), then hits closer than ``obstacle_range`` [m]
 are marked LETHAL. Marks persist until a later ray passes through them or the layer is reset.
 
+One deliberate difference: a beam that hit something within ``raytrace_range`` does not clear the cell it
+hit. costmap_2d clears that cell too, so an obstacle the robot drives away from vanishes as soon as it is
+between ``obstacle_range`` and ``raytrace_range`` away although the beams still end on it; a planner
+replanning at 1 Hz then flips between a route around the obstacle and one through it (found in the S5
+scenario: the baseline turned back and forth at 2.5 m from a heavy box for the whole run).
+
 Readings: NaN and readings below ``range_min`` are ignored. A reading ``>= range_max`` or +inf is a
 "no return": with ``clear_on_no_return`` (like costmap_2d's ``inf_is_valid``) it clears the whole beam
 up to ``min(range_max, raytrace_range)`` and marks nothing.
@@ -114,7 +120,9 @@ class ObstacleLayer:
         sensor_inside = geo.in_bounds((row0, col0))
         if sensor_inside:  # like costmap_2d: no clearing from a sensor off the grid, marking still happens
             end_rows, end_cols = geo.world_to_cells(xs[clear], ys[clear])
-            set_rays(self.costs, row0, col0, end_rows, end_cols, FREE)
+            with np.errstate(invalid="ignore"):  # the end cell of a beam that hit within reach stays
+                ended_on_hit = (hit & (ranges <= self.params.raytrace_range))[clear]
+            set_rays(self.costs, row0, col0, end_rows, end_cols, FREE, ended_on_hit)
         # marks: hits closer than obstacle_range (measured on the uncut reading)
         with np.errstate(invalid="ignore"):
             mark = usable & hit & (ranges < self.params.obstacle_range)

@@ -1,7 +1,8 @@
 """Integer ray tracing on a grid (Bresenham), compiled with numba.
 
 costmap_2d clears free space by walking every cell on the line from the sensor cell to the end cell,
-both included; the same cell sequence is produced here. A ray stops where it leaves the grid.
+both included; the same cell sequence is produced here (optionally without the end cell, see
+:func:`set_rays`). A ray stops where it leaves the grid.
 """
 
 from __future__ import annotations
@@ -12,11 +13,13 @@ from numba import njit
 
 @njit(cache=True, nogil=True)
 def set_rays(  # noqa: PLR0917 - a compiled kernel takes plain positional arguments
-    grid: np.ndarray, row0: int, col0: int, end_rows: np.ndarray, end_cols: np.ndarray, value: int
+    grid: np.ndarray, row0: int, col0: int, end_rows: np.ndarray, end_cols: np.ndarray, value: int,
+    skip_end: np.ndarray,
 ) -> int:  # pragma: no cover - compiled
     """Set every cell on the lines (row0, col0) -> (end_rows[i], end_cols[i]) to ``value``; returns cells set.
 
-    ``grid`` is uint8 (H, W). Nothing is done when the start cell is outside the grid.
+    ``grid`` is uint8 (H, W); ``skip_end`` (bool per line): leave that line's end cell alone. Nothing is done
+    when the start cell is outside the grid.
     """
     height, width = grid.shape
     if row0 < 0 or row0 >= height or col0 < 0 or col0 >= width:
@@ -33,7 +36,7 @@ def set_rays(  # noqa: PLR0917 - a compiled kernel takes plain positional argume
         col = col0
         if abs_col >= abs_row:
             error = abs_col // 2
-            for _ in range(abs_col + 1):
+            for _ in range(abs_col + 1 - int(skip_end[i])):
                 if row < 0 or row >= height or col < 0 or col >= width:
                     break
                 grid[row, col] = value
@@ -45,7 +48,7 @@ def set_rays(  # noqa: PLR0917 - a compiled kernel takes plain positional argume
                     error -= abs_col
         else:
             error = abs_row // 2
-            for _ in range(abs_row + 1):
+            for _ in range(abs_row + 1 - int(skip_end[i])):
                 if row < 0 or row >= height or col < 0 or col >= width:
                     break
                 grid[row, col] = value

@@ -147,15 +147,17 @@ def test_raytrace_matches_reference_lines():
         grid = np.zeros((30, 30), dtype=np.uint8)
         r0, c0 = rng.integers(0, 30, 2)
         r1, c1 = rng.integers(-10, 40, 2)
-        set_rays(grid, int(r0), int(c0), np.array([r1]), np.array([c1]), 7)
+        skip_end = bool(rng.integers(0, 2))
+        set_rays(grid, int(r0), int(c0), np.array([r1]), np.array([c1]), 7, np.array([skip_end]))
         expected = np.zeros_like(grid)
-        for r, c in line_cells(int(r0), int(c0), int(r1), int(c1)):
+        cells = line_cells(int(r0), int(c0), int(r1), int(c1))
+        for r, c in cells[:-1] if skip_end else cells:
             if not (0 <= r < 30 and 0 <= c < 30):
                 break
             expected[r, c] = 7
         np.testing.assert_array_equal(grid, expected)
     grid = np.zeros((5, 5), dtype=np.uint8)
-    assert set_rays(grid, -1, 0, np.array([3]), np.array([3]), 1) == 0 and not grid.any()
+    assert set_rays(grid, -1, 0, np.array([3]), np.array([3]), 1, np.array([False])) == 0 and not grid.any()
 
 
 def test_scan_marks_hit_and_clears_old_marks():
@@ -182,6 +184,11 @@ def test_far_hits_not_marked_and_no_return_clears():
     assert cm.cost_at(2.41, 0.01) == FREE
     assert cm.cost_at(-2.0, 0.0) == FREE
     assert cm.cost_at(-2.9, 0.0) == FREE
+    # a beam ending on an obstacle beyond obstacle_range does not mark it, nor clear a mark made from closer
+    cm.mark_obstacles(np.array([2.41]), np.array([0.01]))
+    cm.add_scan(_scan([2.41], angle_min=0.0))
+    cm.update()
+    assert cm.cost_at(2.41, 0.01) == LETHAL and cm.cost_at(1.5, 0.01) == FREE
     quiet = Costmap(geo, obstacles=ObstacleLayerParams(clear_on_no_return=False))
     quiet.mark_obstacles(np.array([-2.0]), np.array([0.0]))
     quiet.add_scan(_scan([float("inf")], angle_min=math.pi))
