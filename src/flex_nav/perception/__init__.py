@@ -1,4 +1,5 @@
 """Perception for obstacle-aware navigation: is the region in front of the robot a person, a movable object or clear?
+And what moves around the robot (laser tracks)?
 
 ROS-free core (never imports rospy); the node is :mod:`flex_nav.ros.obstacle_classifier_node`.
 
@@ -13,4 +14,7 @@ ROS-free core (never imports rospy); the node is :mod:`flex_nav.ros.obstacle_cla
 | ``yolo`` | YOLOv8-family output decoding (both ultralytics layouts), class-wise NMS, :class:`YoloObstacleDetector` |
 | ``smoothing`` | :class:`MajorityVote`: the majority of the last N frames, as in the thesis (N = 5) |
 | ``factory`` | building either model kind from a validated :class:`PerceptionConfig` |
+| ``scan_segments`` | laser scan points cut into segments of small bodies (centre and radius from the visible front) |
+| ``static_mask`` | which scan points the static map explains (dropped before tracking) |
+| ``moving_obstacles`` | :class:`MovingObstacleTracker`: constant-velocity Kalman tracks (position, velocity, radius) |
 """
