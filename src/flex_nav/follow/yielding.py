@@ -11,21 +11,21 @@ up from the controller's command to ``speed_mps`` at ``accel_mps2``. Each contro
 1. the robot going on along its path stays farther than R from every predicted person -> FREE: the
    controller's command goes out unchanged (after yielding: only with ``start_margin_m`` [m] more and after
    ``resume_after_s`` [s] without a conflict, so a wobbling estimate does not start and stop the robot);
-2. otherwise, while the path ahead enters a conflicting person's corridor farther than ``stop_buffer_m``
-   [m] ahead -> SLOW: the speed is capped so the robot stops, at ``decel_mps2``, before the corridor (the
-   turn rate is scaled with it: same curvature);
-3. at or inside the corridor, if standing still keeps R (less ``escape_tolerance_m``) to every predicted
-   person -> WAIT (no forward motion; the controller's turn in place is kept: a round robot turning takes
-   no more room);
-4. otherwise the robot is in the way of an approaching person -> ESCAPE: of a few short motions (back up
-   straight or on a gentle arc, go on along the path) the one that keeps the largest predicted
-   clearance (ties: the one that meets the person latest; the motion of the previous tick is preferred by
-   a little, so the robot does not dither between two ways out) is commanded, but only a motion that never
-   carries the robot toward a person: into the predicted way of anyone that standing still keeps clear of
-   (toward a person's way is toward the person, even when it is away from where the person is now); it
-   must keep more clearance than standing still, and its robot centres over
-   ``check_s`` [s] stay off the local costmap's obstacle cells (cells next to a moving track are its own
-   marks and do not count). Without such a motion the robot waits.
+2. otherwise, if standing still keeps R (less ``escape_tolerance_m``) to every predicted person: while
+   the path ahead enters a conflicting person's corridor farther than ``stop_buffer_m`` [m] ahead -> SLOW:
+   the speed is capped so the robot stops, at ``decel_mps2``, before the corridor (the turn rate is scaled
+   with it: same curvature);
+3. at the corridor's edge -> WAIT (no forward motion; the controller's turn in place is kept: a round robot
+   turning takes no more room);
+4. otherwise (standing still would be met) the robot is in an approaching person's way -> ESCAPE: of a
+   few short motions (back up straight or on a gentle arc, go on along the path) the one that keeps the
+   largest predicted clearance (ties: the one that meets the person latest; the motion of the previous tick
+   is preferred by a little, so the robot does not dither between two ways out) is commanded, but only a
+   motion that never carries the robot toward a person: into the predicted way of anyone that standing
+   still keeps clear of (toward a person's way is toward the person, even when it is away from where the
+   person is now); it must keep more clearance than standing still, and its robot centres over ``check_s``
+   [s] stay off the local costmap's obstacle cells (cells next to a moving track are its own marks and do
+   not count). Without such a motion the robot waits.
 
 Pure: numpy, no ROS, no clock (times [s] are passed in); poses and tracks in the path's frame.
 """
@@ -231,16 +231,17 @@ class YieldRule:
         track = people.tracks[worst]
         entry = self._corridor_entry(path, lengths, s_robot, people, conflicting)
         ahead = entry - s_robot
-        if ahead > p.stop_buffer_m:
+        here = np.repeat(np.array([[pose[0], pose[1]]]), len(self.times), axis=0)
+        stand_clear = people.clearance(here)
+        standing_keeps_clear = float(stand_clear.min()) >= -p.escape_tolerance_m
+        if standing_keeps_clear and ahead > p.stop_buffer_m:
             cap = math.sqrt(2.0 * p.decel_mps2 * (ahead - p.stop_buffer_m))
             v = min(v_cmd, cap)
             w = w_cmd * (v / v_cmd) if v_cmd > 1e-9 else w_cmd
             return YieldDecision(v, w, YieldMode.SLOW,
                                  f"yielding: stopping {ahead:.2f} m ahead, before the way of track {track.track_id} "
                                  f"({track.speed:.2f} m/s)", track.track_id)
-        here = np.repeat(np.array([[pose[0], pose[1]]]), len(self.times), axis=0)
-        stand_clear = people.clearance(here)
-        if float(stand_clear.min()) >= -p.escape_tolerance_m:
+        if standing_keeps_clear:
             self._last_escape = ""
             return YieldDecision(0.0, w_cmd, YieldMode.WAIT,
                                  f"yielding: waiting for track {track.track_id} ({track.speed:.2f} m/s) to pass",
