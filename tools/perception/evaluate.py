@@ -3,9 +3,10 @@
     python -m tools.perception.evaluate --model models/obstacle_classifier.onnx --data build/dataset
 
 Runs the model exactly as the node does (:class:`flex_nav.perception.classifier.ObstacleClassifier`,
-onnxruntime, one thread) on the stored ROI patches of ``val``, ``test`` (models seen in training, new
-scenes) and ``unseen`` (people, objects and furniture held out of training), and prints per split the
-accuracy, per class precision and recall, the confusion matrix and the accuracy per scene model.
+onnxruntime, one thread) on the stored ROI patches of ``val`` and ``val_extra`` (the selection
+splits), ``test`` (models seen in training, new scenes) and ``unseen`` (people, objects and furniture
+held out of training), and prints per split the accuracy, per class precision and recall, the
+confusion matrix and the accuracy per scene model.
 ``--write`` stores the figures in the model's YAML (``evaluation``).
 """
 
@@ -22,7 +23,7 @@ import yaml
 from flex_nav.perception.classifier import FORMAT, ObstacleClassifier, metadata_path_for
 from flex_nav.perception.roi import Roi
 
-SPLITS = ("val", "test", "unseen")
+SPLITS = ("val", "val_extra", "test", "unseen")
 BATCH = 256
 
 
@@ -116,7 +117,8 @@ def write_metadata(
 
 def _summary(evaluation: Dict[str, Any]) -> Dict[str, Any]:
     return {split: {"samples": r["samples"], "accuracy": r["accuracy"], "per_class": r["per_class"],
-                    "per_model_accuracy": r["per_model_accuracy"]} for split, r in evaluation.items()}
+                    "confusion": r["confusion"], "per_model_accuracy": r["per_model_accuracy"]}
+            for split, r in evaluation.items()}
 
 
 def main(argv: List[str]) -> int:

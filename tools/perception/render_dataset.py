@@ -29,7 +29,10 @@ from flex_nav.perception.preprocess import roi_patch
 from flex_nav.perception.roi import Roi
 
 PATCH_W, PATCH_H = 64, 64  # [px] the model input size (models/obstacle_classifier.yaml)
-SPLITS: Dict[str, Tuple[int, int]] = {"train": (0, 2000), "val": (1, 200), "test": (2, 300), "unseen": (3, 300)}
+SPLITS: Dict[str, Tuple[int, int]] = {  # split: (id in the seed, samples per label)
+    "train": (0, 2000), "val": (1, 200), "test": (2, 300), "unseen": (3, 300),
+    "extra": (4, 3000), "val_extra": (5, 150),  # training-only models too (tools.perception.scenes.TRAIN_ONLY)
+}
 CHUNK = 20  # samples per label in a chunk (one generator per chunk)
 SHEET_FRAMES = 24
 
@@ -79,11 +82,17 @@ def main(argv: List[str]) -> int:
     parser.add_argument("--seed", type=int, default=7)
     parser.add_argument("--workers", type=int, default=2, help="processes (the output does not depend on it)")
     parser.add_argument("--scale", type=float, default=1.0, help="multiply every split's size (e.g. 0.1 to try)")
+    parser.add_argument("--splits", nargs="+", default=list(SPLITS), choices=list(SPLITS),
+                        help="render only these splits (each split's content does not depend on the others)")
     args = parser.parse_args(argv)
     args.out.mkdir(parents=True, exist_ok=True)
-    summary = {}
+    summary: Dict[str, object] = {}
     started = time.monotonic()
-    for split, (split_id, per_label) in SPLITS.items():
+    summary_file = args.out / "summary.json"
+    if summary_file.exists() and set(args.splits) != set(SPLITS):
+        summary = json.loads(summary_file.read_text())  # keep the records of the splits not rendered now
+    for split in args.splits:
+        split_id, per_label = SPLITS[split]
         total = max(1, round(per_label * args.scale))  # per label
         chunks = [(args.seed, split, split_id, i, min(CHUNK, total - i * CHUNK))
                   for i in range((total + CHUNK - 1) // CHUNK)]
@@ -106,8 +115,8 @@ def main(argv: List[str]) -> int:
         summary[split] = {"samples": len(labels), "per_label": counts, "models": sorted(set(models)),
                           "seconds": round(time.monotonic() - t0, 1)}
         print(f"[render_dataset] {split}: {len(labels)} samples {counts} in {time.monotonic() - t0:.0f} s", flush=True)
-    summary["seed"] = args.seed  # type: ignore[assignment]
-    (args.out / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+    summary["seed"] = args.seed
+    summary_file.write_text(json.dumps(summary, indent=2) + "\n")
     print(f"[render_dataset] done in {time.monotonic() - started:.0f} s -> {args.out}")
     return 0
 

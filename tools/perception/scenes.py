@@ -47,6 +47,12 @@ TRAIN_MODELS: Dict[str, Tuple[str, ...]] = {
     MOVABLE: ("box", "box_pair", "bin"),
     CLEAR: ("empty", "wall", "table", "chair", "pillar", "cabinet", "shelf", "coffee_table", "sofa"),
 }
+TRAIN_ONLY: Dict[str, Tuple[str, ...]] = {  # extra training models, only in the ``extra`` splits
+    PERSON: (),
+    MOVABLE: ("light_box", "suitcase", "tote", "sack"),
+    CLEAR: ("stool", "ottoman", "sideboard", "cart", "radiator", "seat_row", "gurney", "desk", "corridor"),
+}
+EXTRA_SPLITS = ("extra", "val_extra")
 HELD_OUT: Dict[str, Tuple[str, ...]] = {
     PERSON: ("deepmimic_humanoid", "dress_walker"),
     MOVABLE: ("crate", "textured_cube", "taped_parcel"),
@@ -544,6 +550,244 @@ def clear_door_frame(sc: Scene, x: float, y: float, yaw: float) -> None:
                jitter(rng, DEFAULT_COLORS["door"][:3]), yaw)
 
 
+# -- training-only models (``TRAIN_ONLY``: the ``extra`` and ``val_extra`` splits) ----------------------------
+# More hard negatives of the shapes the model confused with boxes (low, long or raised furniture; walls
+# alongside the way) and more kinds of pushable objects. None of them is a held-out model (``HELD_OUT``).
+METAL: Tuple[Vec3, ...] = ((0.75, 0.75, 0.78), (0.55, 0.56, 0.6), (0.35, 0.36, 0.4), (0.92, 0.92, 0.92),
+                           (0.3, 0.45, 0.7))
+LIGHT_BOXES: Tuple[Vec3, ...] = (
+    (0.97, 0.97, 0.97), (0.9, 0.9, 0.88), (0.8, 0.8, 0.8), (0.68, 0.68, 0.7), (0.55, 0.55, 0.57),
+    (0.85, 0.9, 0.95), (0.95, 0.9, 0.8), (0.8, 0.85, 0.8), (0.78, 0.72, 0.65),
+)
+
+
+def legs4(sc: Scene, x: float, y: float, yaw: float, *, dx: float, dy: float, height: float, half: float,
+          color: Rgba) -> None:
+    """Four square legs of ``height`` [m] at (+-dx, +-dy) in the object's frame."""
+    for fx in (dx, -dx):
+        for fy in (dy, -dy):
+            px, py = local(x, y, yaw, fx, fy)
+            sc.box((px, py, height / 2.0), (half, half, height / 2.0), color, yaw)
+
+
+def clear_stool(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A stool: a round or square seat on three or four thin legs, sometimes a foot rest."""
+    rng = sc.rng
+    h, r = rng.uniform(0.4, 0.78), rng.uniform(0.15, 0.22)
+    seat, legs = furniture_color(rng), jitter(rng, pick(rng, (*METAL, *FURNITURE)))
+    if rng.random() < 0.5:
+        sc.cylinder((x, y, h - 0.03), r, 0.06, seat)
+    else:
+        sc.box((x, y, h - 0.03), (r, r, 0.03), seat, yaw)
+    n = 3 if rng.random() < 0.4 else 4
+    for k in range(n):
+        a = yaw + 2.0 * math.pi * k / n
+        sc.cylinder((x + 0.8 * r * math.cos(a), y + 0.8 * r * math.sin(a), (h - 0.06) / 2.0), 0.015, h - 0.06, legs)
+    if rng.random() < 0.5:
+        sc.box((x, y, h * 0.35), (0.8 * r, 0.8 * r, 0.01), legs, yaw)
+
+
+def clear_ottoman(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A padded footstool: a low block raised on short legs (the gap under it shows)."""
+    rng = sc.rng
+    sx, sy, body, leg = rng.uniform(0.4, 0.9), rng.uniform(0.4, 1.2), rng.uniform(0.2, 0.35), rng.uniform(0.12, 0.22)
+    color = jitter(rng, pick(rng, (*FURNITURE, (0.3, 0.35, 0.5), (0.45, 0.3, 0.25), (0.6, 0.2, 0.2))))
+    sc.box((x, y, leg + body / 2.0), (sx / 2.0, sy / 2.0, body / 2.0), color, yaw)
+    legs4(sc, x, y, yaw, dx=sx / 2.0 - 0.05, dy=sy / 2.0 - 0.05, height=leg, half=0.02,
+          color=jitter(rng, pick(rng, FURNITURE)))
+
+
+def clear_sideboard(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A long low cabinet (sideboard, bedside row, lab bench base) on legs, with door lines and handles."""
+    rng = sc.rng
+    length, depth = rng.uniform(1.0, 2.2), rng.uniform(0.4, 0.55)
+    leg, body = rng.uniform(0.08, 0.25), rng.uniform(0.4, 0.75)
+    color = furniture_color(rng)
+    sc.box((x, y, leg + body / 2.0), (depth / 2.0, length / 2.0, body / 2.0), color, yaw)
+    legs4(sc, x, y, yaw, dx=depth / 2.0 - 0.04, dy=length / 2.0 - 0.04, height=leg, half=0.025,
+          color=jitter(rng, pick(rng, METAL)))
+    doors = int(rng.integers(2, 5))
+    dark = (0.15, 0.15, 0.15, 1.0)
+    for k in range(doors):
+        fy = -length / 2.0 + (k + 0.5) * length / doors
+        for side in (1.0, -1.0):  # handles on both faces (the robot sees either)
+            hx, hy = local(x, y, yaw, side * (depth / 2.0 + 0.01), fy + 0.06)
+            sc.box((hx, hy, leg + body * 0.75), (0.01, 0.01, 0.05), dark, yaw)
+        if k:
+            for side in (1.0, -1.0):
+                gx, gy = local(x, y, yaw, side * (depth / 2.0 + 0.002), -length / 2.0 + k * length / doors)
+                sc.box((gx, gy, leg + body / 2.0), (0.002, 0.004, body / 2.0 - 0.02), dark, yaw)
+
+
+def clear_cart(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A service trolley: two or three shelves on four posts, castors and a push handle."""
+    rng = sc.rng
+    length, width, h = rng.uniform(0.6, 1.0), rng.uniform(0.4, 0.6), rng.uniform(0.8, 1.0)
+    frame, shelf = jitter(rng, pick(rng, METAL)), jitter(rng, pick(rng, (*METAL, *FURNITURE)))
+    wheel = 0.06
+    for fx in (length / 2.0 - 0.03, -length / 2.0 + 0.03):
+        for fy in (width / 2.0 - 0.03, -width / 2.0 + 0.03):
+            px, py = local(x, y, yaw, fx, fy)
+            sc.cylinder((px, py, wheel + (h - wheel) / 2.0), 0.015, h - wheel, frame)
+            sc.sphere((px, py, wheel / 2.0), wheel / 2.0, (0.1, 0.1, 0.1, 1.0))
+    levels = int(rng.integers(2, 4))
+    for k in range(levels):
+        z = wheel + 0.1 + k * (h - wheel - 0.12) / (levels - 1)
+        sc.box((x, y, z), (length / 2.0, width / 2.0, 0.015), shelf, yaw)
+    hx, hy = local(x, y, yaw, length / 2.0 + 0.05, 0.0)
+    sc.box((hx, hy, h + 0.05), (0.015, width / 2.0, 0.015), frame, yaw)
+
+
+def clear_radiator(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A ribbed radiator on brackets in front of a wall across the view."""
+    rng = sc.rng
+    along = math.atan2(y, x) + math.pi / 2.0 + rng.uniform(-0.3, 0.3)
+    normal = along - math.pi / 2.0  # from the wall towards the robot
+    wx, wy = x - 0.12 * math.cos(normal), y - 0.12 * math.sin(normal)
+    sc.wall((wx, wy), rng.uniform(6.0, 12.0), rng.uniform(1.0, 2.5), along, jitter(rng, pick(rng, WALLS)))
+    length, body, lift = rng.uniform(0.6, 1.6), rng.uniform(0.35, 0.7), rng.uniform(0.08, 0.2)
+    color = jitter(rng, pick(rng, ((0.95, 0.95, 0.95), (0.85, 0.85, 0.83), (0.6, 0.6, 0.62), (0.3, 0.3, 0.32))), 0.03)
+    sc.box((x, y, lift + body / 2.0), (length / 2.0, 0.03, body / 2.0), color, along)
+    ribs = int(length / rng.uniform(0.05, 0.09))
+    shade = (*(0.8 * v for v in color[:3]), 1.0)
+    for k in range(ribs):
+        t = -length / 2.0 + (k + 0.5) * length / ribs
+        px, py = x + math.cos(along) * t + 0.035 * math.cos(normal), y + math.sin(along) * t + 0.035 * math.sin(normal)
+        sc.box((px, py, lift + body / 2.0), (0.006, 0.008, body / 2.0 - 0.01), shade, along)  # type: ignore[arg-type]
+    for t in (-length / 2.0 + 0.1, length / 2.0 - 0.1):
+        px, py = x + math.cos(along) * t, y + math.sin(along) * t
+        sc.box((px, py, lift / 2.0), (0.015, 0.015, lift / 2.0), color, along)
+
+
+def clear_seat_row(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A waiting-room seat row: two to four seats with backs on a beam carried by two T legs."""
+    rng = sc.rng
+    seats, h = int(rng.integers(2, 5)), rng.uniform(0.42, 0.47)
+    pitch_w = rng.uniform(0.5, 0.6)
+    seat, frame = furniture_color(rng), jitter(rng, pick(rng, METAL))
+    length = seats * pitch_w
+    sc.box((x, y, h - 0.08), (0.03, length / 2.0, 0.03), frame, yaw)  # beam
+    for fy in (length / 2.0 - 0.25, -length / 2.0 + 0.25):
+        px, py = local(x, y, yaw, 0.0, fy)
+        sc.box((px, py, (h - 0.1) / 2.0), (0.025, 0.025, (h - 0.1) / 2.0), frame, yaw)
+        sc.box((px, py, 0.015), (0.25, 0.03, 0.015), frame, yaw)
+    for k in range(seats):
+        fy = -length / 2.0 + (k + 0.5) * pitch_w
+        px, py = local(x, y, yaw, 0.0, fy)
+        sc.box((px, py, h), (0.22, pitch_w / 2.0 - 0.03, 0.03), seat, yaw)
+        bx, by = local(x, y, yaw, -0.22, fy)
+        sc.box((bx, by, h + 0.25), (0.02, pitch_w / 2.0 - 0.03, 0.22), seat, yaw, pitch=-0.15)
+
+
+def clear_gurney(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A stretcher trolley: a thin pad on a frame at 0.55-0.9 m, on castor legs or a central column."""
+    rng = sc.rng
+    length, width, h = rng.uniform(1.8, 2.1), rng.uniform(0.55, 0.75), rng.uniform(0.55, 0.9)
+    frame = jitter(rng, pick(rng, METAL))
+    pad = jitter(rng, pick(rng, ((0.9, 0.9, 0.9), (0.3, 0.4, 0.6), (0.2, 0.2, 0.22), (0.6, 0.75, 0.85))))
+    sc.box((x, y, h - 0.04), (width / 2.0, length / 2.0, 0.04), frame, yaw)
+    sc.box((x, y, h + 0.04), (width / 2.0 - 0.02, length / 2.0 - 0.02, 0.05), pad, yaw)
+    if rng.random() < 0.5:
+        legs4(sc, x, y, yaw, dx=width / 2.0 - 0.05, dy=length / 2.0 - 0.1, height=h - 0.08, half=0.02, color=frame)
+    else:
+        for fy in (length / 4.0, -length / 4.0):
+            px, py = local(x, y, yaw, 0.0, fy)
+            sc.box((px, py, (h - 0.08) / 2.0), (0.06, 0.08, (h - 0.08) / 2.0), frame, yaw)
+        sc.box((x, y, 0.06), (width / 2.0 - 0.05, length / 2.0 - 0.1, 0.03), frame, yaw)
+    if rng.random() < 0.5:  # side rails
+        for side in (1.0, -1.0):
+            px, py = local(x, y, yaw, side * width / 2.0, 0.0)
+            sc.box((px, py, h + 0.2), (0.01, length / 3.0, 0.01), frame, yaw)
+
+
+def clear_desk(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A desk whose top rests on two side panels, sometimes a back panel and a drawer pedestal."""
+    rng = sc.rng
+    length, depth, h = rng.uniform(1.0, 1.8), rng.uniform(0.6, 0.8), rng.uniform(0.7, 0.78)
+    top, panel = furniture_color(rng), furniture_color(rng)
+    sc.box((x, y, h - 0.015), (depth / 2.0, length / 2.0, 0.015), top, yaw)
+    for fy in (length / 2.0 - 0.02, -length / 2.0 + 0.02):
+        px, py = local(x, y, yaw, 0.0, fy)
+        sc.box((px, py, (h - 0.03) / 2.0), (depth / 2.0 - 0.02, 0.02, (h - 0.03) / 2.0), panel, yaw)
+    if rng.random() < 0.5:
+        px, py = local(x, y, yaw, -depth / 2.0 + 0.05, 0.0)
+        sc.box((px, py, h * 0.6), (0.01, length / 2.0 - 0.04, h * 0.25), panel, yaw)
+    if rng.random() < 0.4:
+        px, py = local(x, y, yaw, 0.0, length / 2.0 - 0.25)
+        sc.box((px, py, (h - 0.03) / 2.0), (depth / 2.0 - 0.05, 0.2, (h - 0.03) / 2.0), panel, yaw)
+
+
+def clear_corridor(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """Walls along both sides of the way ahead (a corridor), maybe an end wall far away: the way is clear."""
+    rng = sc.rng
+    heading = math.atan2(y, x) + rng.uniform(-0.25, 0.25)
+    color = jitter(rng, pick(rng, WALLS))
+    height = rng.uniform(0.8, 2.5)
+    for side in (1.0, -1.0):
+        offset = rng.uniform(0.7, 1.4)
+        cx = math.cos(heading) * 4.5 - side * math.sin(heading) * offset
+        cy = math.sin(heading) * 4.5 + side * math.cos(heading) * offset
+        sc.wall((cx, cy), 7.0, height, heading, color if rng.random() < 0.7 else jitter(rng, pick(rng, WALLS)))
+    if rng.random() < 0.5:
+        d = rng.uniform(3.0, 7.0)
+        sc.wall((d * math.cos(heading), d * math.sin(heading)), 4.0, height, heading + math.pi / 2.0,
+                jitter(rng, pick(rng, WALLS)))
+
+
+def movable_light_box(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A plain box in white, grey or pastel (the colours of walls), often large."""
+    rng = sc.rng
+    sx, sy, sz = rng.uniform(0.3, 0.7), rng.uniform(0.3, 0.7), rng.uniform(0.2, 0.65)
+    sc.box((x, y, sz / 2.0), (sx / 2.0, sy / 2.0, sz / 2.0), jitter(rng, pick(rng, LIGHT_BOXES), 0.04), yaw)
+
+
+def movable_suitcase(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """An upright suitcase on small castors with a pulled-out handle (or a flat one)."""
+    rng = sc.rng
+    w, d, h = rng.uniform(0.35, 0.5), rng.uniform(0.2, 0.3), rng.uniform(0.45, 0.75)
+    color = jitter(rng, pick(rng, ((0.1, 0.1, 0.12), (0.2, 0.25, 0.45), (0.6, 0.1, 0.15), (0.5, 0.5, 0.52),
+                                   (0.85, 0.85, 0.85), (0.2, 0.45, 0.4), (0.8, 0.5, 0.2))))
+    wheel = 0.035
+    sc.box((x, y, wheel * 2 + h / 2.0), (d / 2.0, w / 2.0, h / 2.0), color, yaw)
+    for fy in (w / 2.0 - 0.04, -w / 2.0 + 0.04):
+        for fx in (d / 2.0 - 0.03, -d / 2.0 + 0.03):
+            px, py = local(x, y, yaw, fx, fy)
+            sc.sphere((px, py, wheel), wheel, (0.08, 0.08, 0.08, 1.0))
+    if rng.random() < 0.6:
+        top = wheel * 2 + h
+        ext = rng.uniform(0.1, 0.4)
+        for fy in (0.1, -0.1):
+            px, py = local(x, y, yaw, -d / 2.0 + 0.02, fy)
+            sc.box((px, py, top + ext / 2.0), (0.008, 0.008, ext / 2.0), (0.3, 0.3, 0.3, 1.0), yaw)
+        px, py = local(x, y, yaw, -d / 2.0 + 0.02, 0.0)
+        sc.box((px, py, top + ext), (0.015, 0.12, 0.015), (0.1, 0.1, 0.1, 1.0), yaw)
+
+
+def movable_tote(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A lidded plastic storage tote: a body narrowing to the bottom and a wider lid."""
+    rng = sc.rng
+    sx, sy, sz = rng.uniform(0.35, 0.7), rng.uniform(0.3, 0.5), rng.uniform(0.2, 0.45)
+    body = jitter(rng, pick(rng, ((0.2, 0.3, 0.7), (0.15, 0.15, 0.15), (0.55, 0.55, 0.58), (0.85, 0.85, 0.85),
+                                  (0.75, 0.2, 0.2), (0.2, 0.55, 0.3))))
+    lid = body if rng.random() < 0.5 else jitter(rng, pick(rng, ((0.9, 0.8, 0.1), (0.2, 0.3, 0.7), (0.1, 0.1, 0.1))))
+    sc.box((x, y, sz * 0.25), (sx / 2.0 - 0.02, sy / 2.0 - 0.02, sz * 0.25), body, yaw)
+    sc.box((x, y, sz * 0.75), (sx / 2.0, sy / 2.0, sz * 0.25), body, yaw)
+    sc.box((x, y, sz + 0.015), (sx / 2.0 + 0.015, sy / 2.0 + 0.015, 0.015), lid, yaw)
+
+
+def movable_sack(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A bag lying on the floor (duffel bag, laundry or rubbish sack): a lying capsule or a squat blob."""
+    rng = sc.rng
+    color = jitter(rng, pick(rng, ((0.1, 0.1, 0.1), (0.2, 0.25, 0.45), (0.85, 0.85, 0.8), (0.3, 0.4, 0.25),
+                                   (0.6, 0.15, 0.15), (0.55, 0.45, 0.3))))
+    r = rng.uniform(0.12, 0.22)
+    if rng.random() < 0.6:
+        sc.capsule((x, y, r), r, rng.uniform(0.25, 0.55), color, yaw=yaw, pitch=math.pi / 2.0)
+    else:
+        sc.sphere((x, y, r), r * 1.3, color)
+        sc.sphere((x, y, 2.2 * r), r * 0.8, color)
+
+
 def clear_empty(sc: Scene, x: float, y: float, yaw: float) -> None:
     """Nothing in front (only the background)."""
 
@@ -574,6 +818,19 @@ BUILDERS: Dict[str, Builder] = {
     "bench": clear_bench,
     "bed": clear_bed,
     "door_frame": clear_door_frame,
+    "stool": clear_stool,
+    "ottoman": clear_ottoman,
+    "sideboard": clear_sideboard,
+    "cart": clear_cart,
+    "radiator": clear_radiator,
+    "seat_row": clear_seat_row,
+    "gurney": clear_gurney,
+    "desk": clear_desk,
+    "corridor": clear_corridor,
+    "light_box": movable_light_box,
+    "suitcase": movable_suitcase,
+    "tote": movable_tote,
+    "sack": movable_sack,
 }
 DISTANCES: Dict[str, Tuple[float, float]] = {  # [m] camera to target centre
     PERSON: (0.5, 2.2),
@@ -663,8 +920,13 @@ class Renderer:
 
 
 def models_for(split: str) -> Dict[str, Tuple[str, ...]]:
-    """The models of each label used in a split: ``train``/``val``/``test`` (seen) or ``unseen`` (held out)."""
-    return HELD_OUT if split == "unseen" else TRAIN_MODELS
+    """The models of each label used in a split: ``train``/``val``/``test`` (seen), ``unseen`` (held out),
+    ``extra``/``val_extra`` (the seen ones and the training-only ones, :data:`TRAIN_ONLY`)."""
+    if split == "unseen":
+        return HELD_OUT
+    if split in EXTRA_SPLITS:
+        return {label: TRAIN_MODELS[label] + TRAIN_ONLY[label] for label in TRAIN_MODELS}
+    return TRAIN_MODELS
 
 
 def plan(labels: Sequence[str], per_label: int, split: str, rng: np.random.Generator,

@@ -4,11 +4,14 @@
     python -m tools.perception.render_dataset --out build/dataset --seed 7
     python -m tools.perception.train --data build/dataset --seed 7 --out models/obstacle_classifier.onnx
 
-Fixed seed, CPU, ``--threads`` torch threads (2 by default). The model is picked at the epoch with the
-best validation accuracy, exported with ``torch.onnx.export(..., dynamo=False)`` (softmax inside the
-graph, dynamic batch), then evaluated with onnxruntime on the validation, test (seen models) and
-unseen (held-out models) splits (:mod:`tools.perception.evaluate`); the metadata file beside the model
-(``obstacle_classifier.yaml``) records input size, normalisation, classes, commands, seed and results.
+Trains on ``train`` + ``extra`` (the latter adds the training-only models of
+:data:`tools.perception.scenes.TRAIN_ONLY`) and selects on ``val`` + ``val_extra``: never on ``test`` or
+``unseen``. Fixed seed, CPU, ``--threads`` torch threads (1 by default; the result depends on it). The
+model is picked at the epoch with the best validation accuracy, exported with
+``torch.onnx.export(..., dynamo=False)`` (softmax inside the graph, dynamic batch), then evaluated
+with onnxruntime on every split (:mod:`tools.perception.evaluate`); the metadata file beside the
+model (``obstacle_classifier.yaml``) records input size, normalisation, classes, commands, seed and
+results.
 """
 
 from __future__ import annotations
@@ -17,28 +20,36 @@ import argparse
 import sys
 import time
 from pathlib import Path
-from typing import Any, Dict, List, Tuple
+from typing import Any, Dict, List, Sequence, Tuple
 
 import numpy as np
 
 MEAN = (0.5, 0.5, 0.5)
 STD = (0.25, 0.25, 0.25)
 DATASET_COMMAND = "python -m tools.perception.render_dataset --out build/dataset --seed {seed}"
+TRAIN_SPLITS = ("train", "extra")
+VAL_SPLITS = ("val", "val_extra")
 TRAIN_COMMAND = "python -m tools.perception.train --data build/dataset --seed {seed} --out {out}"
 
 
-def build_model(classes: int) -> Any:
-    """conv3x3 blocks 16-32-64-96 with batch norm, max pooling, global average pooling, dropout, linear."""
+WIDTHS = (16, 32, 64, 96, 128)  # output channels of the conv blocks
+
+
+def build_model(classes: int, widths: Sequence[int] = WIDTHS) -> Any:
+    """conv3x3 blocks (``widths``) with batch norm and 2x2 max pooling after every block but the last,
+    global average pooling, dropout, linear. Five blocks on 64 px: the last one sees the whole patch at
+    4 x 4, so the shape of the whole object (long and raised furniture against a box) counts."""
     from torch import nn
 
     def block(cin: int, cout: int, pool: bool) -> List[Any]:
         layers: List[Any] = [nn.Conv2d(cin, cout, 3, padding=1, bias=False), nn.BatchNorm2d(cout), nn.ReLU()]
         return [*layers, nn.MaxPool2d(2)] if pool else layers
 
-    return nn.Sequential(
-        *block(3, 16, True), *block(16, 32, True), *block(32, 64, True), *block(64, 96, False),
-        nn.AdaptiveAvgPool2d(1), nn.Flatten(), nn.Dropout(0.2), nn.Linear(96, classes),
-    )
+    layers: List[Any] = []
+    for i, (cin, cout) in enumerate(zip((3, *widths[:-1]), widths)):
+        layers += block(cin, cout, i < len(widths) - 1)
+    return nn.Sequential(*layers, nn.AdaptiveAvgPool2d(1), nn.Flatten(), nn.Dropout(0.2),
+                         nn.Linear(widths[-1], classes))
 
 
 def augment(batch: Any, gen: Any) -> Any:
@@ -65,15 +76,28 @@ def load_split(data: Path, split: str) -> Tuple[np.ndarray, np.ndarray, np.ndarr
         return f["patches"], f["labels"], f["models"], [str(c) for c in f["classes"]]
 
 
+def load_splits(data: Path, splits: Sequence[str]) -> Tuple[np.ndarray, np.ndarray, List[str]]:
+    """The patches and labels of several splits, concatenated; ValueError if their classes differ."""
+    parts = [load_split(data, split) for split in splits]
+    classes = parts[0][3]
+    for split, part in zip(splits, parts):
+        if part[3] != classes:
+            raise ValueError(f"split {split!r} has classes {part[3]}, {splits[0]!r} has {classes}")
+    return np.concatenate([p[0] for p in parts]), np.concatenate([p[1] for p in parts]), classes
+
+
 def main(argv: List[str]) -> int:  # noqa: PLR0915 - one linear training script
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--data", type=Path, default=Path("build/dataset"))
     parser.add_argument("--out", type=Path, default=Path("models/obstacle_classifier.onnx"))
     parser.add_argument("--seed", type=int, default=7)
-    parser.add_argument("--epochs", type=int, default=14)
+    parser.add_argument("--epochs", type=int, default=24)
     parser.add_argument("--batch", type=int, default=64)
     parser.add_argument("--lr", type=float, default=3e-3)
-    parser.add_argument("--threads", type=int, default=2, help="torch CPU threads")
+    parser.add_argument("--threads", type=int, default=1, help="torch CPU threads")
+    parser.add_argument("--train-splits", nargs="+", default=list(TRAIN_SPLITS))
+    parser.add_argument("--val-splits", nargs="+", default=list(VAL_SPLITS), help="model selection only")
+    parser.add_argument("--widths", type=int, nargs="+", default=list(WIDTHS), help="conv block channels")
     args = parser.parse_args(argv)
 
     import torch
@@ -85,15 +109,17 @@ def main(argv: List[str]) -> int:  # noqa: PLR0915 - one linear training script
     torch.use_deterministic_algorithms(True, warn_only=True)
     gen = torch.Generator().manual_seed(args.seed)
 
-    x_train, y_train, _, classes = load_split(args.data, "train")
-    x_val, y_val, _, _ = load_split(args.data, "val")
+    x_train, y_train, classes = load_splits(args.data, args.train_splits)
+    x_val, y_val, val_classes = load_splits(args.data, args.val_splits)
+    if val_classes != classes:
+        raise ValueError(f"validation classes {val_classes} differ from the training classes {classes}")
     to_tensor = lambda x: torch.from_numpy(x).permute(0, 3, 1, 2).float().div_(255.0)  # noqa: E731
     train_images, train_labels = to_tensor(x_train), torch.from_numpy(y_train)
     val_images, val_labels = to_tensor(x_val), torch.from_numpy(y_val)
     mean = torch.tensor(MEAN).view(1, 3, 1, 1)
     std = torch.tensor(STD).view(1, 3, 1, 1)
 
-    model = build_model(len(classes))
+    model = build_model(len(classes), args.widths)
     params = sum(p.numel() for p in model.parameters())
     optimiser = torch.optim.AdamW(model.parameters(), lr=args.lr, weight_decay=1e-4)
     steps = args.epochs * ((len(train_labels) + args.batch - 1) // args.batch)
@@ -115,7 +141,7 @@ def main(argv: List[str]) -> int:  # noqa: PLR0915 - one linear training script
             loss.backward()
             optimiser.step()
             schedule.step()
-            total_loss += float(loss) * len(idx)
+            total_loss += float(loss.detach()) * len(idx)
         model.eval()
         with torch.no_grad():
             predicted = model((val_images - mean) / std).argmax(1)
@@ -145,7 +171,11 @@ def main(argv: List[str]) -> int:  # noqa: PLR0915 - one linear training script
         "seed": args.seed,
         "epochs": args.epochs,
         "best_epoch": best["epoch"],
+        "train_splits": list(args.train_splits),
         "train_samples": len(train_labels),
+        "val_splits": list(args.val_splits),
+        "val_accuracy": round(best["accuracy"], 4),
+        "widths": list(args.widths),
         "parameters": params,
         "seconds": round(seconds, 1),
         "threads": args.threads,

@@ -1,0 +1,125 @@
+"""The classifier's dataset tools (tools/perception): which models go into which split, that every scene
+model shows up in the region of interest, and how training concatenates splits. No torch needed."""
+
+from __future__ import annotations
+
+import functools
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from harness import REPO_ROOT
+from unit.perception.onnx_builder import mean_colour_classifier
+
+if str(REPO_ROOT) not in sys.path:  # ``tools`` is imported as a package from the repository root
+    sys.path.insert(0, str(REPO_ROOT))
+
+from flex_nav.perception.labels import LABELS
+from flex_nav.perception.onnx_model import make_session
+from flex_nav.perception.preprocess import roi_patch
+from flex_nav.perception.roi import Roi
+from tools.perception import ensemble, render_dataset, scenes, train
+
+
+def _all(models: dict[str, tuple[str, ...]]) -> set[str]:
+    return {m for ms in models.values() for m in ms}
+
+
+def test_held_out_models_never_reach_a_training_split() -> None:
+    held_out = _all(scenes.HELD_OUT)
+    for split in render_dataset.SPLITS:
+        used = _all(scenes.models_for(split))
+        if split == "unseen":
+            assert used == held_out
+        else:
+            assert not used & held_out, f"{split} uses held-out models {sorted(used & held_out)}"
+
+
+def test_extra_splits_add_the_training_only_models_to_the_seen_ones() -> None:
+    for split in scenes.EXTRA_SPLITS:
+        assert split in render_dataset.SPLITS
+        models = scenes.models_for(split)
+        for label in LABELS:
+            assert models[label] == scenes.TRAIN_MODELS[label] + scenes.TRAIN_ONLY[label]
+    assert scenes.models_for("train") == scenes.TRAIN_MODELS  # the original splits are unchanged
+    assert not _all(scenes.TRAIN_ONLY) & _all(scenes.TRAIN_MODELS)
+
+
+def test_split_ids_are_unique_so_every_split_has_its_own_scenes() -> None:
+    ids = [split_id for split_id, _ in render_dataset.SPLITS.values()]
+    assert len(ids) == len(set(ids))
+
+
+def test_every_model_has_a_builder_and_every_builder_is_used() -> None:
+    listed = _all(scenes.TRAIN_MODELS) | _all(scenes.TRAIN_ONLY) | _all(scenes.HELD_OUT)
+    assert listed == set(scenes.BUILDERS)
+    assert set(scenes.SIDE_DISTRACTORS) <= _all(scenes.TRAIN_MODELS)
+
+
+def test_plan_cycles_the_models_of_the_extra_split_evenly() -> None:
+    rng = np.random.default_rng(0)
+    movable = scenes.models_for("extra")["movable"]
+    pairs = scenes.plan(LABELS, 2 * len(movable), "extra", rng)
+    assert len(pairs) == 2 * len(movable) * len(LABELS)
+    counts = {m: sum(1 for label, model in pairs if model == m and label == "movable") for m in movable}
+    assert set(counts.values()) == {2}
+
+
+@functools.lru_cache(maxsize=1)
+def _empty_roi() -> np.ndarray:
+    return _roi_of(None)
+
+
+def _roi_of(model: str | None) -> np.ndarray:
+    """The default ROI of a TurtleBot 4 camera image of a floor and ``model`` 1.4 m ahead (fixed light)."""
+    renderer = scenes.Renderer(np.random.default_rng(0))
+    try:
+        renderer.client.resetSimulation()
+        scene = scenes.Scene(renderer.client, np.random.default_rng(1))
+        scene.floor((0.5, 0.5, 0.5, 1.0))
+        spec = renderer.cameras["turtlebot4"]
+        assert spec is not None
+        if model is not None:
+            scenes.BUILDERS[model](scene, spec.mount[0] + 1.4, 0.0, math.radians(20.0))
+        renderer.rng = np.random.default_rng(2)  # the same light for both pictures
+        rgb = renderer._shoot(spec, (spec.mount[0], 0.0, spec.mount[2]), spec.pitch)
+    finally:
+        renderer.close()
+    return roi_patch(rgb, Roi(), 64, 64).astype(np.int16)
+
+
+@pytest.mark.parametrize("model", sorted(_all(scenes.TRAIN_ONLY)))
+def test_every_training_only_model_is_visible_in_the_roi(model: str) -> None:
+    changed = np.abs(_roi_of(model) - _empty_roi()).max(axis=2) > 10
+    assert changed.mean() > 0.03, f"{model} changes only {100 * changed.mean():.1f} % of the ROI"
+
+
+def test_load_splits_concatenates_and_checks_the_classes(tmp_path: Path) -> None:
+    for name, n, classes in (("a", 3, LABELS), ("b", 2, LABELS), ("c", 1, ("x", "y"))):
+        np.savez(tmp_path / f"{name}.npz", patches=np.full((n, 4, 4, 3), n, np.uint8),
+                 labels=np.arange(n), models=np.array(["m"] * n), classes=np.array(classes))
+    patches, labels, classes = train.load_splits(tmp_path, ["a", "b"])
+    assert patches.shape == (5, 4, 4, 3)
+    assert labels.tolist() == [0, 1, 2, 0, 1]
+    assert classes == list(LABELS)
+    with pytest.raises(ValueError, match="'c' has classes"):
+        train.load_splits(tmp_path, ["a", "c"])
+
+
+def test_ensemble_averages_the_members_probabilities(tmp_path: Path) -> None:
+    pytest.importorskip("onnx")  # training-only dependency (requirements-train.txt): skipped in the runtime venv
+    weights = (10.0 * np.eye(3), np.array([[0.0, 5.0, 0.0], [0.0, 0.0, 5.0], [5.0, 0.0, 0.0]]))
+    members = [mean_colour_classifier(tmp_path / f"m{k}.onnx", w) for k, w in enumerate(weights)]
+    out = tmp_path / "ensemble.onnx"
+    out.write_bytes(ensemble.combine(members).SerializeToString())
+    image = np.random.default_rng(0).uniform(0.0, 1.0, (4, 3, 8, 8)).astype(np.float32)
+
+    def run(path: Path) -> np.ndarray:
+        return make_session(path).run(None, {"image": image})[0]
+
+    expected = (run(members[0]) + run(members[1])) / 2.0
+    np.testing.assert_allclose(run(out), expected, rtol=1e-5)
+    with pytest.raises(ValueError, match="at least 2 members"):
+        ensemble.combine(members[:1])
