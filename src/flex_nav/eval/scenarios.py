@@ -4,7 +4,9 @@ Runs every scenario (S1..S6 worlds) x behavior (move_base_like, push_or_avoid) x
 ``python -m flex_nav.ros.scenario_run`` process per run (each with its own private master, so a failed run
 cannot affect the next), with a progress bar on stderr. Writes ``results.csv`` (one row per run),
 ``results.md`` (summary per scenario and behavior) and one ``<scenario>-<behavior>-<seed>/run.png`` per
-run to ``--out``. Exit 0 when every run was recorded, 1 when a run could not start or crashed.
+run to ``--out``, plus the run's own ``result.json``. ``--resume`` keeps the runs of ``--out`` that have a
+``result.json`` (an interrupted evaluation goes on where it stopped; more behaviors or seeds can be added
+later). Exit 0 when every run was recorded, 1 when a run could not start or crashed.
 """
 
 from __future__ import annotations
@@ -42,12 +44,17 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     parser.add_argument("--rtf", type=float, default=1.0, help="simulation real-time factor")
     parser.add_argument("--sim-limit", type=float, default=150.0, help="[s] simulated time bound of one goal")
     parser.add_argument("--out", type=Path, default=None, help="output directory (default out/scenarios-<time>)")
+    parser.add_argument("--resume", action="store_true", help="keep the runs in --out that have a result.json")
     args = parser.parse_args(argv)
     args.scenario_list = [s for s in args.scenarios.split(",") if s]
     args.behavior_list = [b for b in args.behaviors.split(",") if b]
     for name in args.scenario_list:
         if name not in SCENARIOS:
             parser.error(choices_message("scenario", name, SCENARIOS))
+    known_behaviors = sorted(p.stem for p in (REPO_ROOT / "behaviors").glob("*.yaml"))
+    for name in args.behavior_list:
+        if name not in known_behaviors:
+            parser.error(choices_message("behavior", name, known_behaviors))
     if args.seeds < 1:
         parser.error(f"--seeds {args.seeds} must be >= 1")
     return args
@@ -76,8 +83,16 @@ def run_one(args: argparse.Namespace, world: str, behavior: str, seed: int, out:
         log.write(proc.stdout)
     for line in proc.stdout.splitlines():
         if line.startswith("RESULT "):
-            return RunResult.from_dict(json.loads(line[len("RESULT "):]))
+            data = json.loads(line[len("RESULT "):])
+            (out / "result.json").write_text(json.dumps(data, indent=1) + "\n")
+            return RunResult.from_dict(data)
     return None
+
+
+def recorded(out: Path) -> Optional[RunResult]:
+    """The result a previous evaluation wrote to ``out`` (a run directory), or None."""
+    path = out / "result.json"
+    return RunResult.from_dict(json.loads(path.read_text())) if path.is_file() else None
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:
@@ -91,7 +106,10 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     for index, (world, behavior, seed) in enumerate(plan):
         label = f"{world} {behavior} seed {seed}"
         progress(index, len(plan), started, label)
-        result = run_one(args, world, behavior, seed, out / f"{world}-{behavior}-{seed}")
+        run_dir = out / f"{world}-{behavior}-{seed}"
+        result = recorded(run_dir) if args.resume else None
+        if result is None:
+            result = run_one(args, world, behavior, seed, run_dir)
         if result is None:
             broken.append(label)
             continue
