@@ -175,7 +175,7 @@ class SafeFollower:
         if status is PursuitStatus.INVALID_INPUT:
             return _stop(Outcome.ABORTED, command.reason, command)
         moving = list(tracks()) if self.yielding is not None else []
-        given_way = self._give_way(now_s, robot, command, moving, costmap)
+        given_way = self._give_way(now_s, robot, command, moving, costmap, velocity[0])
         if given_way is not None:
             return given_way
         if self.blocked.enabled and costs is not None and geometry is not None and self._path is not None:
@@ -201,8 +201,8 @@ class SafeFollower:
             return _stop(Outcome.ABORTED, f"internal error: non-finite command ({command.v}, {command.w})", command)
         return Decision(command.v, command.w, Outcome.RUNNING, command.reason, command)
 
-    def _give_way(self, now_s: float, robot: Pose2D, command: Command, tracks: Sequence[Track],
-                  costmap: LocalCostmap) -> Optional[Decision]:
+    def _give_way(self, now_s: float, robot: Pose2D, command: Command, tracks: Sequence[Track],  # noqa: PLR0917
+                  costmap: LocalCostmap, speed: float) -> Optional[Decision]:
         """The yield rule's decision while it is active (people to give way to), else None (also when off)."""
         if self.yielding is None or self._path is None or not math.isfinite(command.distance_to_goal):
             return None
@@ -210,7 +210,7 @@ class SafeFollower:
         given_way = self.yielding.decide(
             now_s, robot, (command.v, command.w), path=self._path, lengths=self._lengths,
             s_robot=float(self._lengths[-1]) - command.distance_to_goal, tracks=tracks, costs=costs,
-            geometry=geometry)
+            geometry=geometry, speed=speed)
         if not given_way.active:
             return None
         self.blocked.reset()  # a person crossing is waited for, not a blocked path

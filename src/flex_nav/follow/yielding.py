@@ -5,8 +5,10 @@ hospital they may be busy). A costmap sees only where a person *is*, so a contro
 where the person is about to be. This rule looks a short ``horizon_s`` [s] ahead instead: every moving track
 (speed >= ``min_track_speed_mps``, within ``max_range_m``; slower tracks are left to the costmap and the
 planner) is predicted at constant velocity, and its *corridor* is the stretch it sweeps in the horizon,
-widened by ``R = robot radius + track radius + margin``. The robot is predicted along its path, speeding
-up from the controller's command to ``speed_mps`` at ``accel_mps2``. Each control tick (:meth:`YieldRule.decide`):
+widened by ``R = robot radius + track radius + margin``, growing by ``uncertainty_mps`` per second of
+prediction (a velocity estimate a little off in direction puts a person far off after a few seconds). The
+robot is predicted along its path, speeding up from its odometry speed to ``speed_mps`` at ``accel_mps2``.
+Each control tick (:meth:`YieldRule.decide`):
 
 1. the robot going on along its path stays farther than R from every predicted person -> FREE: the
    controller's command goes out unchanged (after yielding: only with ``start_margin_m`` [m] more and after
@@ -60,6 +62,7 @@ class YieldParams:
     horizon_s: float = 6.0  # [s] prediction horizon (long enough to cross a person's way)
     time_step_s: float = 0.1  # [s] prediction step
     margin_m: float = 0.1  # [m] clearance kept beyond touching
+    uncertainty_mps: float = 0.0  # [m/s] R grows by this per second of prediction (velocity error)
     min_track_speed_mps: float = 0.2  # [m/s] slower tracks are stationary (left to the costmap)
     max_range_m: float = 5.0  # [m] farther tracks are ignored
     decel_mps2: float = 0.5  # [m/s^2] braking before a corridor
@@ -80,8 +83,8 @@ class YieldParams:
             if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value) \
                     or value <= 0.0:
                 raise ConfigError(f"yield parameter {name} must be a finite number > 0, got {value!r}")
-        for name in ("margin_m", "stop_buffer_m", "escape_turn_radps", "min_gain_m", "resume_after_s",
-                     "start_margin_m", "escape_tolerance_m"):
+        for name in ("margin_m", "uncertainty_mps", "stop_buffer_m", "escape_turn_radps", "min_gain_m",
+                     "resume_after_s", "start_margin_m", "escape_tolerance_m"):
             value = getattr(self, name)
             if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value) \
                     or value < 0.0:
@@ -125,7 +128,8 @@ class YieldDecision:
 
 
 class _People:
-    """The moving tracks predicted over the horizon: positions (M, K, 2) at times (K,), radii R (M,)."""
+    """The moving tracks predicted over the horizon: positions (M, K, 2) at times (K,), radii R (M,) growing by
+    ``uncertainty_mps`` per second of prediction (``grown`` (M, K))."""
 
     def __init__(self, tracks: Sequence[Track], times: np.ndarray, params: YieldParams) -> None:
         self.tracks = list(tracks)
@@ -135,22 +139,29 @@ class _People:
         self.velocity = vel
         self.future = pos[:, None, :] + vel[:, None, :] * times[None, :, None]
         self.reach = np.array([params.robot_radius_m + t.radius + params.margin_m for t in tracks])
+        self.growth_mps = params.uncertainty_mps
+        self.grown = self.reach[:, None] + params.uncertainty_mps * times[None, :]
         self.times = times
 
     def clearance(self, robot: np.ndarray) -> np.ndarray:
-        """(M, K) predicted distance minus R for robot positions (K, 2) at the same times."""
-        return np.hypot(*(self.future - robot[None, :, :]).transpose(2, 0, 1)) - self.reach[:, None]
+        """(M, K) predicted distance minus R (grown with the prediction time) for robot positions (K, 2)."""
+        return np.hypot(*(self.future - robot[None, :, :]).transpose(2, 0, 1)) - self.grown
 
 
 def _segment_distance(points: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Distance [m] of each point (N, 2) from the segment a-b."""
+    return _segment_closest(points, a, b)[0]
+
+
+def _segment_closest(points: np.ndarray, a: np.ndarray, b: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
+    """(distance [m], fraction along a-b in [0, 1]) of each point's closest point on the segment a-b."""
     ab = b - a
     denom = float(ab @ ab)
     if denom <= 1e-12:
-        return np.hypot(points[:, 0] - a[0], points[:, 1] - a[1])
+        return np.hypot(points[:, 0] - a[0], points[:, 1] - a[1]), np.zeros(len(points))
     u = np.clip(((points - a) @ ab) / denom, 0.0, 1.0)
     closest = a[None, :] + u[:, None] * ab[None, :]
-    return np.hypot(points[:, 0] - closest[:, 0], points[:, 1] - closest[:, 1])
+    return np.hypot(points[:, 0] - closest[:, 0], points[:, 1] - closest[:, 1]), u
 
 
 def arc_positions(pose: Pose2D, v: float, w: float, times: np.ndarray) -> np.ndarray:
@@ -212,15 +223,17 @@ class YieldRule:
         tracks: Sequence[Track],
         costs: Optional[np.ndarray] = None,
         geometry: Optional[CostmapGeometry] = None,
+        speed: Optional[float] = None,
     ) -> YieldDecision:
         """The command to send instead of the controller's ``command`` (v [m/s], w [rad/s]); ``path`` (N, 2|3)
-        with cumulative ``lengths`` (N,), the robot at arc length ``s_robot`` [m]; see the module docstring."""
+        with cumulative ``lengths`` (N,), the robot at arc length ``s_robot`` [m], driving forward at ``speed``
+        [m/s] (odometry; negative while backing up; None: the command's); see the module docstring."""
         p = self.params
         v_cmd, w_cmd = command
         people = _People(self.moving(pose, tracks), self.times, p)
         if not people.tracks:
             return self._free(now_s, v_cmd, w_cmd)
-        go = self._along_path(path, lengths, s_robot, max(v_cmd, 0.0))
+        go = self._along_path(path, lengths, s_robot, v_cmd if speed is None else speed)
         go_clear = people.clearance(go).min(axis=1)  # (M,)
         needed = p.start_margin_m if self._last_conflict_s is not None else 0.0  # hysteresis
         conflicting = np.flatnonzero(go_clear < needed)
@@ -260,7 +273,8 @@ class YieldRule:
         return YieldDecision(v_cmd, w_cmd, YieldMode.FREE)
 
     def _along_path(self, path: np.ndarray, lengths: np.ndarray, s_robot: float, v_now: float) -> np.ndarray:
-        """(K, 2) robot positions along the path, speeding up from ``v_now`` to ``speed_mps`` [m/s]."""
+        """(K, 2) robot positions along the path, speeding up from ``v_now`` [m/s] (negative: backing up, it
+        first has to stop) to ``speed_mps`` at ``accel_mps2``."""
         p = self.params
         v0 = min(v_now, p.speed_mps)
         t_up = (p.speed_mps - v0) / p.accel_mps2
@@ -280,7 +294,8 @@ class YieldRule:
         inside = np.zeros(len(samples), dtype=bool)
         for i in conflicting:
             a, b = people.future[i, 0], people.future[i, -1]
-            inside |= _segment_distance(points, a, b) < people.reach[i]
+            dist, frac = _segment_closest(points, a, b)
+            inside |= dist < people.reach[i] + people.growth_mps * p.horizon_s * frac
         found = np.flatnonzero(inside)
         return float(samples[found[0]]) if found.size else end
 

@@ -191,3 +191,22 @@ def test_an_obstacle_on_the_path_explained_by_a_walking_person_does_not_block():
         if end.outcome is not Outcome.RUNNING:
             break
     assert end.outcome is Outcome.ABORTED and end.reason.startswith("blocked")
+
+
+def test_the_prediction_starts_from_the_measured_speed():
+    # going on at full speed gets across before the person arrives; a robot still backing up does not
+    crossing = [person(3.0, -2.0, 0.0, 0.8)]
+    moving = YieldRule(PARAMS).decide(0.0, (2.9, 0.0, 0.0), (0.26, 0.0), path=PATH, lengths=LENGTHS, s_robot=2.9,
+                                      tracks=crossing, speed=0.26)
+    backing = YieldRule(PARAMS).decide(0.0, (2.9, 0.0, 0.0), (0.26, 0.0), path=PATH, lengths=LENGTHS, s_robot=2.9,
+                                       tracks=crossing, speed=-0.2)
+    assert moving.mode is YieldMode.FREE
+    assert backing.mode is not YieldMode.FREE
+
+
+def test_uncertainty_widens_the_way_with_the_prediction_time():
+    passing = [person(3.6, -2.5, 0.0, 0.8)]  # its way runs 0.6 m ahead of a robot standing at x = 3
+    sure = YieldRule(PARAMS)
+    unsure = YieldRule(YieldParams(**{**PARAMS.__dict__, "uncertainty_mps": 0.1}))
+    assert decide(sure, 3.0, passing, command=(0.0, 0.0)).v == 0.0  # waits: going on would meet
+    assert decide(unsure, 3.0, passing, command=(0.0, 0.0)).mode is YieldMode.ESCAPE  # 0.6 m is not enough
