@@ -17,6 +17,7 @@ results.
 from __future__ import annotations
 
 import argparse
+import json
 import sys
 import time
 from pathlib import Path
@@ -84,6 +85,12 @@ def load_splits(data: Path, splits: Sequence[str]) -> Tuple[np.ndarray, np.ndarr
         if part[3] != classes:
             raise ValueError(f"split {split!r} has classes {part[3]}, {splits[0]!r} has {classes}")
     return np.concatenate([p[0] for p in parts]), np.concatenate([p[1] for p in parts]), classes
+
+
+def dataset_seed(data: Path, default: int) -> int:
+    """The seed the dataset in ``data`` was rendered with (its ``summary.json``), else ``default``."""
+    summary = data / "summary.json"
+    return int(json.loads(summary.read_text()).get("seed", default)) if summary.exists() else default
 
 
 def main(argv: List[str]) -> int:  # noqa: PLR0915 - one linear training script
@@ -166,7 +173,7 @@ def main(argv: List[str]) -> int:  # noqa: PLR0915 - one linear training script
     print(f"[train] best epoch {best['epoch']} (val accuracy {best['accuracy']:.4f}); {seconds:.0f} s of training; "
           f"wrote {args.out} ({args.out.stat().st_size / 1024:.0f} KiB)")
     training = {
-        "dataset_command": DATASET_COMMAND.format(seed=args.seed),
+        "dataset_command": DATASET_COMMAND.format(seed=dataset_seed(args.data, args.seed)),
         "command": TRAIN_COMMAND.format(seed=args.seed, out=args.out),
         "seed": args.seed,
         "epochs": args.epochs,

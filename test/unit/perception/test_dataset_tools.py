@@ -123,3 +123,9 @@ def test_ensemble_averages_the_members_probabilities(tmp_path: Path) -> None:
     np.testing.assert_allclose(run(out), expected, rtol=1e-5)
     with pytest.raises(ValueError, match="at least 2 members"):
         ensemble.combine(members[:1])
+
+
+def test_dataset_seed_comes_from_the_dataset_summary(tmp_path: Path) -> None:
+    assert train.dataset_seed(tmp_path, 8) == 8  # no summary: the training seed
+    (tmp_path / "summary.json").write_text('{"seed": 7, "train": {"samples": 3}}')
+    assert train.dataset_seed(tmp_path, 8) == 7
