@@ -13,6 +13,8 @@ Each control tick (:meth:`YieldRule.decide`):
 1. the robot going on along its path stays farther than R from every predicted person -> FREE: the
    controller's command goes out unchanged (after yielding: only with ``start_margin_m`` [m] more and after
    ``resume_after_s`` [s] without a conflict, so a wobbling estimate does not start and stop the robot);
+   If only crossing at ``hurry_speed_mps`` (when > ``speed_mps``; off by default) clears everyone while the
+   robot cruises along its path -> HURRY: that speed (the turn rate scaled with it);
 2. otherwise, if standing still keeps R (less ``escape_tolerance_m``) to every predicted person: while
    the path ahead enters a conflicting person's corridor farther than ``stop_buffer_m`` [m] ahead -> SLOW:
    the speed is capped so the robot stops, at ``decel_mps2``, before the corridor (the turn rate is scaled
@@ -58,6 +60,7 @@ class YieldParams:
 
     robot_radius_m: float = 0.18  # [m]
     speed_mps: float = 0.26  # [m/s] the robot's speed along its path in the prediction
+    hurry_speed_mps: float = 0.0  # [m/s] > speed_mps: cross at this speed when only that clears (0: never)
     accel_mps2: float = 0.9  # [m/s^2] the robot's acceleration to that speed in the prediction
     horizon_s: float = 6.0  # [s] prediction horizon (long enough to cross a person's way)
     time_step_s: float = 0.1  # [s] prediction step
@@ -83,8 +86,8 @@ class YieldParams:
             if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value) \
                     or value <= 0.0:
                 raise ConfigError(f"yield parameter {name} must be a finite number > 0, got {value!r}")
-        for name in ("margin_m", "uncertainty_mps", "stop_buffer_m", "escape_turn_radps", "min_gain_m",
-                     "resume_after_s", "start_margin_m", "escape_tolerance_m"):
+        for name in ("hurry_speed_mps", "margin_m", "uncertainty_mps", "stop_buffer_m", "escape_turn_radps",
+                     "min_gain_m", "resume_after_s", "start_margin_m", "escape_tolerance_m"):
             value = getattr(self, name)
             if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value) \
                     or value < 0.0:
@@ -109,6 +112,7 @@ class YieldMode(enum.Enum):
     SLOW = "slow"  # capped speed: stop before a person's corridor
     WAIT = "wait"  # standing: a person is about to cross
     ESCAPE = "escape"  # moving out of an approaching person's way
+    HURRY = "hurry"  # crossing faster than usual: only that clears the people
 
 
 @dataclass(frozen=True)
@@ -233,12 +237,16 @@ class YieldRule:
         people = _People(self.moving(pose, tracks), self.times, p)
         if not people.tracks:
             return self._free(now_s, v_cmd, w_cmd)
-        go = self._along_path(path, lengths, s_robot, v_cmd if speed is None else speed)
+        v_now = v_cmd if speed is None else speed
+        go = self._along_path(path, lengths, s_robot, v_now, p.speed_mps)
         go_clear = people.clearance(go).min(axis=1)  # (M,)
         needed = p.start_margin_m if self._last_conflict_s is not None else 0.0  # hysteresis
         conflicting = np.flatnonzero(go_clear < needed)
         if conflicting.size == 0:
             return self._free(now_s, v_cmd, w_cmd)
+        hurry = self._hurry(people, path, lengths, s_robot, v_now, (v_cmd, w_cmd), needed)
+        if hurry is not None:
+            return hurry
         self._last_conflict_s = now_s
         worst = int(conflicting[np.argmin(go_clear[conflicting])])
         track = people.tracks[worst]
@@ -272,15 +280,30 @@ class YieldRule:
         self._last_conflict_s = None
         return YieldDecision(v_cmd, w_cmd, YieldMode.FREE)
 
-    def _along_path(self, path: np.ndarray, lengths: np.ndarray, s_robot: float, v_now: float) -> np.ndarray:
-        """(K, 2) robot positions along the path, speeding up from ``v_now`` [m/s] (negative: backing up, it
-        first has to stop) to ``speed_mps`` at ``accel_mps2``."""
+    def _hurry(self, people: _People, path: np.ndarray, lengths: np.ndarray, s_robot: float,  # noqa: PLR0917
+               v_now: float, command: Tuple[float, float], needed: float) -> Optional[YieldDecision]:
+        """Crossing at ``hurry_speed_mps`` when the robot cruises along its path and only that speed clears
+        everyone (None otherwise)."""
         p = self.params
-        v0 = min(v_now, p.speed_mps)
-        t_up = (p.speed_mps - v0) / p.accel_mps2
+        v_cmd, w_cmd = command
+        if p.hurry_speed_mps <= p.speed_mps or v_cmd < 0.8 * p.speed_mps:
+            return None
+        fast = self._along_path(path, lengths, s_robot, v_now, p.hurry_speed_mps)
+        if float(people.clearance(fast).min()) < needed:
+            return None
+        return YieldDecision(p.hurry_speed_mps, w_cmd * p.hurry_speed_mps / v_cmd, YieldMode.HURRY,
+                             f"yielding: hurrying across at {p.hurry_speed_mps:.2f} m/s before the people come")
+
+    def _along_path(self, path: np.ndarray, lengths: np.ndarray, s_robot: float, v_now: float,
+                    cruise: float) -> np.ndarray:
+        """(K, 2) robot positions along the path, speeding up from ``v_now`` [m/s] (negative: backing up, it
+        first has to stop) to ``cruise`` [m/s] at ``accel_mps2``."""
+        p = self.params
+        v0 = min(v_now, cruise)
+        t_up = (cruise - v0) / p.accel_mps2
         t = self.times
         travelled = np.where(t < t_up, v0 * t + 0.5 * p.accel_mps2 * t * t,
-                             v0 * t_up + 0.5 * p.accel_mps2 * t_up * t_up + p.speed_mps * (t - t_up))
+                             v0 * t_up + 0.5 * p.accel_mps2 * t_up * t_up + cruise * (t - t_up))
         s = np.minimum(s_robot + travelled, float(lengths[-1]))
         return np.stack((np.interp(s, lengths, path[:, 0]), np.interp(s, lengths, path[:, 1])), axis=1)
 

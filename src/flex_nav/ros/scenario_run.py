@@ -45,6 +45,7 @@ PROFILE = "turtlebot4"
 ROBOT = "robot1"
 BLOCKED_DISTANCE_M = 0.7  # [m] pure_pursuit_path's blocked-path detection distance
 STARTUP_TIMEOUT_S = 90.0  # [s] wall
+HURRY_SPEED_MPS = 0.3  # [m/s] giving way: cross a walker's way at this speed when only that clears (max 0.306)
 BUMPER_MEMORY_S = 5.0  # [s] bumper marks (both behaviors): a pushed box's contacts must not close the door
 SETTLE_S = 2.0  # [s] simulated time between the behavior waiting for a goal and sending it
 
@@ -110,6 +111,7 @@ def start(stack: contextlib.ExitStack, args: argparse.Namespace, run: RobotRun) 
     params.setParam("/use_sim_time", True)
     params.setParam(f"/{ROBOT}/pure_pursuit_path/blocked_distance", BLOCKED_DISTANCE_M)
     params.setParam(f"/{ROBOT}/pure_pursuit_path/yield_to_people", True)  # push_or_avoid's follower
+    params.setParam(f"/{ROBOT}/pure_pursuit_path/yielding/hurry_speed_mps", HURRY_SPEED_MPS)
     for costmap in ("get_path_server/global_costmap", "pure_pursuit_path/local_costmap",
                     "pure_pursuit_topic/local_costmap"):
         params.setParam(f"/{ROBOT}/{costmap}/bumper_memory", BUMPER_MEMORY_S)

@@ -210,3 +210,15 @@ def test_uncertainty_widens_the_way_with_the_prediction_time():
     unsure = YieldRule(YieldParams(**{**PARAMS.__dict__, "uncertainty_mps": 0.1}))
     assert decide(sure, 3.0, passing, command=(0.0, 0.0)).v == 0.0  # waits: going on would meet
     assert decide(unsure, 3.0, passing, command=(0.0, 0.0)).mode is YieldMode.ESCAPE  # 0.6 m is not enough
+
+
+def test_hurrying_across_only_when_enabled_and_only_that_clears():
+    crossing = [person(3.0, -2.75, 0.0, 0.8)]  # at 0.26 m/s the robot would meet it, at 0.30 m/s it is across
+    plain = decide(YieldRule(PARAMS), 2.5, crossing)
+    assert plain.mode in (YieldMode.SLOW, YieldMode.WAIT) and plain.v <= 0.26
+    hurried = YieldRule(YieldParams(**{**PARAMS.__dict__, "hurry_speed_mps": 0.3}))
+    d = decide(hurried, 2.5, crossing, command=(0.26, 0.02))
+    assert d.mode is YieldMode.HURRY and d.v == pytest.approx(0.3) and d.w == pytest.approx(0.02 * 0.3 / 0.26)
+    assert decide(hurried, 2.5, crossing, command=(0.1, 0.0)).mode is not YieldMode.HURRY  # not cruising
+    late = [person(3.0, -1.5, 0.0, 0.8)]  # too close for any speed: no hurry
+    assert decide(YieldRule(hurried.params), 2.5, late).mode is not YieldMode.HURRY
