@@ -32,6 +32,7 @@ PATCH_W, PATCH_H = 64, 64  # [px] the model input size (models/obstacle_classifi
 SPLITS: Dict[str, Tuple[int, int]] = {  # split: (id in the seed, samples per label)
     "train": (0, 2000), "val": (1, 200), "test": (2, 300), "unseen": (3, 300),
     "extra": (4, 3000), "val_extra": (5, 150),  # training-only models too (tools.perception.scenes.TRAIN_ONLY)
+    "extra2": (6, 600), "val_extra2": (7, 100),  # boxes in passages against look-alikes (scenes.PASSAGE)
 }
 CHUNK = 20  # samples per label in a chunk (one generator per chunk)
 SHEET_FRAMES = 24

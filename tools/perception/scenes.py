@@ -52,7 +52,12 @@ TRAIN_ONLY: Dict[str, Tuple[str, ...]] = {  # extra training models, only in the
     MOVABLE: ("light_box", "suitcase", "tote", "sack"),
     CLEAR: ("stool", "ottoman", "sideboard", "cart", "radiator", "seat_row", "gurney", "desk", "corridor"),
 }
-EXTRA_SPLITS = ("extra", "val_extra")
+EXTRA_SPLITS = ("extra", "val_extra", "extra2", "val_extra2")
+PASSAGE: Dict[str, Tuple[str, ...]] = {  # the ``extra2`` splits: boxes in passages against corridors and furniture
+    PERSON: TRAIN_MODELS[PERSON],
+    MOVABLE: ("passage_box", "passage_box", "box", "light_box"),
+    CLEAR: ("corridor", "sideboard", "ottoman", "sofa"),
+}
 HELD_OUT: Dict[str, Tuple[str, ...]] = {
     PERSON: ("deepmimic_humanoid", "dress_walker"),
     MOVABLE: ("crate", "textured_cube", "taped_parcel"),
@@ -741,6 +746,25 @@ def movable_light_box(sc: Scene, x: float, y: float, yaw: float) -> None:
     sc.box((x, y, sz / 2.0), (sx / 2.0, sy / 2.0, sz / 2.0), jitter(rng, pick(rng, LIGHT_BOXES), 0.04), yaw)
 
 
+def movable_passage_box(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A box, often wide and low, in a passage: walls or tall blocks alongside the way on both sides."""
+    rng = sc.rng
+    sx, sy, sz = rng.uniform(0.3, 0.7), rng.uniform(0.3, 0.8), rng.uniform(0.2, 0.5)
+    box_yaw = math.atan2(y, x) + rng.uniform(-0.3, 0.3)
+    sc.box((x, y, sz / 2.0), (sx / 2.0, sy / 2.0, sz / 2.0), box_color(rng), box_yaw)
+    heading = math.atan2(y, x) + rng.uniform(-0.15, 0.15)
+    for side in (1.0, -1.0):
+        offset = max(sx, sy) / 2.0 + rng.uniform(0.1, 0.5)  # [m] from the box centre to the side's face
+        color = jitter(rng, pick(rng, WALLS if rng.random() < 0.5 else FURNITURE))
+        height, thickness = rng.uniform(0.5, 2.5), rng.uniform(0.1, 3.0)
+        along = rng.uniform(1.0, 5.0)  # [m] how far the side runs on past the box
+        centre_fwd = (along - 0.4) / 2.0  # from 0.4 m before the box centre (never around the camera)
+        lateral = side * (offset + thickness / 2.0)
+        cx = x + math.cos(heading) * centre_fwd - math.sin(heading) * lateral
+        cy = y + math.sin(heading) * centre_fwd + math.cos(heading) * lateral
+        sc.wall((cx, cy), along + 0.4, height, heading, color, thickness=thickness)
+
+
 def movable_suitcase(sc: Scene, x: float, y: float, yaw: float) -> None:
     """An upright suitcase on small castors with a pulled-out handle (or a flat one)."""
     rng = sc.rng
@@ -829,6 +853,7 @@ BUILDERS: Dict[str, Builder] = {
     "corridor": clear_corridor,
     "light_box": movable_light_box,
     "suitcase": movable_suitcase,
+    "passage_box": movable_passage_box,
     "tote": movable_tote,
     "sack": movable_sack,
 }
@@ -924,6 +949,8 @@ def models_for(split: str) -> Dict[str, Tuple[str, ...]]:
     ``extra``/``val_extra`` (the seen ones and the training-only ones, :data:`TRAIN_ONLY`)."""
     if split == "unseen":
         return HELD_OUT
+    if split in ("extra2", "val_extra2"):
+        return PASSAGE
     if split in EXTRA_SPLITS:
         return {label: TRAIN_MODELS[label] + TRAIN_ONLY[label] for label in TRAIN_MODELS}
     return TRAIN_MODELS

@@ -4,9 +4,10 @@
     python -m tools.perception.render_dataset --out build/dataset --seed 7
     python -m tools.perception.train --data build/dataset --seed 7 --out models/obstacle_classifier.onnx
 
-Trains on ``train`` + ``extra`` (the latter adds the training-only models of
-:data:`tools.perception.scenes.TRAIN_ONLY`) and selects on ``val`` + ``val_extra``: never on ``test`` or
-``unseen``. Fixed seed, CPU, ``--threads`` torch threads (1 by default; the result depends on it). The
+Trains on ``train`` + ``extra`` + ``extra2`` (the latter two add the training-only models of
+:data:`tools.perception.scenes.TRAIN_ONLY` and boxes in passages, :data:`~tools.perception.scenes.PASSAGE`)
+and selects on ``val`` + ``val_extra`` + ``val_extra2``: never on ``test`` or ``unseen``. Fixed seed,
+CPU, ``--threads`` torch threads (1 by default; the result depends on it). The
 model is picked at the epoch with the best validation accuracy, exported with
 ``torch.onnx.export(..., dynamo=False)`` (softmax inside the graph, dynamic batch), then evaluated
 with onnxruntime on every split (:mod:`tools.perception.evaluate`); the metadata file beside the
@@ -28,8 +29,8 @@ import numpy as np
 MEAN = (0.5, 0.5, 0.5)
 STD = (0.25, 0.25, 0.25)
 DATASET_COMMAND = "python -m tools.perception.render_dataset --out build/dataset --seed {seed}"
-TRAIN_SPLITS = ("train", "extra")
-VAL_SPLITS = ("val", "val_extra")
+TRAIN_SPLITS = ("train", "extra", "extra2")
+VAL_SPLITS = ("val", "val_extra", "val_extra2")
 TRAIN_COMMAND = "python -m tools.perception.train --data build/dataset --seed {seed} --out {out}"
 
 
@@ -98,7 +99,7 @@ def main(argv: List[str]) -> int:  # noqa: PLR0915 - one linear training script
     parser.add_argument("--data", type=Path, default=Path("build/dataset"))
     parser.add_argument("--out", type=Path, default=Path("models/obstacle_classifier.onnx"))
     parser.add_argument("--seed", type=int, default=7)
-    parser.add_argument("--epochs", type=int, default=24)
+    parser.add_argument("--epochs", type=int, default=16)
     parser.add_argument("--batch", type=int, default=64)
     parser.add_argument("--lr", type=float, default=3e-3)
     parser.add_argument("--threads", type=int, default=1, help="torch CPU threads")

@@ -40,6 +40,7 @@ def test_held_out_models_never_reach_a_training_split() -> None:
 def test_extra_splits_add_the_training_only_models_to_the_seen_ones() -> None:
     for split in scenes.EXTRA_SPLITS:
         assert split in render_dataset.SPLITS
+    for split in ("extra", "val_extra"):
         models = scenes.models_for(split)
         for label in LABELS:
             assert models[label] == scenes.TRAIN_MODELS[label] + scenes.TRAIN_ONLY[label]
@@ -53,7 +54,7 @@ def test_split_ids_are_unique_so_every_split_has_its_own_scenes() -> None:
 
 
 def test_every_model_has_a_builder_and_every_builder_is_used() -> None:
-    listed = _all(scenes.TRAIN_MODELS) | _all(scenes.TRAIN_ONLY) | _all(scenes.HELD_OUT)
+    listed = _all(scenes.TRAIN_MODELS) | _all(scenes.TRAIN_ONLY) | _all(scenes.PASSAGE) | _all(scenes.HELD_OUT)
     assert listed == set(scenes.BUILDERS)
     assert set(scenes.SIDE_DISTRACTORS) <= _all(scenes.TRAIN_MODELS)
 
@@ -90,7 +91,7 @@ def _roi_of(model: str | None) -> np.ndarray:
     return roi_patch(rgb, Roi(), 64, 64).astype(np.int16)
 
 
-@pytest.mark.parametrize("model", sorted(_all(scenes.TRAIN_ONLY)))
+@pytest.mark.parametrize("model", sorted(_all(scenes.TRAIN_ONLY) | _all(scenes.PASSAGE) - _all(scenes.TRAIN_MODELS)))
 def test_every_training_only_model_is_visible_in_the_roi(model: str) -> None:
     changed = np.abs(_roi_of(model) - _empty_roi()).max(axis=2) > 10
     assert changed.mean() > 0.03, f"{model} changes only {100 * changed.mean():.1f} % of the ROI"
