@@ -133,3 +133,22 @@ def test_following_without_progress_ends_as_stuck_and_is_replanned_not_classifie
     assert scene.follower.cancels == 1  # the stuck attempt's goal was cancelled
     assert len(scene.follower.goals) == 2 and len(scene.planner.goals) == 2
     assert all(v == 0.0 for v, _ in twists(scene.h))  # nothing pushed
+
+
+def test_no_new_plan_after_a_failure_follows_the_plan_it_had_to_the_obstacle_and_pushes_it():
+    """S1, seed 0 of the evaluation: a stale scan ended following; the replan found no path (the box in the
+    door had reached the global costmap), and the robot waited for the way to clear from afar. Now it follows
+    the plan it had, is blocked at the box, classifies it and pushes."""
+    failures = [(GoalStatus.ABORTED, FollowPathResult.FAILURE, "stale scan: no message for 0.54 s"),
+                *BLOCKED_THEN_DONE]
+    scene = Scene("movable", failures, plans=0, push_distance_m=0.8, push_speed_mps=0.2, backoff_m=-0.3)
+    ok = GetPathResult(code=GetPathResult.SUCCESS, plan=path([(0, 0), (3, 0)]))
+    scene.planner.respond(GoalStatus.SUCCEEDED, ok, delay_s=0.1)  # the first plan
+    scene.planner.respond(GoalStatus.ABORTED, GetPathResult(code=GetPathResult.EMPTY, message="NO_PATH"),
+                          delay_s=0.1)  # the replan after the stale scan
+    scene.planner.respond(GoalStatus.SUCCEEDED, ok, delay_s=0.1)  # the replan after the push
+    took = scene.run_until("goal reached", 30.0)
+    assert took < 20.0  # no waiting for the way to clear (patience 45 s)
+    follows = scene.follower.goals
+    assert len(follows) == 3 and follows[1].path.poses == follows[0].path.poses  # the plan it had
+    assert any("pushed 0.8" in t for t in scene.h.texts())
