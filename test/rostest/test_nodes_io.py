@@ -157,6 +157,25 @@ class TestNodesIO(unittest.TestCase):
         self.assertIsNotNone(stop)
         self.assertEqual((stop.linear.x, stop.angular.z), (0.0, 0.0))
         self.assertFalse(any(math.isnan(m.linear.x) for m in out.msgs))
+        # stamped commands from two publishers: a drive stamped before a forwarded stop is dropped
+        now = rospy.Time.now()
+        halt = TwistStamped()
+        halt.header.stamp = now
+        mark = out.count()
+        pub.publish(halt)
+        self.assertIsNotNone(out.wait_for(lambda m: m.linear.x == 0.0, after=mark))
+        late = TwistStamped()
+        late.header.stamp = now - rospy.Duration(0.1)
+        late.twist.linear.x = 0.2
+        newer = TwistStamped()
+        newer.header.stamp = now + rospy.Duration(0.1)
+        newer.twist.linear.x = 0.1
+        mark = out.count()
+        pub.publish(late)
+        rospy.sleep(0.2)
+        pub.publish(newer)
+        self.assertIsNotNone(out.wait_for(lambda m: m.linear.x == 0.1, after=mark), "newer command not forwarded")
+        self.assertFalse(any(m.linear.x == 0.2 for m in out.msgs[mark:]), "a stale command was forwarded")
 
     # ------------------------------------------------------------------ CostmapROS
     def test_costmap_marks_scan_and_bumper_and_clears(self):

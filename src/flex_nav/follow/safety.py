@@ -53,6 +53,30 @@ class CommandTimeout:
         return True
 
 
+class CommandOrder:
+    """Keeps a relay fed by several publishers from forwarding a command older than one it already forwarded.
+
+    Messages from different nodes have no order between them: a controller's last driving command can reach
+    the relay after the stop a behavior state published when it took over, and would set the robot moving
+    again. Commands carry their stamp [s]; one stamped before the newest forwarded command is stale, and at
+    equal stamps a stop wins over motion. Stamp 0 (unstamped) is always forwarded and changes nothing.
+    """
+
+    def __init__(self) -> None:
+        self._newest_s = -math.inf  # [s] stamp of the newest forwarded command
+        self._newest_was_stop = False
+
+    def admit(self, stamp_s: float, moving: bool) -> bool:
+        """True if the command stamped ``stamp_s`` [s] may be forwarded (and then becomes the newest)."""
+        if stamp_s == 0.0:
+            return True
+        if stamp_s < self._newest_s or (stamp_s == self._newest_s and moving and self._newest_was_stop):
+            return False
+        self._newest_s = stamp_s
+        self._newest_was_stop = not moving
+        return True
+
+
 class SensorWatchdog:
     """Tracks when each named sensor last delivered a message; stale when silent for ``timeout_s`` [s].
 

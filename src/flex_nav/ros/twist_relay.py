@@ -4,7 +4,9 @@ Flexible Navigation's controllers publish stamped commands (for logging); ordina
 Twist. A non-finite command is never forwarded: it is logged and a zero Twist goes out instead (a broken
 controller stops the robot). Parameter ``~timeout`` [s] (0 = off, default 0.5): when no command arrived for
 this long after the last one, one zero Twist is published, so a crashed controller cannot leave the base
-driving on its last command.
+driving on its last command. Controllers and behavior states publish to the same topic from different
+nodes, whose messages have no order between them: a command stamped before one already forwarded is
+dropped, and at equal stamps a stop wins (:class:`~flex_nav.follow.safety.CommandOrder`).
 """
 
 from __future__ import annotations
@@ -14,7 +16,7 @@ import threading
 import rospy
 from geometry_msgs.msg import Twist, TwistStamped
 
-from flex_nav.follow.safety import CommandTimeout, twist_problem
+from flex_nav.follow.safety import CommandOrder, CommandTimeout, twist_problem
 from flex_nav.ros.params import param_float, reject_unknown
 
 CHECK_PERIOD_MIN_S = 0.01  # [s] fastest timeout check
@@ -25,6 +27,7 @@ class TwistRelay:
         reject_unknown("~", ("timeout",))
         timeout_s = param_float("~timeout", 0.5, 0.0, 3600.0)
         self._timeout = CommandTimeout(timeout_s)
+        self._order = CommandOrder()
         self._lock = threading.Lock()
         self.publisher = rospy.Publisher("cmd_vel", Twist, queue_size=1)
         self.subscriber = rospy.Subscriber("cmd_vel_stamped", TwistStamped, self._on_command, queue_size=1,
@@ -42,6 +45,10 @@ class TwistRelay:
                 rospy.logerr_throttle(1.0, f"twist_relay: {problem}; dropped, publishing a zero Twist instead")
                 self._timeout.stopped()
                 self.publisher.publish(Twist())
+                return
+            moving = any(v != 0.0 for v in (lin.x, lin.y, lin.z, ang.x, ang.y, ang.z))
+            if not self._order.admit(msg.header.stamp.to_sec(), moving):
+                rospy.logdebug("twist_relay: dropped a command stamped before one already forwarded")
                 return
             self._timeout.command(rospy.get_time())
             self.publisher.publish(msg.twist)

@@ -5,7 +5,7 @@ import math
 import pytest
 
 from flex_nav.exceptions import ConfigError
-from flex_nav.follow.safety import CommandTimeout, SensorWatchdog, twist_problem
+from flex_nav.follow.safety import CommandOrder, CommandTimeout, SensorWatchdog, twist_problem
 
 
 def test_finite_twist_is_fine():
@@ -77,3 +77,16 @@ def test_watchdog_rejects_unknown_sensor_and_bad_timeout():
         SensorWatchdog(["odom"], 0.0, start_s=0.0)
     with pytest.raises(ConfigError, match="at least one"):
         SensorWatchdog([], 1.0, start_s=0.0)
+
+
+def test_command_order_drops_a_command_older_than_one_forwarded_and_a_stop_wins_ties():
+    order = CommandOrder()
+    assert order.admit(10.0, moving=True)  # controller drives
+    assert order.admit(10.2, moving=False)  # a behavior state stops the robot
+    assert not order.admit(10.1, moving=True)  # the controller's last command arrives late: dropped
+    assert not order.admit(10.2, moving=True)  # same stamp as the stop: the stop wins
+    assert order.admit(10.2, moving=False)
+    assert order.admit(10.3, moving=True)  # newer commands go through
+    assert not order.admit(10.25, moving=False)  # an old stop is stale too
+    assert order.admit(0.0, moving=True)  # unstamped: always forwarded, changes nothing
+    assert not order.admit(10.29, moving=True)
