@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, Tuple
 
 from flex_nav.action_types import action_type
 from flex_nav.behavior.userdata import UserDataView, unwrap
@@ -28,6 +28,8 @@ class FollowPathState(ActionClientBase):
     <= preempted  The server stopped the goal for someone else (code PREEMPT or cancelled by another client).
     """
 
+    OUTCOMES: Tuple[str, ...] = ("done", "failed", "preempted")  # subclasses may add their own
+
     def __init__(self, action_name: str = "pure_pursuit_path", server_timeout_s: float = 5.0,
                  timeout_s: float = 0.0) -> None:
         super().__init__(
@@ -35,7 +37,7 @@ class FollowPathState(ActionClientBase):
             action_name=action_name,
             server_timeout_s=server_timeout_s,
             timeout_s=timeout_s,
-            outcomes=["done", "failed", "preempted"],
+            outcomes=list(self.OUTCOMES),
             success="done",
             failure="failed",
             cancelled="preempted",

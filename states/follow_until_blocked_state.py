@@ -1,4 +1,4 @@
-"""FollowUntilBlockedState: FollowPath, with the controller's "blocked" abort as its own outcome."""
+"""FollowUntilBlockedState: FollowPathState, with the controller's "blocked" abort as its own outcome."""
 
 from __future__ import annotations
 
@@ -6,17 +6,13 @@ from typing import Any
 
 from actionlib_msgs.msg import GoalStatus
 
-from flex_nav.behavior.userdata import UserDataView, unwrap
-from flex_nav.exceptions import ConfigError
-from flex_nav.msg import FollowPathGoal
-from flex_nav_states.action_base import ActionClientBase
-from flex_nav_states.follow_path_state import FOLLOW_PATH
-from flex_nav_states.messages import describe
+from flex_nav.behavior.userdata import UserDataView
+from flex_nav_states.follow_path_state import FollowPathState
 
 BLOCKED_PREFIX = "blocked"  # reason prefix of flex_nav.follow.blocked's abort
 
 
-class FollowUntilBlockedState(ActionClientBase):
+class FollowUntilBlockedState(FollowPathState):
     """Sends the plan to a FollowPath controller and waits; a path blocked by an obstacle is ``blocked``.
 
     The controller must run blocked-path detection (``pure_pursuit_path`` with ``~blocked_distance`` > 0):
@@ -34,31 +30,7 @@ class FollowUntilBlockedState(ActionClientBase):
     <= preempted  The server stopped the goal for someone else.
     """
 
-    def __init__(self, action_name: str = "pure_pursuit_path", server_timeout_s: float = 5.0,
-                 timeout_s: float = 0.0) -> None:
-        super().__init__(
-            spec=FOLLOW_PATH,
-            action_name=action_name,
-            server_timeout_s=server_timeout_s,
-            timeout_s=timeout_s,
-            outcomes=["done", "blocked", "failed", "preempted"],
-            success="done",
-            failure="failed",
-            cancelled="preempted",
-            code_outcomes={"FAILURE": "failed", "PREEMPT": "preempted"},
-            input_keys=["plan"],
-        )
-
-    def make_goal(self, userdata: UserDataView) -> Any:
-        path = unwrap(userdata.plan)
-        if getattr(path, "poses", None) is None or not hasattr(path, "header"):
-            raise ConfigError(f"userdata plan must be a nav_msgs/Path, got {type(path).__name__}")
-        if len(path.poses) == 0:
-            raise ConfigError("userdata plan is empty")
-        return FollowPathGoal(path=path)
-
-    def describe_goal(self, goal: Any) -> str:
-        return f"follow {describe(goal.path)}"
+    OUTCOMES = ("done", "blocked", "failed", "preempted")
 
     def map_result(self, userdata: UserDataView, status: int, result: Any) -> str:
         message = str(getattr(result, "message", "") or "") if result is not None else ""
