@@ -25,6 +25,16 @@ class RostestOutcome:
         return self.returncode == 0 and "RESULT: SUCCESS" in self.output
 
 
+def system_env() -> dict[str, str]:
+    """The environment of a whole-system run started from a test: this repository's venv first on PATH, the
+    package on ROS_PACKAGE_PATH, loopback ROS_IP (each run starts its own private master)."""
+    env = dict(os.environ)
+    env["PATH"] = f"{REPO_ROOT / '.venv' / 'bin'}{os.pathsep}{env.get('PATH', '')}"
+    env["ROS_PACKAGE_PATH"] = f"{REPO_ROOT}{os.pathsep}{env.get('ROS_PACKAGE_PATH', '')}"
+    env["ROS_IP"] = "127.0.0.1"
+    return env
+
+
 def run_command_bounded(
     argv: list[str], env: dict[str, str], timeout_s: float, cwd: Path = REPO_ROOT
 ) -> RostestOutcome:

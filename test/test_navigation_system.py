@@ -4,14 +4,13 @@ or by the operator scenario script. Each test starts and stops its own private m
 
 from __future__ import annotations
 
-import os
 import re
 import sys
 from pathlib import Path
 from typing import Tuple
 
 import pytest
-from harness import REPO_ROOT, run_command_bounded
+from harness import REPO_ROOT, run_command_bounded, system_env
 
 SUMMARY = re.compile(
     r"goals reached: (?P<reached>\d+)/(?P<total>\d+), bumper recoveries: (?P<recoveries>\d+), "
@@ -20,18 +19,10 @@ SUMMARY = re.compile(
 RUN_TIMEOUT_S = 420.0  # [s] wall bound of one system run (a lap takes ~45-80 s of wall time here)
 
 
-def _env() -> dict:
-    env = dict(os.environ)
-    env["PATH"] = f"{REPO_ROOT / '.venv' / 'bin'}{os.pathsep}{env.get('PATH', '')}"
-    env["ROS_PACKAGE_PATH"] = f"{REPO_ROOT}{os.pathsep}{env.get('ROS_PACKAGE_PATH', '')}"
-    env["ROS_IP"] = "127.0.0.1"
-    return env
-
-
 def run_demo(out: Path, *args: str) -> Tuple[int, str, re.Match]:
     outcome = run_command_bounded(
         [sys.executable, "-m", "flex_nav.ros.nav_demo", "--out", str(out), "--timeout", "300", *args],
-        env=_env(), timeout_s=RUN_TIMEOUT_S,
+        env=system_env(), timeout_s=RUN_TIMEOUT_S,
     )
     match = SUMMARY.search(outcome.output)
     assert match is not None, f"no summary line (exit {outcome.returncode}):\n{outcome.output[-5000:]}"
@@ -88,7 +79,7 @@ def test_three_robots_in_their_namespaces(tmp_path: Path) -> None:
 def test_low_autonomy_waits_for_the_operator_and_preempt_stops_the_robot(tmp_path: Path) -> None:
     outcome = run_command_bounded(
         [sys.executable, str(REPO_ROOT / "test" / "system" / "operator_scenario.py"), str(tmp_path)],
-        env=_env(), timeout_s=RUN_TIMEOUT_S,
+        env=system_env(), timeout_s=RUN_TIMEOUT_S,
     )
     assert outcome.returncode == 0, outcome.output[-6000:]
     assert "SCENARIO PASSED" in outcome.output

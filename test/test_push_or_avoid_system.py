@@ -7,30 +7,21 @@ asserted here (the evaluation command measures them)."""
 from __future__ import annotations
 
 import json
-import os
 import sys
 from pathlib import Path
 
 import pytest
-from harness import REPO_ROOT, run_command_bounded
+from harness import run_command_bounded, system_env
 
 RUN_TIMEOUT_S = 300.0  # [s] wall bound of one run
 SIM_LIMIT_S = 100.0  # [s] simulated time bound of the goal
-
-
-def _env() -> dict:
-    env = dict(os.environ)
-    env["PATH"] = f"{REPO_ROOT / '.venv' / 'bin'}{os.pathsep}{env.get('PATH', '')}"
-    env["ROS_PACKAGE_PATH"] = f"{REPO_ROOT}{os.pathsep}{env.get('ROS_PACKAGE_PATH', '')}"
-    env["ROS_IP"] = "127.0.0.1"
-    return env
 
 
 def scenario(out: Path, world: str, behavior: str, sim_limit_s: float = SIM_LIMIT_S) -> dict:
     outcome = run_command_bounded(
         [sys.executable, "-m", "flex_nav.ros.scenario_run", "--world", world, "--behavior", behavior,
          "--rtf", "2.0", "--sim-limit", str(sim_limit_s), "--timeout", str(RUN_TIMEOUT_S - 30.0), "--out", str(out)],
-        env=_env(), timeout_s=RUN_TIMEOUT_S,
+        env=system_env(), timeout_s=RUN_TIMEOUT_S,
     )
     lines = [line for line in outcome.output.splitlines() if line.startswith("RESULT ")]
     assert outcome.returncode == 0 and lines, f"no result (exit {outcome.returncode}):\n{outcome.output[-5000:]}"

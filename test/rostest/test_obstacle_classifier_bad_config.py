@@ -1,19 +1,16 @@
 #!/usr/bin/env python3
 """rostest node for obstacle_classifier_bad_config.test: every bad start fails loudly, naming the field."""
 
-import os
-import subprocess
 import sys
 import tempfile
 import unittest
 from pathlib import Path
 
-import rosgraph
 import rostest
+from refused_start import run_refused
 
 NODE = Path(__file__).resolve().parents[2] / "scripts" / "obstacle_classifier"
 SHIPPED = Path(__file__).resolve().parents[2] / "models" / "obstacle_classifier.onnx"
-RUN_TIMEOUT_S = 60.0  # [s] a rejected start must end well within this
 
 
 class TestObstacleClassifierBadConfig(unittest.TestCase):
@@ -21,21 +18,8 @@ class TestObstacleClassifierBadConfig(unittest.TestCase):
 
     def run_node(self, *params):
         TestObstacleClassifierBadConfig.runs += 1
-        name = f"classifier_bad_{TestObstacleClassifierBadConfig.runs}"
-        proc = subprocess.run(
-            [str(NODE), f"__name:={name}", *params],
-            capture_output=True,
-            text=True,
-            timeout=RUN_TIMEOUT_S,
-            env=dict(os.environ),
-            check=False,
-        )
-        self.assertEqual(proc.returncode, 2, f"exit {proc.returncode}; stderr:\n{proc.stderr[-2000:]}")
-        self.assertNotIn("Traceback", proc.stderr)
-        publishers, subscribers, services = rosgraph.Master("/test_bad_config").getSystemState()
-        for topic, nodes in publishers + subscribers + services:
-            self.assertNotIn(f"/{name}", nodes, f"{name} still registered on {topic}")
-        return proc.stderr
+        stderr, _ = run_refused(self, NODE, f"classifier_bad_{TestObstacleClassifierBadConfig.runs}", *params)
+        return stderr
 
     def test_missing_model_file(self):
         err = self.run_node("_model:=/nonexistent/model.onnx")

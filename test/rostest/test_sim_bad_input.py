@@ -2,19 +2,17 @@
 """rostest node for sim_bad_input.test: each bad start of the sim node fails loudly and cleanly."""
 
 import os
-import subprocess
 import sys
 import tempfile
 import unittest
 from pathlib import Path
 
-import rosgraph
 import rostest
+from refused_start import run_refused
 
 from flex_nav_sim.world import available_worlds
 
 SIM = Path(__file__).resolve().parents[2] / "scripts" / "sim"
-RUN_TIMEOUT_S = 60.0  # [s] a rejected start must end well within this
 
 
 class TestSimBadInput(unittest.TestCase):
@@ -22,21 +20,9 @@ class TestSimBadInput(unittest.TestCase):
 
     def run_sim(self, *params):
         TestSimBadInput.runs += 1
-        name = f"sim_bad_{TestSimBadInput.runs}"
-        proc = subprocess.run(
-            [str(SIM), f"__name:={name}", *params],
-            capture_output=True,
-            text=True,
-            timeout=RUN_TIMEOUT_S,
-            env=dict(os.environ),
-            check=False,
-        )
-        self.assertEqual(proc.returncode, 2, f"exit {proc.returncode}; stderr:\n{proc.stderr[-2000:]}")
-        publishers, subscribers, _ = rosgraph.Master("/test_sim_bad_input").getSystemState()
-        for topic, nodes in publishers + subscribers:  # nothing half-started stays registered
-            self.assertNotIn(f"/{name}", nodes, f"{name} still registered on {topic}")
+        stderr, publishers = run_refused(self, SIM, f"sim_bad_{TestSimBadInput.runs}", *params)
         self.assertNotIn("/clock", [topic for topic, _ in publishers])
-        return proc.stderr
+        return stderr
 
     def test_unknown_world(self):
         err = self.run_sim("_world:=moon")
