@@ -47,7 +47,8 @@ Pose2D = Tuple[float, float, float]  # (x [m], y [m], yaw [rad])
 LocalCostmap = Optional[Tuple[np.ndarray, CostmapGeometry]]
 
 
-def _no_tracks() -> List[Track]:
+def no_tracks() -> List[Track]:
+    """The tracks of a follower without a moving-obstacle tracker: none."""
     return []
 
 
@@ -136,7 +137,7 @@ class SafeFollower:
         pose: Callable[[], Pose2D],
         velocity: Tuple[float, float],
         local_costmap: Callable[[], LocalCostmap],
-        tracks: Callable[[], Sequence[Track]] = _no_tracks,
+        tracks: Callable[[], Sequence[Track]] = no_tracks,
     ) -> Decision:
         """One control step at ``now_s``; never raises (an exception becomes an ABORTED decision).
         ``tracks``: the moving-obstacle tracks in the path's frame, used only with a ``yielding`` rule."""
@@ -175,11 +176,11 @@ class SafeFollower:
         if status is PursuitStatus.INVALID_INPUT:
             return _stop(Outcome.ABORTED, command.reason, command)
         moving = list(tracks()) if self.yielding is not None else []
-        given_way = self._give_way(now_s, robot, command, moving, costmap, velocity[0])
+        s_robot = float(self._lengths[-1]) - command.distance_to_goal  # [m] along the path (nan: unknown)
+        given_way = self._give_way(now_s, robot, command, moving, costmap, velocity[0], s_robot)
         if given_way is not None:
             return given_way
         if self.blocked.enabled and costs is not None and geometry is not None and self._path is not None:
-            s_robot = float(self._lengths[-1]) - command.distance_to_goal
             obstacle = (obstacle_on_path(self._path, self._lengths, s_robot, distance_m=self.blocked.distance_m,
                                          costs=costs, geometry=geometry)
                         if math.isfinite(s_robot) else None)
@@ -202,15 +203,14 @@ class SafeFollower:
         return Decision(command.v, command.w, Outcome.RUNNING, command.reason, command)
 
     def _give_way(self, now_s: float, robot: Pose2D, command: Command, tracks: Sequence[Track],  # noqa: PLR0917
-                  costmap: LocalCostmap, speed: float) -> Optional[Decision]:
+                  costmap: LocalCostmap, speed: float, s_robot: float) -> Optional[Decision]:
         """The yield rule's decision while it is active (people to give way to), else None (also when off)."""
-        if self.yielding is None or self._path is None or not math.isfinite(command.distance_to_goal):
+        if self.yielding is None or self._path is None or not math.isfinite(s_robot):
             return None
         costs, geometry = costmap if costmap is not None else (None, None)
         given_way = self.yielding.decide(
             now_s, robot, (command.v, command.w), path=self._path, lengths=self._lengths,
-            s_robot=float(self._lengths[-1]) - command.distance_to_goal, tracks=tracks, costs=costs,
-            geometry=geometry, speed=speed)
+            s_robot=s_robot, tracks=tracks, costs=costs, geometry=geometry, speed=speed)
         if not given_way.active:
             return None
         self.blocked.reset()  # a person crossing is waited for, not a blocked path

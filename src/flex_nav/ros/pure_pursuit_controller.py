@@ -44,7 +44,7 @@ from nav_msgs.msg import Odometry, Path
 
 from flex_nav.action_types import action_type
 from flex_nav.exceptions import ConfigError, NotReadyError
-from flex_nav.follow.controller import Decision, LocalCostmap, Outcome, SafeFollower, warm_up
+from flex_nav.follow.controller import Decision, LocalCostmap, Outcome, SafeFollower, no_tracks, warm_up
 from flex_nav.follow.planar import transform_poses
 from flex_nav.msg import FollowPathFeedback, FollowTopicFeedback
 from flex_nav.nav.pose_checks import yaw_of_quaternion
@@ -108,10 +108,10 @@ class PurePursuitController:
         params = pursuit_params(raw, self.costmap)
         warm_up(params)
         sensors = ["odom", "scan"] if self.costmap.scan_topic else ["odom"]
-        yield_to_people = param_bool("~yield_to_people", False)  # --- yielding (moving_obstacles_ros)
+        yield_to_people = param_bool("~yield_to_people", False)
         self.people = MovingObstaclesROS(self.tf_buffer, self.global_frame) if yield_to_people else None
         yielding = (yield_rule(self.costmap.inflation.inscribed_radius, params.desired_linear_vel)
-                    if yield_to_people else None)  # --- end of yielding
+                    if yield_to_people else None)
         self.follower = SafeFollower(
             params,
             sensors=sensors,
@@ -272,12 +272,12 @@ class PurePursuitController:
         scan_s = self.costmap.last_scan_received_s
         if scan_s is not None and self.costmap.scan_topic:
             self.follower.watchdog.saw("scan", scan_s)
+        tracks = self.people.tracks if self.people is not None else no_tracks
+        decision = self.follower.tick(rospy.get_time(), self._robot_pose, self._velocity(), self._local_costmap,
+                                      tracks)
         if self.people is not None:
-            decision = self.follower.tick(rospy.get_time(), self._robot_pose, self._velocity(), self._local_costmap,
-                                          self.people.tracks)
             self.people.report(decision.reason)
-            return decision
-        return self.follower.tick(rospy.get_time(), self._robot_pose, self._velocity(), self._local_costmap)
+        return decision
 
     def _feedback(self, ticket: GoalTicket, decision: Decision, source: Optional[TopicPath]) -> None:
         try:
