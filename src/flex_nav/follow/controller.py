@@ -37,7 +37,7 @@ import numpy as np
 from flex_nav.exceptions import ConfigError, FlexNavError
 from flex_nav.follow.blocked import BlockedPathWatch, obstacle_on_path
 from flex_nav.follow.safety import SensorWatchdog
-from flex_nav.follow.yielding import YieldRule
+from flex_nav.follow.yielding import YieldDecision, YieldRule
 from flex_nav.nav.costmap_grid import CostmapGeometry
 from flex_nav.nav.path import as_path, cumulative_lengths
 from flex_nav.nav.pure_pursuit import Command, PurePursuitParams, PursuitStatus, RegulatedPurePursuit
@@ -67,6 +67,7 @@ class Decision:
     outcome: Outcome
     reason: str = ""
     command: Optional[Command] = None  # pure pursuit's output, when it ran
+    yielded: Optional[YieldDecision] = None  # the yield rule's decision, when it replaced the command
 
     @property
     def stops(self) -> bool:
@@ -218,7 +219,7 @@ class SafeFollower:
         if not (math.isfinite(given_way.v) and math.isfinite(given_way.w)):
             return _stop(Outcome.ABORTED, f"internal error: non-finite yield command ({given_way.v}, {given_way.w})",
                          command)
-        return Decision(given_way.v, given_way.w, Outcome.RUNNING, given_way.reason, command)
+        return Decision(given_way.v, given_way.w, Outcome.RUNNING, given_way.reason, command, given_way)
 
 
 def warm_up(params: PurePursuitParams) -> None:

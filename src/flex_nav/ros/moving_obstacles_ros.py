@@ -14,9 +14,8 @@ control tick spent giving way, False once when that ends (for a progress monitor
 from __future__ import annotations
 
 import dataclasses
-import re
 import threading
-from typing import List
+from typing import List, Optional, Tuple
 
 import numpy as np
 import rospy
@@ -26,7 +25,7 @@ from sensor_msgs.msg import LaserScan as LaserScanMsg
 from std_msgs.msg import Bool
 
 from flex_nav.exceptions import ConfigError
-from flex_nav.follow.yielding import YieldParams, YieldRule
+from flex_nav.follow.yielding import YieldDecision, YieldMode, YieldParams, YieldRule
 from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.perception.moving_obstacles import MovingObstacleTracker, Track, TrackerParams
 from flex_nav.perception.static_mask import StaticMask
@@ -68,7 +67,7 @@ class MovingObstaclesROS:
             raise ConfigError(f"{rospy.resolve_name(TRACKER_NS)}: {err}") from err
         self.lock = threading.Lock()
         self.tracker = MovingObstacleTracker(params)
-        self._last_kind = ""  # the kind of yielding last logged ("" = none)
+        self._last_kind: Optional[Tuple[YieldMode, Optional[int]]] = None  # (mode, track) last logged
         self.yielding_publisher = rospy.Publisher("~yielding", Bool, queue_size=1)
         scan_topic = param_str(TRACKER_NS + "scan_topic", "scan")
         map_topic = param_str(TRACKER_NS + "map_topic", "map")
@@ -110,18 +109,17 @@ class MovingObstaclesROS:
         with self.lock:
             self.tracker.update_scan(xs, ys, (t.x, t.y), msg.header.stamp.to_sec(), wrap=bool(full_circle))
 
-    def report(self, reason: str) -> None:
-        """One control tick's reason: ``~yielding`` True while giving way (every tick, so it goes stale when
-        the controller stops), False once when it ends; a log line when it starts, ends or changes how."""
-        yielding = reason.startswith("yielding")
-        if yielding or self._last_kind:
-            self.yielding_publisher.publish(Bool(data=yielding))
-        track = re.search(r"track \d+", reason)
-        kind = " ".join([*reason.split()[:2], track.group(0) if track else ""]) if yielding else ""
+    def report(self, yielded: Optional[YieldDecision]) -> None:
+        """One control tick's yield decision (None: not giving way): ``~yielding`` True while giving way (every
+        tick, so it goes stale when the controller stops), False once when it ends; a log line when it starts,
+        ends or changes mode or track."""
+        kind = (yielded.mode, yielded.track_id) if yielded is not None else None
+        if yielded is not None or self._last_kind is not None:
+            self.yielding_publisher.publish(Bool(data=yielded is not None))
         if kind != self._last_kind:
-            if yielding:
-                rospy.loginfo(f"{rospy.get_name()}: {reason}")
-            elif self._last_kind:
+            if yielded is not None:
+                rospy.loginfo(f"{rospy.get_name()}: {yielded.reason}")
+            else:
                 rospy.loginfo(f"{rospy.get_name()}: yielding ended")
             self._last_kind = kind
 

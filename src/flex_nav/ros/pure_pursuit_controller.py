@@ -276,7 +276,7 @@ class PurePursuitController:
         decision = self.follower.tick(rospy.get_time(), self._robot_pose, self._velocity(), self._local_costmap,
                                       tracks)
         if self.people is not None:
-            self.people.report(decision.reason)
+            self.people.report(decision.yielded)
         return decision
 
     def _feedback(self, ticket: GoalTicket, decision: Decision, source: Optional[TopicPath]) -> None:
