@@ -226,7 +226,6 @@ class ReadOnlySequence(_ContainerView, Sequence[Any]):
         return hash(object.__getattribute__(self, "_ro_target"))
 
 
-
 class ReadOnlyMapping(_ContainerView, Mapping[Any, Any]):
     """Read-only view of a dict; values come back read-only; mutators refuse. No copy."""
 
@@ -262,7 +261,6 @@ class ReadOnlyMapping(_ContainerView, Mapping[Any, Any]):
     __hash__ = None  # type: ignore[assignment]  # unhashable, like dict
 
 
-
 class ReadOnlySet(_ContainerView, AbstractSet[Any]):
     """Read-only view of a set (elements are hashable, returned as they are); mutators refuse. No copy."""
 
@@ -287,7 +285,6 @@ class ReadOnlySet(_ContainerView, AbstractSet[Any]):
         return not self.__eq__(other)
 
     __hash__ = None  # type: ignore[assignment]  # unhashable, like set
-
 
 
 _VIEW_TYPES = frozenset({ReadOnlyObject, ReadOnlySequence, ReadOnlyMapping, ReadOnlySet})

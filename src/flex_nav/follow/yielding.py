@@ -152,11 +152,6 @@ class _People:
         return np.hypot(*(self.future - robot[None, :, :]).transpose(2, 0, 1)) - self.grown
 
 
-def _segment_distance(points: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Distance [m] of each point (N, 2) from the segment a-b."""
-    return _segment_closest(points, a, b)[0]
-
-
 def _segment_closest(points: np.ndarray, a: np.ndarray, b: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
     """(distance [m], fraction along a-b in [0, 1]) of each point's closest point on the segment a-b."""
     ab = b - a
@@ -211,7 +206,7 @@ class YieldRule:
                 continue
             a = np.array([t.x - t.vx * TRAIL_S, t.y - t.vy * TRAIL_S])
             b = np.array([t.x, t.y])
-            if float(_segment_distance(np.array([[x, y]]), a, b)[0]) <= t.radius + OWN_MARKS_MARGIN_M:
+            if float(_segment_closest(np.array([[x, y]]), a, b)[0][0]) <= t.radius + OWN_MARKS_MARGIN_M:
                 return True
         return False
 
