@@ -57,7 +57,7 @@ def scenario(out: Path) -> None:
     args = nav_demo.parse_args(["--autonomy", "low", "--goals", "g1", "--rtf", "1.0", "--out", str(out)])
     runs = nav_demo.plan_robots(load_world(args.world), args.profile_list, 1, ["g1"])
     with contextlib.ExitStack() as stack:
-        processes = nav_demo.start_system(stack, args, runs, out)
+        processes, _env = nav_demo.start_system(stack, args, runs, out)
         init_node("operator_scenario")
 
         lock = threading.Lock()

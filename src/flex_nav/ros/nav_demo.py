@@ -26,7 +26,7 @@ import threading
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, List, Mapping, Optional, Sequence, Tuple
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
 from flex_nav.exceptions import ConfigError, FlexNavError, choices_message
 from flex_nav.private_master import PrivateMaster
@@ -259,24 +259,32 @@ class DemoMonitor:
             return all(run.finished or run.failed_reason for run in self.runs)
 
 
-def start_system(stack: contextlib.ExitStack, args: argparse.Namespace, runs: List[RobotRun], out: Path
-                 ) -> List[ManagedProcess]:
-    """Start a private master (use_sim_time), the simulator, the map server, every robot's navigation and
-    behavior runner, and a rosbag recorder; ``stack`` stops them all (the recorder first). Sets this process's
-    ROS environment to the master. Returns the processes whose death ends a run (not the recorder)."""
+def start_system(stack: contextlib.ExitStack, args: argparse.Namespace, runs: List[RobotRun], out: Path, *,
+                 camera: bool = False, params: Optional[Mapping[str, object]] = None, bag: bool = True,
+                 ) -> Tuple[List[ManagedProcess], Dict[str, str]]:
+    """Start a private master (use_sim_time and ``params``), the simulator (``args``: world, rtf, seed, gui;
+    its camera when ``camera``), the map server, every robot's navigation and behavior runner (``args``:
+    behavior, autonomy) and, with ``bag``, a rosbag recorder; ``stack`` stops them all (the recorder first).
+    Sets this process's ROS environment to the master. Returns the processes whose death ends a run (not the
+    recorder) and the environment for more nodes."""
     logs = out / "logs"
     logs.mkdir(parents=True, exist_ok=True)
     master = stack.enter_context(PrivateMaster(ros_home=out / "ros_home"))
     env = master.env
     os.environ.update(env)
-    _set_param(master.uri, "/use_sim_time", True)
+    import rosgraph  # noqa: PLC0415
+
+    parameters = rosgraph.Master("/nav_demo", master_uri=master.uri)
+    for name, value in {"/use_sim_time": True, **(params or {})}.items():
+        parameters.setParam(name, value)
     map_yaml = world_map(Path(args.world).stem)
     robots_param = ",".join(f"{r.name}:{r.profile}:{r.pose[0]}:{r.pose[1]}:{math.degrees(r.pose[2]):.1f}"
                             for r in runs if r.pose)
     processes = [
         ManagedProcess(["rosrun", "flex_nav", "sim", f"_world:={args.world}", f"_robots:={robots_param}",
-                        f"_rtf:={args.rtf}", f"_seed:={args.seed}", "_camera:=false",
-                        f"_gui:={'true' if args.gui else 'false'}"], env=env, log_path=logs / "sim.log"),
+                        f"_rtf:={args.rtf}", f"_seed:={args.seed}", f"_camera:={'true' if camera else 'false'}",
+                        f"_gui:={'true' if getattr(args, 'gui', False) else 'false'}"],
+                       env=env, log_path=logs / "sim.log"),
         ManagedProcess(["rosrun", "flex_nav", "map_server", str(map_yaml)], env=env, log_path=logs / "map.log"),
     ]
     for run in runs:
@@ -287,8 +295,9 @@ def start_system(stack: contextlib.ExitStack, args: argparse.Namespace, runs: Li
             env=env, log_path=logs / f"{run.name}.log"))
     for proc in processes:
         stack.callback(proc.stop)
-    start_recorder(stack, out / "run.bag", [r.name for r in runs], env, logs / "rosbag.log")
-    return processes
+    if bag:
+        start_recorder(stack, out / "run.bag", [r.name for r in runs], env, logs / "rosbag.log")
+    return processes, env
 
 
 def start_recorder(stack: contextlib.ExitStack, bag: Path, robots: Sequence[str], env: Mapping[str, str],
@@ -369,7 +378,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
 
     with contextlib.ExitStack() as stack:
         signal.signal(signal.SIGTERM, _interrupt)
-        processes = start_system(stack, args, runs, out)
+        processes, _env = start_system(stack, args, runs, out)
         from flex_nav.ros.node import init_node  # noqa: PLC0415
 
         init_node("nav_demo")
@@ -416,12 +425,6 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
 def _interrupt(_signum: int, _frame: object) -> None:
     """SIGTERM is handled like Ctrl-C: unwind, stopping everything the demo started."""
     raise KeyboardInterrupt
-
-
-def _set_param(master_uri: str, name: str, value: object) -> None:
-    import rosgraph  # noqa: PLC0415
-
-    rosgraph.Master("/nav_demo", master_uri=master_uri).setParam(name, value)
 
 
 if __name__ == "__main__":

@@ -25,17 +25,15 @@ import sys
 import threading
 import time
 from pathlib import Path
-from typing import Any, List, Optional, Sequence, Tuple
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 from flex_nav.eval.metrics import RunResult, people_clearance
 from flex_nav.exceptions import FlexNavError
-from flex_nav.private_master import PrivateMaster
 from flex_nav.process import ManagedProcess
 from flex_nav.ros.nav_demo import (
     DemoMonitor,
     RobotRun,
-    behavior_parameters,
-    start_recorder,
+    start_system,
     wait_until_ready,
     world_map,
     write_picture,
@@ -98,43 +96,22 @@ class ScenarioMonitor(DemoMonitor):
 
 
 def start(stack: contextlib.ExitStack, args: argparse.Namespace, run: RobotRun) -> List[ManagedProcess]:
-    logs = args.out / "logs"
-    logs.mkdir(parents=True, exist_ok=True)
-    master = stack.enter_context(PrivateMaster(ros_home=args.out / "ros_home"))
-    env = master.env
-    import os  # noqa: PLC0415
-
-    os.environ.update(env)
-    import rosgraph  # noqa: PLC0415
-
-    params = rosgraph.Master("/scenario_run", master_uri=master.uri)
-    params.setParam("/use_sim_time", True)
-    params.setParam(f"/{ROBOT}/pure_pursuit_path/blocked_distance", BLOCKED_DISTANCE_M)
-    params.setParam(f"/{ROBOT}/pure_pursuit_path/yield_to_people", True)  # push_or_avoid's follower
-    params.setParam(f"/{ROBOT}/pure_pursuit_path/yielding/hurry_speed_mps", HURRY_SPEED_MPS)
+    """The demo's system with the camera, the scenario parameters and the obstacle classifier."""
+    params: Dict[str, object] = {
+        f"/{ROBOT}/pure_pursuit_path/blocked_distance": BLOCKED_DISTANCE_M,
+        f"/{ROBOT}/pure_pursuit_path/yield_to_people": True,  # push_or_avoid's follower
+        f"/{ROBOT}/pure_pursuit_path/yielding/hurry_speed_mps": HURRY_SPEED_MPS,
+    }
     for costmap in ("get_path_server/global_costmap", "pure_pursuit_path/local_costmap",
                     "pure_pursuit_topic/local_costmap"):
-        params.setParam(f"/{ROBOT}/{costmap}/bumper_memory", BUMPER_MEMORY_S)
-    assert run.pose is not None
-    x, y, yaw = run.pose
-    processes = [
-        ManagedProcess(["rosrun", "flex_nav", "sim", f"_world:={args.world}",
-                        f"_robots:={ROBOT}:{PROFILE}:{x}:{y}:{math.degrees(yaw):.1f}", f"_rtf:={args.rtf}",
-                        f"_seed:={args.seed}", "_camera:=true", "_gui:=false"], env=env, log_path=logs / "sim.log"),
-        ManagedProcess(["rosrun", "flex_nav", "map_server", str(world_map(args.world))], env=env,
-                       log_path=logs / "map.log"),
-        ManagedProcess(["roslaunch", "flex_nav", "flex_nav_robot.launch", f"robot:={ROBOT}", f"profile:={PROFILE}",
-                        "twist_relay:=true", "autonomy:=full", f"behavior:={args.behavior}",
-                        f"behavior_parameters:={behavior_parameters(args.behavior, PROFILE)}"],
-                       env=env, log_path=logs / f"{ROBOT}.log"),
-        ManagedProcess(["rosrun", "flex_nav", "obstacle_classifier", f"__ns:={ROBOT}", "_max_rate:=5.0"],
-                       env=env, log_path=logs / "classifier.log"),
-    ]
-    for proc in processes:
-        stack.callback(proc.stop)
-    if args.bag:
-        start_recorder(stack, args.out / "run.bag", [ROBOT], env, logs / "rosbag.log")
-    return processes
+        params[f"/{ROBOT}/{costmap}/bumper_memory"] = BUMPER_MEMORY_S
+    system = argparse.Namespace(world=args.world, rtf=args.rtf, seed=args.seed, gui=False, autonomy="full",
+                                behavior=args.behavior)
+    processes, env = start_system(stack, system, [run], args.out, camera=True, params=params, bag=args.bag)
+    classifier = ManagedProcess(["rosrun", "flex_nav", "obstacle_classifier", f"__ns:={ROBOT}", "_max_rate:=5.0"],
+                                env=env, log_path=args.out / "logs" / "classifier.log")
+    stack.callback(classifier.stop)
+    return [*processes, classifier]
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one linear script of a run
