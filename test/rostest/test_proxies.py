@@ -6,6 +6,7 @@ import time
 import unittest
 
 import rostest
+from actionlib.action_client import CommState
 from actionlib_msgs.msg import GoalStatus
 from std_msgs.msg import Int32, String
 from std_srvs.srv import Trigger, TriggerRequest
@@ -68,6 +69,29 @@ class TestProxies(unittest.TestCase):
         self.assertEqual(client.state(), GoalStatus.ABORTED)
         self.assertEqual(client.result().code, GetPathResult.EMPTY)
         self.assertEqual(client.result().message, "no path to the goal")
+        proxies.shutdown()
+
+    def test_result_arriving_before_send_returns_is_kept(self):
+        # actionlib's SimpleActionClient drops transitions that arrive before its send_goal returns
+        # (ros/actionlib#206); a loaded machine can delay the return past a fast server's answer. Delay it here.
+        proxies = RosProxies()
+        client = proxies.action_client("failing_get_path", GetPathAction)
+        actionlib_client = client._client
+        real_send = actionlib_client.send_goal
+        answered = []
+
+        def send_then_stall(*args, **kwargs):
+            handle = real_send(*args, **kwargs)
+            answered.append(wait_for(lambda: handle.get_comm_state() == CommState.DONE))
+            return handle
+
+        actionlib_client.send_goal = send_then_stall
+        for _ in range(3):
+            client.send_goal(GetPathGoal(), server_timeout_s=WAIT_S)
+            self.assertTrue(answered[-1], "the server did not answer while send_goal stalled")
+            self.assertTrue(wait_for(client.has_result, timeout_s=2.0), "the result that came early was lost")
+            self.assertEqual(client.state(), GoalStatus.ABORTED)
+            self.assertEqual(client.result().message, "no path to the goal")
         proxies.shutdown()
 
     def test_cancel_and_shutdown_cancels_active_goal(self):

@@ -16,6 +16,7 @@ from typing import Any, Callable, Deque, Dict, Generic, List, Optional, Tuple, T
 
 import actionlib
 import rospy
+from actionlib.action_client import ClientGoalHandle, CommState
 from actionlib_msgs.msg import GoalStatus
 
 from flex_nav.exceptions import ConfigError, NotReadyError, TimedOutError
@@ -115,13 +116,22 @@ class Subscription(Generic[MsgT]):
 
 
 class ActionClientProxy:
-    """A non-blocking action client: send, poll state/result/feedback, cancel. One goal at a time."""
+    """A non-blocking action client: send, poll state/result/feedback, cancel. One goal at a time.
+
+    Built on actionlib's ActionClient, not its SimpleActionClient: the latter records the goal handle only
+    when ``send_goal`` returns and drops every transition that arrives before (ros/actionlib#206), so the
+    result of a fast server (a ClearCostmap answered within the send) could be lost and the goal waited on
+    until its timeout. Here each goal's callbacks carry the goal's sequence number, known before sending;
+    callbacks of a replaced goal are ignored.
+    """
 
     def __init__(self, name: str, action_type: type) -> None:
         self.name = name
         self.action_type = action_type
-        self._client = actionlib.SimpleActionClient(name, action_type)
+        self._client = actionlib.ActionClient(name, action_type)
         self._lock = threading.Lock()
+        self._goal_number = 0  # sequence number of the goal the fields below describe
+        self._handle: Optional[ClientGoalHandle] = None
         self._result: Any = None
         self._feedback: Any = None
         self._state: int = GoalStatus.LOST
@@ -142,21 +152,36 @@ class ActionClientProxy:
         """Send ``goal`` (replacing any active one); NotReadyError if the server is not there within the bound."""
         self.wait_for_server(server_timeout_s)
         with self._lock:
+            self._goal_number += 1
+            number = self._goal_number
+            self._handle = None
             self._result, self._feedback, self._done, self._active = None, None, False, True
             self._state = GoalStatus.PENDING
-        self._client.send_goal(goal, done_cb=self._on_done, active_cb=self._on_active, feedback_cb=self._on_feedback)
-
-    def _on_done(self, state: int, result: Any) -> None:
+        handle = self._client.send_goal(
+            goal,
+            transition_cb=lambda gh: self._on_transition(number, gh),
+            feedback_cb=lambda _gh, feedback: self._on_feedback(number, feedback),
+        )
         with self._lock:
-            self._state, self._result, self._done, self._active = state, result, True, False
+            if self._goal_number == number:
+                self._handle = handle  # also keeps the goal tracked: actionlib holds it only weakly
 
-    def _on_active(self) -> None:
+    def _on_transition(self, number: int, handle: ClientGoalHandle) -> None:
+        comm_state = handle.get_comm_state()
+        if comm_state == CommState.DONE:
+            state, result = handle.get_terminal_state(), handle.get_result()
         with self._lock:
-            self._state = GoalStatus.ACTIVE
+            if number != self._goal_number or self._done:
+                return
+            if comm_state == CommState.ACTIVE:
+                self._state = GoalStatus.ACTIVE
+            elif comm_state == CommState.DONE:
+                self._state, self._result, self._done, self._active = state, result, True, False
 
-    def _on_feedback(self, feedback: Any) -> None:
+    def _on_feedback(self, number: int, feedback: Any) -> None:
         with self._lock:
-            self._feedback = feedback
+            if number == self._goal_number:
+                self._feedback = feedback
 
     def has_result(self) -> bool:
         with self._lock:
@@ -192,9 +217,9 @@ class ActionClientProxy:
     def cancel(self) -> None:
         """Cancel the active goal (no-op when none is active)."""
         with self._lock:
-            active = self._active
-        if active:
-            self._client.cancel_goal()
+            handle = self._handle if self._active else None
+        if handle is not None:
+            handle.cancel()  # outside the lock: actionlib calls the transition callback from here
 
 
 class ServiceCallerProxy:
