@@ -4,8 +4,6 @@
 import sys
 import unittest
 
-import actionlib
-import rospy
 import rostest
 from actionlib_msgs.msg import GoalStatus
 from geometry_msgs.msg import PoseStamped
@@ -26,14 +24,15 @@ from flex_nav.msg import (
     GetPathResult,
 )
 from flex_nav.ros.node import init_node
+from flex_nav.ros.proxies import ActionClientProxy
 
 SERVER_WAIT_S = 20.0  # [s]
 RESULT_WAIT_S = 10.0  # [s]
 
 
 def connected_client(name, action):
-    client = actionlib.SimpleActionClient(name, action)
-    if not client.wait_for_server(rospy.Duration(SERVER_WAIT_S)):
+    client = ActionClientProxy(name, action)
+    if not client.is_available(SERVER_WAIT_S):
         raise AssertionError(f"action server {name} did not appear within {SERVER_WAIT_S} s")
     return client
 
@@ -47,9 +46,9 @@ class TestActions(unittest.TestCase):
         goal.pose.pose.position.x = 1.5
         goal.pose.pose.orientation.w = 1.0
         client.send_goal(goal)
-        self.assertTrue(client.wait_for_result(rospy.Duration(RESULT_WAIT_S)))
-        self.assertEqual(client.get_state(), GoalStatus.SUCCEEDED)
-        result = client.get_result()
+        self.assertTrue(client.wait_for_result(RESULT_WAIT_S))
+        self.assertEqual(client.state(), GoalStatus.SUCCEEDED)
+        result = client.result()
         self.assertEqual(result.code, GetPathResult.SUCCESS)
         self.assertEqual(result.message, "SUCCESS")
         self.assertIsInstance(result.plan, Path)
@@ -58,29 +57,29 @@ class TestActions(unittest.TestCase):
     def test_follow_path_preempted(self):
         client = connected_client("follow_path_server", FollowPathAction)
         client.send_goal(FollowPathGoal(path=Path()))
-        self.assertFalse(client.wait_for_result(rospy.Duration(0.5)), "server should still be working")
-        client.cancel_goal()
-        self.assertTrue(client.wait_for_result(rospy.Duration(RESULT_WAIT_S)))
-        self.assertEqual(client.get_state(), GoalStatus.PREEMPTED)
-        self.assertEqual(client.get_result().code, FollowPathResult.PREEMPT)
-        self.assertEqual(client.get_result().message, "preempted")
+        self.assertFalse(client.wait_for_result(0.5), "server should still be working")
+        client.cancel()
+        self.assertTrue(client.wait_for_result(RESULT_WAIT_S))
+        self.assertEqual(client.state(), GoalStatus.PREEMPTED)
+        self.assertEqual(client.result().code, FollowPathResult.PREEMPT)
+        self.assertEqual(client.result().message, "preempted")
 
     def test_follow_topic_failure_carries_reason(self):
         client = connected_client("follow_topic_server", FollowTopicAction)
         goal = FollowTopicGoal()
         goal.topic.data = "plan"
         client.send_goal(goal)
-        self.assertTrue(client.wait_for_result(rospy.Duration(RESULT_WAIT_S)))
-        self.assertEqual(client.get_state(), GoalStatus.ABORTED)
-        self.assertEqual(client.get_result().code, FollowTopicResult.FAILURE)
-        self.assertEqual(client.get_result().message, "no publisher on the topic")
+        self.assertTrue(client.wait_for_result(RESULT_WAIT_S))
+        self.assertEqual(client.state(), GoalStatus.ABORTED)
+        self.assertEqual(client.result().code, FollowTopicResult.FAILURE)
+        self.assertEqual(client.result().message, "no publisher on the topic")
 
     def test_clear_costmap_succeeds(self):
         client = connected_client("clear_costmap", ClearCostmapAction)
         client.send_goal(ClearCostmapGoal())
-        self.assertTrue(client.wait_for_result(rospy.Duration(RESULT_WAIT_S)))
-        self.assertEqual(client.get_state(), GoalStatus.SUCCEEDED)
-        self.assertEqual(client.get_result().code, ClearCostmapResult.SUCCESS)
+        self.assertTrue(client.wait_for_result(RESULT_WAIT_S))
+        self.assertEqual(client.state(), GoalStatus.SUCCEEDED)
+        self.assertEqual(client.result().code, ClearCostmapResult.SUCCESS)
 
 
 if __name__ == "__main__":

@@ -18,6 +18,7 @@ from flex_nav.msg import ClearCostmapAction, ClearCostmapGoal, ClearCostmapResul
 from flex_nav.msg import GetPathResult as R
 from flex_nav.nav.map_io import load_map
 from flex_nav.ros.node import init_node
+from flex_nav.ros.proxies import ActionClientProxy
 
 SERVER_WAIT_S = 30.0  # [s] nodes start slowly on a loaded machine
 RESULT_WAIT_S = 5.0  # [s] bound on every answer
@@ -40,8 +41,8 @@ class TestGetPath(unittest.TestCase):
         cls.clients = {}
         cls.grid = load_map(rospkg.RosPack().get_path("flex_nav") + "/" + MAP)
         for name in ("get_path_server", "get_path_no_map", "get_path_no_tf"):
-            client = actionlib.SimpleActionClient(name, GetPathAction)
-            assert client.wait_for_server(rospy.Duration(SERVER_WAIT_S)), f"{name} did not come up"
+            client = ActionClientProxy(name, GetPathAction)
+            assert client.is_available(SERVER_WAIT_S), f"{name} did not come up"
             cls.clients[name] = client
         cls.plans = []
         cls.plan_event = threading.Event()
@@ -55,8 +56,8 @@ class TestGetPath(unittest.TestCase):
     def ask(self, goal, server="get_path_server"):
         client = self.clients[server]
         client.send_goal(goal)
-        self.assertTrue(client.wait_for_result(rospy.Duration(RESULT_WAIT_S)), "no answer within the bound")
-        return client.get_state(), client.get_result()
+        self.assertTrue(client.wait_for_result(RESULT_WAIT_S), "no answer within the bound")
+        return client.state(), client.result()
 
     def assert_fails(self, goal, code, reason_part, server="get_path_server"):
         state, result = self.ask(goal, server)
@@ -167,11 +168,11 @@ class TestGetPath(unittest.TestCase):
         self.assert_still_serving()
 
     def test_clear_costmap(self):
-        client = actionlib.SimpleActionClient("get_path_server/clear_costmap", ClearCostmapAction)
-        self.assertTrue(client.wait_for_server(rospy.Duration(SERVER_WAIT_S)))
+        client = ActionClientProxy("get_path_server/clear_costmap", ClearCostmapAction)
+        self.assertTrue(client.is_available(SERVER_WAIT_S))
         client.send_goal(ClearCostmapGoal())
-        self.assertTrue(client.wait_for_result(rospy.Duration(RESULT_WAIT_S)))
-        self.assertEqual(client.get_result().code, ClearCostmapResult.SUCCESS, client.get_result().message)
+        self.assertTrue(client.wait_for_result(RESULT_WAIT_S))
+        self.assertEqual(client.result().code, ClearCostmapResult.SUCCESS, client.result().message)
         self.assert_still_serving()
 
 

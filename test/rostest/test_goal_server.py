@@ -18,6 +18,7 @@ from flex_nav.action_types import action_type
 from flex_nav.msg import FollowPathAction, FollowPathGoal, FollowPathResult
 from flex_nav.ros.goal_server import RESULT_SUCCEEDED, GoalServer
 from flex_nav.ros.node import init_node
+from flex_nav.ros.proxies import ActionClientProxy
 
 WAIT_S = 10.0  # [s]
 SUCCEED, RAISE, FORGET, WAIT = 1, 2, 3, 4  # behaviour = number of poses in the goal path
@@ -63,15 +64,15 @@ class TestGoalServer(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.script = Script()
-        cls.client = actionlib.SimpleActionClient("scripted", FollowPathAction)
-        assert cls.client.wait_for_server(rospy.Duration(WAIT_S))
+        cls.client = ActionClientProxy("scripted", FollowPathAction)
+        assert cls.client.is_available(WAIT_S)
 
     def send(self, behaviour):
         self.client.send_goal(goal(behaviour))
 
     def result(self):
-        self.assertTrue(self.client.wait_for_result(rospy.Duration(WAIT_S)))
-        return self.client.get_state(), self.client.get_result()
+        self.assertTrue(self.client.wait_for_result(WAIT_S))
+        return self.client.state(), self.client.result()
 
     def test_success_runs_on_the_worker_thread(self):
         self.send(SUCCEED)
@@ -99,7 +100,7 @@ class TestGoalServer(unittest.TestCase):
     def test_cancel_calls_hook_while_the_goal_is_still_active(self):
         self.send(WAIT)
         rospy.sleep(0.2)
-        self.client.cancel_goal()
+        self.client.cancel()
         state, result = self.result()
         self.assertEqual(state, GoalStatus.PREEMPTED)
         self.assertEqual((result.code, result.message), (FollowPathResult.PREEMPT, "preempted"))
@@ -112,15 +113,15 @@ class TestGoalServer(unittest.TestCase):
         self.assertIn(("run saw cancel", cancels[-1][1], True), self.script.events)
 
     def test_newer_goal_replaces_the_running_one(self):
-        first = actionlib.SimpleActionClient("scripted", FollowPathAction)
-        self.assertTrue(first.wait_for_server(rospy.Duration(WAIT_S)))
+        first = ActionClientProxy("scripted", FollowPathAction)
+        self.assertTrue(first.is_available(WAIT_S))
         first.send_goal(goal(WAIT))
         rospy.sleep(0.2)
         self.send(SUCCEED)
-        self.assertTrue(first.wait_for_result(rospy.Duration(WAIT_S)))
-        self.assertEqual(first.get_state(), GoalStatus.PREEMPTED)
-        self.assertEqual(first.get_result().code, FollowPathResult.PREEMPT)
-        self.assertEqual(first.get_result().message, "replaced by a newer goal")
+        self.assertTrue(first.wait_for_result(WAIT_S))
+        self.assertEqual(first.state(), GoalStatus.PREEMPTED)
+        self.assertEqual(first.result().code, FollowPathResult.PREEMPT)
+        self.assertEqual(first.result().message, "replaced by a newer goal")
         self.assertEqual(self.result()[0], GoalStatus.SUCCEEDED)
         self.assertEqual([e for e in self.script.events if e[0] == "cancel"][-1][2], True)
 

@@ -8,7 +8,6 @@ import sys
 import threading
 import unittest
 
-import actionlib
 import cv2
 import numpy as np
 import rospkg
@@ -32,6 +31,7 @@ from flex_nav.msg import (
 from flex_nav.nav.map_io import load_map
 from flex_nav.ros.conversions import path_msg
 from flex_nav.ros.node import init_node
+from flex_nav.ros.proxies import ActionClientProxy
 
 NS = "/robot1/"
 BASE = "robot1/base_footprint"
@@ -56,8 +56,8 @@ class TestNavigationDrive(unittest.TestCase):
         for name, action in (("get_path_server", GetPathAction), ("follow_path_server", FollowPathAction),
                              ("follow_topic_server", FollowTopicAction), ("pure_pursuit_path", FollowPathAction),
                              ("pure_pursuit_topic", FollowTopicAction)):
-            client = actionlib.SimpleActionClient(NS + name, action)
-            assert client.wait_for_server(rospy.Duration(WAIT_S)), f"{NS + name} did not come up"
+            client = ActionClientProxy(NS + name, action)
+            assert client.is_available(WAIT_S), f"{NS + name} did not come up"
             cls.clients[name] = client
         cls.tf = tf2_ros.Buffer()
         cls.listener = tf2_ros.TransformListener(cls.tf)
@@ -76,9 +76,9 @@ class TestNavigationDrive(unittest.TestCase):
     def plan_to(self, x, y):
         client = self.clients["get_path_server"]
         client.send_goal(GetPathGoal(pose=goal_pose(x, y)))
-        self.assertTrue(client.wait_for_result(rospy.Duration(10.0)))
-        self.assertEqual(client.get_state(), GoalStatus.SUCCEEDED, client.get_result().message)
-        return client.get_result().plan
+        self.assertTrue(client.wait_for_result(10.0))
+        self.assertEqual(client.state(), GoalStatus.SUCCEEDED, client.result().message)
+        return client.result().plan
 
     def test_1_follow_topic_server_replans_along_a_topic_path(self):
         start = self.robot_xy()
@@ -100,18 +100,18 @@ class TestNavigationDrive(unittest.TestCase):
         self.assertAlmostEqual(first.x, start[0], delta=0.05)
         self.assertAlmostEqual(last.x, start[0] + 1.5, delta=0.06)  # lookahead_distance 1.5 m along the path
         self.assertAlmostEqual(last.y, start[1], delta=0.06)
-        client.cancel_goal()
-        self.assertTrue(client.wait_for_result(rospy.Duration(5.0)))
-        self.assertEqual(client.get_state(), GoalStatus.PREEMPTED)
+        client.cancel()
+        self.assertTrue(client.wait_for_result(5.0))
+        self.assertEqual(client.state(), GoalStatus.PREEMPTED)
         sub.unregister()
 
     def test_1b_follow_topic_server_without_publisher(self):
         client = self.clients["follow_topic_server"]
         client.send_goal(FollowTopicGoal(topic=String(data="silent_topic")))
-        self.assertTrue(client.wait_for_result(rospy.Duration(10.0)))
-        self.assertEqual(client.get_state(), GoalStatus.ABORTED)
-        self.assertEqual(client.get_result().code, FollowTopicResult.FAILURE)
-        self.assertIn(f"no Path on {NS}silent_topic within 2.0 s", client.get_result().message)
+        self.assertTrue(client.wait_for_result(10.0))
+        self.assertEqual(client.state(), GoalStatus.ABORTED)
+        self.assertEqual(client.result().code, FollowTopicResult.FAILURE)
+        self.assertIn(f"no Path on {NS}silent_topic within 2.0 s", client.result().message)
 
     def test_2_follow_path_server_rejects_bad_paths(self):
         client = self.clients["follow_path_server"]
@@ -119,9 +119,9 @@ class TestNavigationDrive(unittest.TestCase):
                              (path_msg(np.array([[1.0, 1.0], [2.0, 1.0]]), "atlantis", rospy.Time.now()),
                               "'atlantis' cannot be transformed")):
             client.send_goal(FollowPathGoal(path=path))
-            self.assertTrue(client.wait_for_result(rospy.Duration(5.0)))
-            self.assertEqual(client.get_state(), GoalStatus.ABORTED)
-            self.assertIn(reason, client.get_result().message)
+            self.assertTrue(client.wait_for_result(5.0))
+            self.assertEqual(client.state(), GoalStatus.ABORTED)
+            self.assertIn(reason, client.result().message)
 
     def test_3_drive_to_goal_through_the_chain(self):
         goal = (3.0, 3.5)  # beside the block x 1.5..2.5, y 3..4: the plan bends around its corner
@@ -131,14 +131,14 @@ class TestNavigationDrive(unittest.TestCase):
         controller.send_goal(FollowTopicGoal(topic=String(data=NS + "follow_path_server/plan")))
         worst = math.inf
         deadline = rospy.get_time() + DRIVE_WAIT_S
-        while rospy.get_time() < deadline and controller.get_state() in (GoalStatus.PENDING, GoalStatus.ACTIVE):
+        while rospy.get_time() < deadline and controller.state() in (GoalStatus.PENDING, GoalStatus.ACTIVE):
             x, y = self.robot_xy()
             row, col = self.grid.world_to_cell(x, y)
             worst = min(worst, float(self.clearance[row, col]))
             rospy.sleep(0.1)
-        self.assertEqual(controller.get_state(), GoalStatus.SUCCEEDED, controller.get_result())
-        self.assertTrue(planner.wait_for_result(rospy.Duration(10.0)))
-        self.assertEqual(planner.get_state(), GoalStatus.SUCCEEDED, planner.get_result().message)
+        self.assertEqual(controller.state(), GoalStatus.SUCCEEDED, controller.result())
+        self.assertTrue(planner.wait_for_result(10.0))
+        self.assertEqual(planner.state(), GoalStatus.SUCCEEDED, planner.result().message)
         x, y = self.robot_xy()
         self.assertLess(math.hypot(x - goal[0], y - goal[1]), 0.25)
         self.assertGreater(worst, RADIUS, f"the robot came within {worst:.3f} m of a wall")
@@ -153,9 +153,9 @@ class TestNavigationDrive(unittest.TestCase):
             rospy.sleep(0.05)
         self.assertGreaterEqual(math.dist(self.robot_xy(), start), 0.3, "the robot did not move")
         mark = len(self.odom)
-        controller.cancel_goal()
-        self.assertTrue(controller.wait_for_result(rospy.Duration(5.0)))
-        self.assertEqual(controller.get_state(), GoalStatus.PREEMPTED)
+        controller.cancel()
+        self.assertTrue(controller.wait_for_result(5.0))
+        self.assertEqual(controller.state(), GoalStatus.PREEMPTED)
         deadline = rospy.get_time() + 5.0
         stopped = None
         while stopped is None and rospy.get_time() < deadline:

@@ -10,7 +10,6 @@ import tempfile
 import threading
 import unittest
 
-import actionlib
 import numpy as np
 import rospkg
 import rospy
@@ -25,6 +24,7 @@ from flex_nav.msg import ClearCostmapAction, ClearCostmapGoal, ClearCostmapResul
 from flex_nav.nav.map_io import load_map
 from flex_nav.ros.conversions import grid_map_of
 from flex_nav.ros.node import init_node
+from flex_nav.ros.proxies import ActionClientProxy
 
 WAIT_S = 20.0  # [s] bound on anything appearing
 MAP_YAML = os.path.join(rospkg.RosPack().get_path("flex_nav"), "test", "data", "maps", "test_rooms.yaml")
@@ -202,12 +202,12 @@ class TestNodesIO(unittest.TestCase):
         self.assertGreater(cell_value(marked, OBSTACLE[0] - 0.1, OBSTACLE[1]), 0)  # inflated around it
         scans.unregister()
 
-        clear = actionlib.SimpleActionClient("get_path_server/clear_costmap", ClearCostmapAction)
-        self.assertTrue(clear.wait_for_server(rospy.Duration(WAIT_S)))
+        clear = ActionClientProxy("get_path_server/clear_costmap", ClearCostmapAction)
+        self.assertTrue(clear.is_available(WAIT_S))
         mark = costmap.count()
         clear.send_goal(ClearCostmapGoal())
-        self.assertTrue(clear.wait_for_result(rospy.Duration(5.0)))
-        self.assertEqual(clear.get_result().code, ClearCostmapResult.SUCCESS)
+        self.assertTrue(clear.wait_for_result(5.0))
+        self.assertEqual(clear.result().code, ClearCostmapResult.SUCCESS)
         cleared = costmap.wait_for(lambda m: cell_value(m, *OBSTACLE) == 0, after=mark)
         self.assertIsNotNone(cleared, "clear_costmap did not clear the scan mark")
         # the static map survives a clear

@@ -5,7 +5,6 @@ import math
 import sys
 import unittest
 
-import actionlib
 import rospy
 import rostest
 import tf2_ros
@@ -21,6 +20,7 @@ from flex_nav.msg import (
     GetPathGoal,
 )
 from flex_nav.ros.node import init_node
+from flex_nav.ros.proxies import ActionClientProxy
 
 WAIT_S = 40.0  # [s] bound on the servers appearing
 DRIVE_WAIT_S = 40.0  # [s] bound on reaching the goals
@@ -34,10 +34,10 @@ class TestTwoRobots(unittest.TestCase):
         cls.listener = tf2_ros.TransformListener(cls.tf)
         cls.planners, cls.controllers = {}, {}
         for robot in ROBOTS:
-            cls.planners[robot] = actionlib.SimpleActionClient(f"/{robot}/get_path_server", GetPathAction)
-            cls.controllers[robot] = actionlib.SimpleActionClient(f"/{robot}/pure_pursuit_path", FollowPathAction)
+            cls.planners[robot] = ActionClientProxy(f"/{robot}/get_path_server", GetPathAction)
+            cls.controllers[robot] = ActionClientProxy(f"/{robot}/pure_pursuit_path", FollowPathAction)
             for client in (cls.planners[robot], cls.controllers[robot]):
-                assert client.wait_for_server(rospy.Duration(WAIT_S)), f"{robot}'s servers did not come up"
+                assert client.is_available(WAIT_S), f"{robot}'s servers did not come up"
 
     def robot_xy(self, robot):
         tf = self.tf.lookup_transform("map", f"{robot}/base_footprint", rospy.Time(0), rospy.Duration(2.0))
@@ -53,9 +53,9 @@ class TestTwoRobots(unittest.TestCase):
             self.planners[robot].send_goal(GetPathGoal(pose=pose))
         for robot, (start, _goal) in ROBOTS.items():
             client = self.planners[robot]
-            self.assertTrue(client.wait_for_result(rospy.Duration(10.0)))
-            self.assertEqual(client.get_state(), GoalStatus.SUCCEEDED, client.get_result().message)
-            plans[robot] = client.get_result().plan
+            self.assertTrue(client.wait_for_result(10.0))
+            self.assertEqual(client.state(), GoalStatus.SUCCEEDED, client.result().message)
+            plans[robot] = client.result().plan
             first = plans[robot].poses[0].pose.position
             self.assertAlmostEqual(first.x, start[0], delta=0.05, msg=robot)
             self.assertAlmostEqual(first.y, start[1], delta=0.05, msg=robot)
@@ -63,21 +63,21 @@ class TestTwoRobots(unittest.TestCase):
             self.controllers[robot].send_goal(FollowPathGoal(path=plan))
         for robot, (_start, goal) in ROBOTS.items():
             client = self.controllers[robot]
-            self.assertTrue(client.wait_for_result(rospy.Duration(DRIVE_WAIT_S)), f"{robot} did not arrive")
-            self.assertEqual(client.get_state(), GoalStatus.SUCCEEDED, client.get_result().message)
+            self.assertTrue(client.wait_for_result(DRIVE_WAIT_S), f"{robot} did not arrive")
+            self.assertEqual(client.state(), GoalStatus.SUCCEEDED, client.result().message)
             x, y = self.robot_xy(robot)
             self.assertLess(math.hypot(x - goal[0], y - goal[1]), 0.25, robot)
-            end = client.get_result().pose.position
+            end = client.result().pose.position
             self.assertAlmostEqual(end.x, x, delta=0.1)
 
     def test_clear_costmap_per_robot(self):
         for robot in ROBOTS:
-            client = actionlib.SimpleActionClient(f"/{robot}/pure_pursuit_path/clear_costmap", ClearCostmapAction)
-            self.assertTrue(client.wait_for_server(rospy.Duration(WAIT_S)))
+            client = ActionClientProxy(f"/{robot}/pure_pursuit_path/clear_costmap", ClearCostmapAction)
+            self.assertTrue(client.is_available(WAIT_S))
             client.send_goal(ClearCostmapGoal())
-            self.assertTrue(client.wait_for_result(rospy.Duration(5.0)))
-            self.assertEqual(client.get_state(), GoalStatus.SUCCEEDED, client.get_result().message)
-            self.assertIn("cleared", client.get_result().message)
+            self.assertTrue(client.wait_for_result(5.0))
+            self.assertEqual(client.state(), GoalStatus.SUCCEEDED, client.result().message)
+            self.assertIn("cleared", client.result().message)
 
 
 if __name__ == "__main__":

@@ -129,7 +129,7 @@ class ActionClientProxy:
         self.name = name
         self.action_type = action_type
         self._client = actionlib.ActionClient(name, action_type)
-        self._lock = threading.Lock()
+        self._lock = threading.Condition()  # guards the fields below; notified when a goal is done
         self._goal_number = 0  # sequence number of the goal the fields below describe
         self._handle: Optional[ClientGoalHandle] = None
         self._result: Any = None
@@ -177,6 +177,7 @@ class ActionClientProxy:
                 self._state = GoalStatus.ACTIVE
             elif comm_state == CommState.DONE:
                 self._state, self._result, self._done, self._active = state, result, True, False
+                self._lock.notify_all()
 
     def _on_feedback(self, number: int, feedback: Any) -> None:
         with self._lock:
@@ -186,6 +187,11 @@ class ActionClientProxy:
     def has_result(self) -> bool:
         with self._lock:
             return self._done
+
+    def wait_for_result(self, timeout_s: float) -> bool:
+        """Block until the last goal is done or ``timeout_s`` [s] of wall time passed; True if it is done."""
+        with self._lock:
+            return self._lock.wait_for(lambda: self._done, timeout=max(timeout_s, 0.0))
 
     def result(self) -> Any:
         """The result of the last goal (None until it is done, or if the server sent none)."""

@@ -153,7 +153,7 @@ def _real_methods(class_name: str) -> Dict[str, Tuple[str, ...]]:
 )
 def test_fake_proxies_mirror_ros_proxies(real, fake):
     for name, args in _real_methods(real).items():
-        if name in ("wait_for_message",):  # blocking helper, not for states
+        if name in ("wait_for_message", "wait_for_result"):  # blocking helpers, not for states
             continue
         assert hasattr(fake, name), f"{fake.__name__} lacks {name}"
         fake_args = tuple(list(inspect.signature(getattr(fake, name)).parameters)[1:])
