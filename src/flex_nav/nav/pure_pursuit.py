@@ -22,6 +22,10 @@ the local costmap (all in the path's frame) and returns a :class:`Command` ``(v 
    A robot that already stands on an INSCRIBED (not LETHAL) cell, e.g. right after a bumper contact was
    marked at its edge, may leave: for the first ``collision_escape_dist`` [m] of the arc only LETHAL cells
    count (the planner's ``start_escape`` lets its plans leave such a start the same way).
+   When the arc collides but the path itself is clear for the lookahead distance, steps 3-6 are tried
+   again with the lookahead halved (down to two costmap cells): a nearer carrot keeps the arc closer to
+   the planned path, which avoids what the far carrot's arc would cut into (e.g. a path that first moves
+   away from a bumper contact beside the robot). Otherwise, or when every arc collides: COLLISION_AHEAD.
 
 Every failure returns a zero command. One instance per controller (it keeps the pruning index and the
 previous command); :meth:`set_path` starts a new path.
@@ -31,7 +35,7 @@ from __future__ import annotations
 
 import enum
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, fields, replace
 from typing import Any, Mapping, Optional, Tuple
 
 import numpy as np
@@ -261,13 +265,62 @@ class RegulatedPurePursuit:
                     return Command(0.0, w, PursuitStatus.ROTATING_TO_GOAL, "turning to the goal heading", **info)
             return _zero(PursuitStatus.GOAL_REACHED, "goal reached", **info)
 
+        # 2-6 with the lookahead, then with shorter ones while the arc collides (the carrot nearer on the path)
+        cmd = self._towards_carrot(lookahead, x, y, yaw, dt, w_now, closest, remaining, costs, geometry, info)
+        if cmd.status is not PursuitStatus.COLLISION_AHEAD or not self._path_clear(closest.s, lookahead, costs,
+                                                                                    geometry):
+            return cmd
+        for carrot_dist in _shortened(lookahead, geometry):
+            near = self._towards_carrot(carrot_dist, x, y, yaw, dt, w_now, closest, remaining, costs, geometry, info)
+            if near.status is not PursuitStatus.COLLISION_AHEAD:
+                return replace(near, reason=f"lookahead shortened to {carrot_dist:.2f} m ({cmd.reason})")
+        return cmd
+
+    def _path_clear(
+        self, s_start: float, length: float, costs: Optional[np.ndarray], geometry: Optional[CostmapGeometry]
+    ) -> bool:
+        """True if the path from arc length ``s_start`` [m] on for ``length`` [m] meets no colliding cell: only
+        then may a nearer carrot replace the far one (its shorter arc must not skip an obstacle on the path)."""
+        if costs is None or geometry is None or self._path is None:
+            return False
+        end = min(s_start + length, float(self._lengths[-1]))
+        samples = np.arange(s_start, end + 1e-9, 0.5 * geometry.resolution)
+        xs = np.interp(samples, self._lengths, self._path[:, 0])
+        ys = np.interp(samples, self._lengths, self._path[:, 1])
+        rows, cols = geometry.world_to_cells(xs, ys)
+        inside = (rows >= 0) & (rows < costs.shape[0]) & (cols >= 0) & (cols < costs.shape[1])
+        cells = costs[rows[inside], cols[inside]].astype(np.int64)
+        unknown = cells == NO_INFORMATION
+        colliding = (cells >= INSCRIBED) & ~unknown
+        if not self.params.allow_unknown:
+            colliding |= unknown
+        return not bool(colliding.any())
+
+    def _towards_carrot(  # noqa: PLR0917 - one step's state, passed on from _step
+        self,
+        lookahead: float,
+        x: float,
+        y: float,
+        yaw: float,
+        dt: float,
+        w_now: float,
+        closest: Any,
+        remaining: float,
+        costs: Optional[np.ndarray],
+        geometry: Optional[CostmapGeometry],
+        info: dict[str, Any],
+    ) -> Command:
+        """Steps 2-6 for one lookahead distance [m]: rotate towards the carrot, drive the arc to it, or
+        COLLISION_AHEAD (zero command) when that arc meets an obstacle."""
+        p = self.params
+        path = self._path
+        assert path is not None
         # 2-3. carrot on the lookahead circle, in the robot frame
         carrot = lookahead_point(path, x, y, lookahead, start=closest, lengths=self._lengths)
         cos_y, sin_y = math.cos(yaw), math.sin(yaw)
         dx, dy = carrot.x - x, carrot.y - y
         cx, cy = cos_y * dx + sin_y * dy, -sin_y * dx + cos_y * dy
-        info["carrot"] = (carrot.x, carrot.y)
-        info["lookahead"] = lookahead
+        info = dict(info, carrot=(carrot.x, carrot.y), lookahead=lookahead)
         bearing = math.atan2(cy, cx)
 
         # 4. rotate in place towards the path
@@ -340,6 +393,16 @@ class RegulatedPurePursuit:
     def _limited_rotation(self, w_target: float, w_now: float, dt: float) -> float:
         limit = self.params.max_angular_accel * dt
         return min(max(w_target, w_now - limit), w_now + limit)
+
+
+def _shortened(lookahead: float, geometry: Optional[CostmapGeometry]) -> Tuple[float, ...]:
+    """Halves of the lookahead [m] down to two costmap cells (none without a costmap)."""
+    if geometry is None:
+        return ()
+    distances = [lookahead / 2.0]
+    while distances[-1] / 2.0 >= 2.0 * geometry.resolution:
+        distances.append(distances[-1] / 2.0)
+    return tuple(d for d in distances if d >= 2.0 * geometry.resolution)
 
 
 def _arc_collision(  # noqa: PLR0917 - the arc's parameters, in the order of the formula

@@ -149,6 +149,30 @@ def test_robot_on_an_inscribed_cell_may_escape_through_inscribed_cells_only():
                                                       geo).status is PursuitStatus.COLLISION_AHEAD
 
 
+def test_nearer_carrot_when_the_far_arc_cuts_into_an_obstacle_beside_the_robot():
+    """The baseline's trap at the lab's low step: facing north beside bumper contacts, the robot's own cell
+    just outside the inscribed band, which starts one cell ahead. The plan first moves west, away from it,
+    then north-west; the arc to the 0.6 m carrot starts north through the band. A nearer carrot on the
+    clear path turns the robot towards the path instead of stopping for good."""
+    costs, geo = free_costmap()
+    row, col = geo.world_to_cell(0.0, 0.0)
+    costs[row + 1 : row + 12, col : col + 6] = INSCRIBED  # the band: from one cell north of the robot, east
+    costs[row + 1 : row + 12, col + 6] = LETHAL  # the contacts
+    path = np.array([[0.0, 0.0], [-0.1, 0.0], [-0.4, 0.3], [-0.4, 1.0]])
+    pose = (0.01, 0.01, math.pi / 2)
+    assert costs[geo.world_to_cell(*pose[:2])] < INSCRIBED
+    cmd = controller(path).step(pose, (0.0, 0.0), DT, costs, geo)
+    assert cmd.status is PursuitStatus.ROTATING_TO_PATH and cmd.w > 0.0, cmd  # left, towards the path
+    assert "lookahead shortened" in cmd.reason and cmd.lookahead < 0.6
+    # facing the path's first leg, it drives it (the far arc would still cut the band's corner)
+    cmd = controller(path).step((0.01, 0.01, math.radians(150)), (0.0, 0.0), DT, costs, geo)
+    assert cmd.status is PursuitStatus.FOLLOWING and cmd.v > 0.0, cmd
+    # with an obstacle on the path itself a nearer carrot would only hide it: the robot stops
+    costs[geo.world_to_cell(-0.25, 0.15)] = LETHAL
+    cmd = controller(path).step(pose, (0.0, 0.0), DT, costs, geo)
+    assert cmd.status is PursuitStatus.COLLISION_AHEAD and (cmd.v, cmd.w) == (0.0, 0.0)
+
+
 def test_unknown_ahead_is_a_collision_unless_allowed():
     costs, geo = free_costmap()
     costs[:, geo.world_to_cell(0.3, 0.0).col :] = NO_INFORMATION
