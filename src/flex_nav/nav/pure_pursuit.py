@@ -43,7 +43,7 @@ from numba import njit
 
 from flex_nav.exceptions import ConfigError, choices_message
 from flex_nav.nav.costmap_grid import INSCRIBED, LETHAL, MAX_NON_OBSTACLE, NO_INFORMATION, CostmapGeometry
-from flex_nav.nav.path import as_path, closest_point, cumulative_lengths, lookahead_point
+from flex_nav.nav.path import PathPoint, as_path, closest_point, cumulative_lengths, lookahead_point
 
 
 class PursuitStatus(enum.Enum):
@@ -304,7 +304,7 @@ class RegulatedPurePursuit:
         yaw: float,
         dt: float,
         w_now: float,
-        closest: Any,
+        closest: PathPoint,
         remaining: float,
         costs: Optional[np.ndarray],
         geometry: Optional[CostmapGeometry],
