@@ -28,7 +28,6 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO / "src"))
 
-import actionlib  # noqa: E402
 import numpy as np  # noqa: E402
 import rospy  # noqa: E402
 import tf2_ros  # noqa: E402
@@ -41,6 +40,7 @@ from flex_nav.msg import FollowPathAction, FollowPathGoal  # noqa: E402
 from flex_nav.nav.costmap_grid import CostmapGeometry  # noqa: E402
 from flex_nav.nav.pure_pursuit import PurePursuitParams  # noqa: E402
 from flex_nav.private_master import PrivateMaster  # noqa: E402
+from flex_nav.ros.proxies import ActionClientProxy  # noqa: E402
 
 SAMPLES = 200  # odometry messages timed per node
 ODOM_PERIOD_S = 0.07  # [s] between odometry messages (> control period: each one starts a tick)
@@ -183,8 +183,8 @@ def main() -> int:
 
             ctl_probe = Probe("odom_ctl", "cmd_ctl")
             ref_probe = Probe("odom_ref", "cmd_ref")
-            client = actionlib.SimpleActionClient("pure_pursuit_path", FollowPathAction)
-            if not client.wait_for_server(rospy.Duration(60.0)):
+            client = ActionClientProxy("pure_pursuit_path", FollowPathAction)
+            if not client.is_available(60.0):
                 print("FAIL: pure_pursuit_path did not come up")
                 return 1
             ctl_probe.wait_connected()
@@ -222,7 +222,7 @@ def main() -> int:
                 with ctl_probe.cond:
                     mark = len(ctl_probe.received)
                 sent = time.monotonic()
-                client.cancel_goal()
+                client.cancel()
                 zero_at = None
                 deadline = sent + 2.0
                 with ctl_probe.cond:
@@ -233,7 +233,7 @@ def main() -> int:
                                 break
                         else:
                             ctl_probe.cond.wait(0.05)
-                client.wait_for_result(rospy.Duration(2.0))
+                client.wait_for_result(2.0)
                 if zero_at is None:
                     print("FAIL: no zero twist after a cancel")
                     return 1
