@@ -111,6 +111,16 @@ class FakeRobot:
         self.scan_on.set()
         return broken
 
+    def wait_heard_by(self, subscribers, timeout_s):
+        """True once `subscribers` nodes are connected to both odometry and scan and have had a few of each."""
+        deadline = rospy.get_time() + timeout_s
+        while rospy.get_time() < deadline:
+            if min(self.odom_pub.get_num_connections(), self.scan_pub.get_num_connections()) >= subscribers:
+                rospy.sleep(2 * SENSOR_TIMEOUT_S)  # several messages at 20 Hz over the new connections
+                return True
+            rospy.sleep(0.05)
+        return False
+
 
 class Commands:
     """Every TwistStamped a controller published, with a wait for one matching a condition."""
@@ -184,6 +194,8 @@ class TestControllerSafety(unittest.TestCase):
         cls.topic_client = actionlib.ActionClient("pp_topic", FollowTopicAction)
         assert cls.path_client.wait_for_server(rospy.Duration(WAIT_S)), "pp_path did not come up"
         assert cls.topic_client.wait_for_server(rospy.Duration(WAIT_S)), "pp_topic did not come up"
+        # a goal sent before a controller has odometry is rightly aborted ("no odometry received yet")
+        assert cls.robot.wait_heard_by(2, WAIT_S), "the controllers did not subscribe to odom and scan"
         cls.plan_pub = rospy.Publisher("test_plan", Path, queue_size=1, latch=True)
 
     def setUp(self):
