@@ -19,6 +19,8 @@ from sensor_msgs.msg import LaserScan
 from std_msgs.msg import String
 
 from flex_nav.msg import (
+    ClearCostmapAction,
+    ClearCostmapGoal,
     FollowPathAction,
     FollowPathActionResult,
     FollowPathGoal,
@@ -28,11 +30,13 @@ from flex_nav.msg import (
     FollowTopicGoal,
 )
 from flex_nav.ros.node import init_node
+from flex_nav.ros.proxies import ActionClientProxy
 
 WAIT_S = 20.0  # [s] bound on servers appearing
 RESULT_WAIT_S = 5.0  # [s] bound on each answer
 PERIOD_S = 0.05  # [s] the controllers' control period (20 Hz, controller_safety.test)
-SENSOR_TIMEOUT_S = 0.3  # [s] (controller_safety.test)
+SENSOR_TIMEOUT_S = 1.0  # [s] (controller_safety.test)
+TOPIC_TIMEOUT_S = 2.0  # [s] pp_topic waits this long for the first Path (controller_safety.test)
 
 
 def straight_path(frame="map", length=5.0, yaw=0.0):
@@ -197,10 +201,17 @@ class TestControllerSafety(unittest.TestCase):
         # a goal sent before a controller has odometry is rightly aborted ("no odometry received yet")
         assert cls.robot.wait_heard_by(2, WAIT_S), "the controllers did not subscribe to odom and scan"
         cls.plan_pub = rospy.Publisher("test_plan", Path, queue_size=1, latch=True)
+        cls.clear_clients = [ActionClientProxy(name + "/clear_costmap", ClearCostmapAction)
+                             for name in ("pp_path", "pp_topic")]
+        for client in cls.clear_clients:
+            assert client.is_available(WAIT_S), "a controller's clear_costmap did not come up"
 
     def setUp(self):
         if self.robot.healthy():
             rospy.sleep(2 * SENSOR_TIMEOUT_S)  # sensors fresh again after a test that stopped them
+            for client in self.clear_clients:  # no obstacle mark of the previous test left in a local costmap
+                client.send_goal(ClearCostmapGoal())
+                self.assertTrue(client.wait_for_result(RESULT_WAIT_S), "clear_costmap did not answer")
 
     # ------------------------------------------------------------------ helpers
     def send_path(self, path):
@@ -323,7 +334,8 @@ class TestControllerSafety(unittest.TestCase):
         mark = self.topic_cmds.mark()
         handle = self.send_topic("nobody_publishes_this")
         self.assert_aborted_and_stopped(handle, self.topic_results, self.topic_cmds, mark,
-                                        "no Path on /nobody_publishes_this within 0.5 s (0 publishers connected)")
+                                        f"no Path on /nobody_publishes_this within {TOPIC_TIMEOUT_S:.1f} s "
+                                        "(0 publishers connected)")
 
     def test_topic_follows_the_newest_path_and_cancels(self):
         self.plan_pub.publish(straight_path(yaw=0.0))
@@ -341,9 +353,11 @@ class TestControllerSafety(unittest.TestCase):
         self.assert_aborted_and_stopped(handle, self.topic_results, self.topic_cmds, mark, "the path is empty")
 
     def test_topic_goal_cancel_stops(self):
-        self.plan_pub.publish(straight_path())
+        # a topic of its own: pp_topic may still hold the last (empty) path of /test_plan from another test
+        plan_pub = rospy.Publisher("test_plan_cancel", Path, queue_size=1, latch=True)
+        plan_pub.publish(straight_path())
         mark = self.topic_cmds.mark()
-        handle = self.send_topic("/test_plan")
+        handle = self.send_topic("/test_plan_cancel")
         self.assertIsNotNone(self.topic_cmds.wait_for(moving, mark))
         mark = self.topic_cmds.mark()
         handle.cancel()
