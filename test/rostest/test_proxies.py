@@ -5,6 +5,7 @@ import sys
 import time
 import unittest
 
+import rospy
 import rostest
 from actionlib.action_client import CommState
 from actionlib_msgs.msg import GoalStatus
@@ -43,6 +44,26 @@ class TestProxies(unittest.TestCase):
         self.assertFalse(sub.has_msg())
         self.assertEqual(sub.age_s(), float("inf"))
         proxies.shutdown()
+
+    def test_shutdown_delivers_what_was_published_just_before(self):
+        # a state's last command (e.g. the zero twist of its on_exit) is published right before the behavior's
+        # proxies shut down; rospy drops what is still queued for a connection when the publisher unregisters.
+        # Large messages keep the connection's queue busy, as a loaded machine does.
+        received = []
+        listener = rospy.Subscriber("last_words", String, lambda msg: received.append(msg.data[:8]), queue_size=100)
+        payload = "x" * 2_000_000
+        for attempt in range(5):
+            proxies = RosProxies()
+            publisher = proxies.publisher("last_words", String, queue_size=50)
+            self.assertTrue(wait_for(lambda: publisher.get_num_connections() > 0))  # noqa: B023 (called here)
+            del received[:]
+            for value in range(10):
+                publisher.publish(String(f"{value:08d}{payload}"))
+            proxies.shutdown()
+            self.assertTrue(wait_for(lambda: len(received) == 10, 5.0),
+                            f"attempt {attempt}: {len(received)} of 10 messages arrived")
+            self.assertEqual(received[-1], f"{9:08d}")
+        listener.unregister()
 
     def test_same_topic_is_shared_and_type_clash_is_refused(self):
         proxies = RosProxies()

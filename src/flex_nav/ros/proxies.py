@@ -24,6 +24,7 @@ from flex_nav.exceptions import ConfigError, NotReadyError, TimedOutError
 MsgT = TypeVar("MsgT")
 
 DEFAULT_BUFFER_SIZE = 10  # messages kept by a buffered subscription
+PUBLISH_DRAIN_S = 1.0  # [s] bound on sending what is still queued (a final zero twist) before unregistering
 
 
 class Subscription(Generic[MsgT]):
@@ -323,18 +324,44 @@ class RosProxies:
             return self._services.get(name)
 
     def shutdown(self) -> None:
-        """Cancel active goals and unregister every connection of this behavior."""
+        """Cancel active goals and unregister every connection of this behavior. What the states published last
+        (e.g. the zero twist of an ``on_exit``) is sent first: rospy drops a connection's queue on unregister."""
         with self._lock:
             for client in self._action_clients.values():
                 client.cancel()
             for sub in self._subscriptions.values():
                 sub.unregister()
+            deadline = time.monotonic() + PUBLISH_DRAIN_S
             for _msg_type, pub in self._publishers.values():
+                _drain(pub, deadline)
                 pub.unregister()
             self._publishers.clear()
             self._subscriptions.clear()
             self._action_clients.clear()
             self._services.clear()
+
+
+def _drain(publisher: rospy.Publisher, deadline: float) -> bool:
+    """Wait until rospy has sent everything published on ``publisher``, or until ``deadline`` (time.monotonic()
+    [s]); True if nothing is left. A publisher made with ``queue_size`` hands messages to one writer thread per
+    connection (rospy's QueuedConnection), which takes the whole queue and writes it outside its lock; the
+    connection is idle once its queue is empty and its writer waits for data again. Connections without that
+    machinery (or a closed one) count as idle."""
+    connections = list(getattr(publisher.impl, "connections", None) or [])
+    while not all(_connection_idle(c) for c in connections):
+        if time.monotonic() >= deadline:
+            return False
+        time.sleep(0.005)
+    return True
+
+
+def _connection_idle(connection: Any) -> bool:
+    lock = getattr(connection, "_lock", None)
+    data_available = getattr(connection, "_cond_data_available", None)
+    if lock is None or data_available is None or getattr(connection, "done", True):
+        return True
+    with lock:
+        return not connection._queue and bool(getattr(data_available, "_waiters", True))
 
 
 def _check_type(kind: str, name: str, known: type, wanted: type) -> None:
