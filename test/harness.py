@@ -6,6 +6,7 @@ import os
 import subprocess
 from dataclasses import dataclass
 from pathlib import Path
+from xml.etree import ElementTree
 
 import pytest
 
@@ -51,7 +52,20 @@ def run_command_bounded(
     return RostestOutcome(proc.returncode, output)
 
 
-def run_rostest(master: PrivateMaster, test_file: str, timeout_s: float = 180.0) -> RostestOutcome:
+ROSTEST_DEFAULT_TIME_LIMIT_S = 60.0  # [s] rostest's own limit of a <test> without time-limit
+ROSTEST_MARGIN_S = 90.0  # [s] launching, and rostest's reporting after its own limit, on a loaded machine
+
+
+def rostest_time_limit_s(test_file: str) -> float:
+    """The largest ``time-limit`` [s] of the <test> tags in ``test/rostest/<test_file>``."""
+    root = ElementTree.parse(ROSTEST_DIR / test_file).getroot()
+    limits = [float(tag.get("time-limit", ROSTEST_DEFAULT_TIME_LIMIT_S)) for tag in root.iter("test")]
+    return max(limits, default=ROSTEST_DEFAULT_TIME_LIMIT_S)
+
+
+def run_rostest(master: PrivateMaster, test_file: str) -> RostestOutcome:
+    """rostest on ``test_file``, killed only well after the file's own time limit (rostest reports that one)."""
     return run_command_bounded(
-        ["rostest", "--reuse-master", "flex_nav", test_file], env=master.env, timeout_s=timeout_s
+        ["rostest", "--reuse-master", "flex_nav", test_file], env=master.env,
+        timeout_s=rostest_time_limit_s(test_file) + ROSTEST_MARGIN_S,
     )
