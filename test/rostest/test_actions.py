@@ -2,6 +2,7 @@
 """rostest node: a client of each of the four actions, through a real master, against scripted servers."""
 
 import sys
+import time
 import unittest
 
 import rostest
@@ -57,7 +58,11 @@ class TestActions(unittest.TestCase):
     def test_follow_path_preempted(self):
         client = connected_client("follow_path_server", FollowPathAction)
         client.send_goal(FollowPathGoal(path=Path()))
-        self.assertFalse(client.wait_for_result(0.5), "server should still be working")
+        # cancel only once the server has accepted the goal: a cancel before that recalls it instead
+        deadline = time.monotonic() + RESULT_WAIT_S
+        while client.state() != GoalStatus.ACTIVE and time.monotonic() < deadline:
+            time.sleep(0.01)
+        self.assertEqual(client.state(), GoalStatus.ACTIVE, f"the goal did not become ACTIVE within {RESULT_WAIT_S} s")
         client.cancel()
         self.assertTrue(client.wait_for_result(RESULT_WAIT_S))
         self.assertEqual(client.state(), GoalStatus.PREEMPTED)

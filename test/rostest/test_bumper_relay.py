@@ -37,10 +37,14 @@ class Collector:
             return list(self.msgs)
 
 
-def connected(pub):
+def connected(*endpoints):
+    """Bounded wait until each publisher / subscriber has a connection (the relay's side of it)."""
     deadline = time.monotonic() + WAIT_S
-    while pub.get_num_connections() == 0 and time.monotonic() < deadline:
+    while any(e.get_num_connections() == 0 for e in endpoints) and time.monotonic() < deadline:
         time.sleep(0.02)
+    missing = [e.name for e in endpoints if e.get_num_connections() == 0]
+    if missing:
+        raise AssertionError(f"no connection to the relay within {WAIT_S} s on {missing}")
 
 
 class TestBumperRelay(unittest.TestCase):
@@ -48,8 +52,7 @@ class TestBumperRelay(unittest.TestCase):
         hits = Collector("/robot1/bumper_hits")
         other = Collector("/robot2/bumper_hits")
         pub = rospy.Publisher("/robot1/bumper_state", BumperState, queue_size=10)
-        connected(pub)
-        time.sleep(0.3)
+        connected(pub, hits.sub, other.sub)
         for pressed in ([False, True, False], [False, True, False], [False, False, False]):
             pub.publish(BumperState(zones=["left", "center", "right"], pressed=pressed))
             time.sleep(0.05)
@@ -66,8 +69,7 @@ class TestBumperRelay(unittest.TestCase):
     def test_create_left_press(self):
         hits = Collector("/robot2/bumper_hits")
         pub = rospy.Publisher("/robot2/bumper", CreateBumper, queue_size=10)
-        connected(pub)
-        time.sleep(0.3)
+        connected(pub, hits.sub)
         pub.publish(CreateBumper(is_left_pressed=True, is_right_pressed=False))
         msgs = hits.wait(1)
         self.assertGreaterEqual(len(msgs), 1)

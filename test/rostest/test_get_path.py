@@ -4,6 +4,7 @@
 import math
 import sys
 import threading
+import time
 import unittest
 
 import actionlib
@@ -21,6 +22,7 @@ from flex_nav.ros.node import init_node
 from flex_nav.ros.proxies import ActionClientProxy
 
 SERVER_WAIT_S = 30.0  # [s] nodes start slowly on a loaded machine
+READY_WAIT_S = 30.0  # [s] bound on get_path_server planning its first goal (latched map and robot tf received)
 RESULT_WAIT_S = 5.0  # [s] bound on every answer
 START = (1.0, 1.0)  # robot start in the map (get_path.test)
 MAP = "test/data/maps/test_rooms.yaml"
@@ -44,14 +46,31 @@ class TestGetPath(unittest.TestCase):
             client = ActionClientProxy(name, GetPathAction)
             assert client.is_available(SERVER_WAIT_S), f"{name} did not come up"
             cls.clients[name] = client
+        cls.wait_until_planning(cls.clients["get_path_server"])
         cls.plans = []
-        cls.plan_event = threading.Event()
+        cls.plan_cond = threading.Condition()
         rospy.Subscriber("get_path_server/plan", Path, cls._on_plan)
+
+    @staticmethod
+    def wait_until_planning(client):
+        """Repeat a simple goal until it succeeds: the server needs the latched map and the robot's tf first."""
+        deadline = time.monotonic() + READY_WAIT_S
+        answer = "no answer"
+        while time.monotonic() < deadline:
+            client.send_goal(goal_msg(3.0, 1.0))
+            if client.wait_for_result(RESULT_WAIT_S):
+                if client.state() == GoalStatus.SUCCEEDED:
+                    return
+                answer = client.result().message if client.result() is not None else f"state {client.state()}"
+            time.sleep(0.1)
+        raise AssertionError(f"get_path_server did not plan a simple goal within {READY_WAIT_S} s "
+                             f"(map or robot tf missing?); last answer: {answer}")
 
     @classmethod
     def _on_plan(cls, msg):
-        cls.plans.append(msg)
-        cls.plan_event.set()
+        with cls.plan_cond:
+            cls.plans.append(msg)
+            cls.plan_cond.notify_all()
 
     def ask(self, goal, server="get_path_server"):
         client = self.clients[server]
@@ -80,7 +99,6 @@ class TestGetPath(unittest.TestCase):
             self.assertEqual(self.grid.occupancy[row, col], 0, f"plan point ({x:.2f}, {y:.2f}) is not free")
 
     def test_plan_around_the_wall(self):
-        self.plan_event.clear()
         state, result = self.ask(goal_msg(7.0, 1.0, q=(0.0, 0.0, math.sin(0.5), math.cos(0.5))))
         self.assertEqual((state, result.code), (GoalStatus.SUCCEEDED, R.SUCCESS), result.message)
         points = self.points(result.plan)
@@ -96,8 +114,11 @@ class TestGetPath(unittest.TestCase):
         crossing = [y for (x0, y), (x1, _) in zip(points, points[1:]) if min(x0, x1) <= 4.05 <= max(x0, x1)]
         self.assertTrue(crossing and min(crossing) > 3.5 + 0.18, crossing)
         self.assert_on_free_cells(result.plan)
-        self.assertTrue(self.plan_event.wait(RESULT_WAIT_S), "nothing published on ~plan")
-        self.assertEqual(self.points(self.plans[-1]), points)
+        # ~plan is latched and earlier goals published theirs: wait for this one, not for any message
+        with self.plan_cond:
+            published = self.plan_cond.wait_for(lambda: any(self.points(p) == points for p in self.plans),
+                                                timeout=RESULT_WAIT_S)
+        self.assertTrue(published, f"the plan was not published on ~plan within {RESULT_WAIT_S} s")
 
     def test_goal_in_another_frame_is_transformed(self):
         # odom starts at the robot's start pose (1, 1, 0): odom (2, 0.5) is map (3, 1.5)

@@ -5,6 +5,7 @@ The server runs in this node with scripted ``run`` behaviours chosen by the goal
 
 import sys
 import threading
+import time
 import unittest
 
 import actionlib
@@ -28,6 +29,15 @@ def goal(behaviour):
     path = Path()
     path.poses = [PoseStamped() for _ in range(behaviour)]
     return FollowPathGoal(path=path)
+
+
+def wait_until_active(client):
+    """Bounded wait until the server has accepted ``client``'s goal (a cancel before that recalls it instead)."""
+    deadline = time.monotonic() + WAIT_S
+    while client.state() != GoalStatus.ACTIVE and time.monotonic() < deadline:
+        time.sleep(0.01)
+    if client.state() != GoalStatus.ACTIVE:
+        raise AssertionError(f"the goal did not become ACTIVE within {WAIT_S} s (state {client.state()})")
 
 
 class Script:
@@ -99,7 +109,7 @@ class TestGoalServer(unittest.TestCase):
 
     def test_cancel_calls_hook_while_the_goal_is_still_active(self):
         self.send(WAIT)
-        rospy.sleep(0.2)
+        wait_until_active(self.client)
         self.client.cancel()
         state, result = self.result()
         self.assertEqual(state, GoalStatus.PREEMPTED)
@@ -116,7 +126,7 @@ class TestGoalServer(unittest.TestCase):
         first = ActionClientProxy("scripted", FollowPathAction)
         self.assertTrue(first.is_available(WAIT_S))
         first.send_goal(goal(WAIT))
-        rospy.sleep(0.2)
+        wait_until_active(first)
         self.send(SUCCEED)
         self.assertTrue(first.wait_for_result(WAIT_S))
         self.assertEqual(first.state(), GoalStatus.PREEMPTED)

@@ -130,8 +130,10 @@ class TestNodesIO(unittest.TestCase):
         out = Latest("cmd_vel", Twist)
         pub = rospy.Publisher("cmd_vel_stamped", TwistStamped, queue_size=1)
         deadline = rospy.get_time() + WAIT_S
-        while pub.get_num_connections() == 0 and rospy.get_time() < deadline:
+        while (pub.get_num_connections() == 0 or out.sub.get_num_connections() == 0) and rospy.get_time() < deadline:
             rospy.sleep(0.05)
+        self.assertGreater(pub.get_num_connections(), 0, "twist_relay did not subscribe to cmd_vel_stamped")
+        self.assertGreater(out.sub.get_num_connections(), 0, "no connection to twist_relay's cmd_vel")
         cmd = TwistStamped()
         cmd.twist.linear.x, cmd.twist.angular.z = 0.25, -0.5
         before = out.count()

@@ -17,7 +17,7 @@ from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import Odometry, Path
 
 from flex_nav.behavior import BehaviorExecutor, BehaviorStatus, LogLevel, StateMachine
-from flex_nav.msg import FollowPathAction
+from flex_nav.msg import ClearCostmapAction, FollowPathAction
 from flex_nav.ros.node import init_node
 from flex_nav.ros.proxies import RosProxies
 from flex_nav.ros.ros_clock import RosClock
@@ -30,24 +30,46 @@ from flex_nav_states.move_distance_state import MoveDistanceState
 from flex_nav_states.rotate_angle_state import RotateAngleState
 
 RUN_TIMEOUT_S = 30.0  # [s] bound of every behavior run
+SERVER_WAIT_S = 30.0  # [s] bound on a server node coming up
+STOP_WAIT_S = 5.0  # [s] bound on odometry showing the robot stopped
 
 
-def run(root, inputs=None, preempt_after_s=None):
-    """Run ``root`` with fresh proxies; returns (result, logs, proxies). Proxies are shut down after."""
-    proxies = RosProxies()
+def run(root, inputs=None, preempt_once_active=None, proxies=None):
+    """Run ``root`` with ``proxies`` (default: fresh ones); returns (result, logs, proxies), to be shut down after.
+
+    ``preempt_once_active``: (action name, action class); the behavior is preempted once its goal there is ACTIVE.
+    """
+    proxies = proxies if proxies is not None else RosProxies()
     executor = BehaviorExecutor(root, inputs=inputs, clock=RosClock(), proxies=proxies)
     logs = []
     executor.context.hooks.log.append(logs.append)
-    timer = None
-    if preempt_after_s is not None:
-        timer = threading.Timer(preempt_after_s, executor.preempt)
-        timer.start()
+    done = threading.Event()
+    watcher = None
+    if preempt_once_active is not None:
+        client = proxies.action_client(*preempt_once_active)  # the client the state will use
+        watcher = threading.Thread(target=preempt_when_active, args=(executor, client, done), daemon=True)
+        watcher.start()
     try:
         result = executor.run(timeout_s=RUN_TIMEOUT_S)
     finally:
-        if timer is not None:
-            timer.cancel()
+        done.set()
+        if watcher is not None:
+            watcher.join()
     return result, logs, proxies
+
+
+def preempt_when_active(executor, client, done):
+    """Preempt ``executor`` once the server accepted ``client``'s goal (a cancel before that recalls it); gives up
+    when ``done`` is set (the run ended, bounded by RUN_TIMEOUT_S)."""
+    while not done.is_set():
+        if client.state() == GoalStatus.ACTIVE:
+            executor.preempt()
+            return
+        done.wait(0.01)
+
+
+def stopped(odom):
+    return abs(odom.twist.twist.linear.x) <= 1e-6 and abs(odom.twist.twist.angular.z) <= 1e-6
 
 
 def texts(logs, level=LogLevel.INFO):
@@ -86,24 +108,27 @@ class TestStatesRos(unittest.TestCase):
             pose.pose.position.x = x
             pose.pose.orientation.w = 1.0
             plan.poses.append(pose)
-        result, logs, proxies = run(FollowPlannerState(), inputs={"plan": plan}, preempt_after_s=1.5)
+        result, logs, proxies = run(FollowPlannerState(), inputs={"plan": plan},
+                                    preempt_once_active=("follow_path_server", FollowPathAction))
         client = proxies.action_client("follow_path_server", FollowPathAction)
         deadline = time.monotonic() + 5.0
         while client.state() != GoalStatus.PREEMPTED and time.monotonic() < deadline:
             time.sleep(0.01)
         state = client.state()
         proxies.shutdown()
-        self.assertIs(result.status, BehaviorStatus.PREEMPTED)
-        self.assertEqual(state, GoalStatus.PREEMPTED)  # the server saw the cancel and ended the goal
+        self.assertIs(result.status, BehaviorStatus.PREEMPTED, texts(logs))
+        self.assertEqual(state, GoalStatus.PREEMPTED, texts(logs))  # the server saw the cancel and ended the goal
         self.assertTrue(any("goal cancelled" in t for t in texts(logs)), texts(logs))
 
     def test_clear_costmaps_concurrently(self):
+        proxies = RosProxies()
+        for name in ("global_clear", "local_clear"):  # the state's 5 s bound includes connecting: connect first
+            client = proxies.action_client(name, ClearCostmapAction)
+            self.assertTrue(client.is_available(SERVER_WAIT_S), f"{name} did not come up within {SERVER_WAIT_S} s")
         state = ClearCostmapsState(costmaps=["global_clear", "local_clear"], timeout_s=5.0)
-        started = time.monotonic()
-        result, logs, proxies = run(state)
+        result, logs, proxies = run(state, proxies=proxies)
         proxies.shutdown()
-        self.assertEqual(result.outcome, "done", texts(logs))
-        self.assertLess(time.monotonic() - started, 5.0)
+        self.assertEqual(result.outcome, "done", texts(logs))  # both answered within the state's timeout_s
 
     def test_back_up_and_turn_closed_loop_on_odometry(self):
         proxies = RosProxies()
@@ -122,16 +147,17 @@ class TestStatesRos(unittest.TestCase):
         logs = []
         executor.context.hooks.log.append(logs.append)
         result = executor.run(timeout_s=RUN_TIMEOUT_S)
-        time.sleep(0.3)  # let the robot settle on the zero twist
+        deadline = time.monotonic() + STOP_WAIT_S  # odometry of the stopped robot (messages may be in flight)
+        while time.monotonic() < deadline and not stopped(odom.last()):
+            time.sleep(0.01)
         last = odom.last()
         proxies.shutdown()
         self.assertEqual(result.outcome, "done", texts(logs))
+        self.assertTrue(stopped(last), f"odometry did not show the robot stopped within {STOP_WAIT_S} s: {last.twist}")
         self.assertAlmostEqual(last.pose.pose.position.x - start, -0.25, delta=0.03)
         q = last.pose.pose.orientation
         yaw = math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
         self.assertAlmostEqual(yaw, math.pi / 2, delta=0.08)
-        self.assertAlmostEqual(last.twist.twist.linear.x, 0.0, delta=1e-6)
-        self.assertAlmostEqual(last.twist.twist.angular.z, 0.0, delta=1e-6)
 
 
 if __name__ == "__main__":

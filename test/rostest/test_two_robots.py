@@ -3,6 +3,7 @@
 
 import math
 import sys
+import time
 import unittest
 
 import rospy
@@ -24,7 +25,16 @@ from flex_nav.ros.proxies import ActionClientProxy
 
 WAIT_S = 40.0  # [s] bound on the servers appearing
 DRIVE_WAIT_S = 40.0  # [s] bound on reaching the goals
+READY_WAIT_S = 30.0  # [s] bound on each planner planning its first goal (map and robot tf received)
 ROBOTS = {"robot1": ((1.0, 1.0), (3.0, 1.0)), "robot2": ((1.0, 2.4), (3.0, 2.4))}  # start, goal in the map
+
+
+def goal_pose(xy):
+    pose = PoseStamped()
+    pose.header.frame_id = "map"
+    pose.pose.position.x, pose.pose.position.y = xy
+    pose.pose.orientation.w = 1.0
+    return pose
 
 
 class TestTwoRobots(unittest.TestCase):
@@ -38,6 +48,24 @@ class TestTwoRobots(unittest.TestCase):
             cls.controllers[robot] = ActionClientProxy(f"/{robot}/pure_pursuit_path", FollowPathAction)
             for client in (cls.planners[robot], cls.controllers[robot]):
                 assert client.is_available(WAIT_S), f"{robot}'s servers did not come up"
+        for robot, (_start, goal) in ROBOTS.items():
+            cls.wait_until_planning(robot, goal_pose(goal))
+
+    @classmethod
+    def wait_until_planning(cls, robot, pose):
+        """Repeat a goal until it succeeds: the planner needs the latched map and the robot's tf first."""
+        client = cls.planners[robot]
+        deadline = time.monotonic() + READY_WAIT_S
+        answer = "no answer"
+        while time.monotonic() < deadline:
+            client.send_goal(GetPathGoal(pose=pose))
+            if client.wait_for_result(10.0):
+                if client.state() == GoalStatus.SUCCEEDED:
+                    return
+                answer = client.result().message if client.result() is not None else f"state {client.state()}"
+            time.sleep(0.1)
+        raise AssertionError(f"{robot}'s get_path_server did not plan a goal within {READY_WAIT_S} s "
+                             f"(map or robot tf missing?); last answer: {answer}")
 
     def robot_xy(self, robot):
         tf = self.tf.lookup_transform("map", f"{robot}/base_footprint", rospy.Time(0), rospy.Duration(2.0))
@@ -46,11 +74,7 @@ class TestTwoRobots(unittest.TestCase):
     def test_each_robot_plans_from_its_own_pose_and_drives_to_its_own_goal(self):
         plans = {}
         for robot, (_start, goal) in ROBOTS.items():
-            pose = PoseStamped()
-            pose.header.frame_id = "map"
-            pose.pose.position.x, pose.pose.position.y = goal
-            pose.pose.orientation.w = 1.0
-            self.planners[robot].send_goal(GetPathGoal(pose=pose))
+            self.planners[robot].send_goal(GetPathGoal(pose=goal_pose(goal)))
         for robot, (start, _goal) in ROBOTS.items():
             client = self.planners[robot]
             self.assertTrue(client.wait_for_result(10.0))
