@@ -249,7 +249,8 @@ class SimBridge:
         self.pub_clock = synchronous_publisher("/clock", Clock)
         self.pub_tf = synchronous_publisher("/tf", TFMessage)
         self.pub_tf_static = rospy.Publisher("/tf_static", TFMessage, queue_size=10, latch=True)
-        self.pub_world_events = rospy.Publisher("sim_events", SimEvent, queue_size=50)
+        # latched: a node that subscribes late still learns the last world event (e.g. "box removed at 35 s")
+        self.pub_world_events = rospy.Publisher("sim_events", SimEvent, queue_size=50, latch=True)
         self.robots = {
             name: RobotIO(name, sim.robot(name).profile, sim, map_frame, self._queue_command)
             for name in sim.robot_names
