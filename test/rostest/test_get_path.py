@@ -4,7 +4,6 @@
 import math
 import sys
 import threading
-import time
 import unittest
 
 import actionlib
@@ -14,6 +13,7 @@ import rostest
 from actionlib_msgs.msg import GoalStatus
 from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import Path
+from readiness import wait_until_goal_succeeds
 
 from flex_nav.msg import ClearCostmapAction, ClearCostmapGoal, ClearCostmapResult, GetPathAction, GetPathGoal
 from flex_nav.msg import GetPathResult as R
@@ -46,25 +46,11 @@ class TestGetPath(unittest.TestCase):
             client = ActionClientProxy(name, GetPathAction)
             assert client.is_available(SERVER_WAIT_S), f"{name} did not come up"
             cls.clients[name] = client
-        cls.wait_until_planning(cls.clients["get_path_server"])
+        wait_until_goal_succeeds(cls.clients["get_path_server"], goal_msg(3.0, 1.0), "get_path_server planning a "
+                                 "simple goal", READY_WAIT_S, RESULT_WAIT_S)
         cls.plans = []
         cls.plan_cond = threading.Condition()
         rospy.Subscriber("get_path_server/plan", Path, cls._on_plan)
-
-    @staticmethod
-    def wait_until_planning(client):
-        """Repeat a simple goal until it succeeds: the server needs the latched map and the robot's tf first."""
-        deadline = time.monotonic() + READY_WAIT_S
-        answer = "no answer"
-        while time.monotonic() < deadline:
-            client.send_goal(goal_msg(3.0, 1.0))
-            if client.wait_for_result(RESULT_WAIT_S):
-                if client.state() == GoalStatus.SUCCEEDED:
-                    return
-                answer = client.result().message if client.result() is not None else f"state {client.state()}"
-            time.sleep(0.1)
-        raise AssertionError(f"get_path_server did not plan a simple goal within {READY_WAIT_S} s "
-                             f"(map or robot tf missing?); last answer: {answer}")
 
     @classmethod
     def _on_plan(cls, msg):

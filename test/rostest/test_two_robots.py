@@ -3,7 +3,6 @@
 
 import math
 import sys
-import time
 import unittest
 
 import rospy
@@ -11,6 +10,7 @@ import rostest
 import tf2_ros
 from actionlib_msgs.msg import GoalStatus
 from geometry_msgs.msg import PoseStamped
+from readiness import wait_until_goal_succeeds
 
 from flex_nav.msg import (
     ClearCostmapAction,
@@ -49,23 +49,8 @@ class TestTwoRobots(unittest.TestCase):
             for client in (cls.planners[robot], cls.controllers[robot]):
                 assert client.is_available(WAIT_S), f"{robot}'s servers did not come up"
         for robot, (_start, goal) in ROBOTS.items():
-            cls.wait_until_planning(robot, goal_pose(goal))
-
-    @classmethod
-    def wait_until_planning(cls, robot, pose):
-        """Repeat a goal until it succeeds: the planner needs the latched map and the robot's tf first."""
-        client = cls.planners[robot]
-        deadline = time.monotonic() + READY_WAIT_S
-        answer = "no answer"
-        while time.monotonic() < deadline:
-            client.send_goal(GetPathGoal(pose=pose))
-            if client.wait_for_result(10.0):
-                if client.state() == GoalStatus.SUCCEEDED:
-                    return
-                answer = client.result().message if client.result() is not None else f"state {client.state()}"
-            time.sleep(0.1)
-        raise AssertionError(f"{robot}'s get_path_server did not plan a goal within {READY_WAIT_S} s "
-                             f"(map or robot tf missing?); last answer: {answer}")
+            wait_until_goal_succeeds(cls.planners[robot], GetPathGoal(pose=goal_pose(goal)),
+                                     f"{robot}'s get_path_server planning its goal", READY_WAIT_S)
 
     def robot_xy(self, robot):
         tf = self.tf.lookup_transform("map", f"{robot}/base_footprint", rospy.Time(0), rospy.Duration(2.0))

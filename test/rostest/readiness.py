@@ -1,0 +1,22 @@
+"""Readiness probes shared by rostest nodes (imported from this directory, not a test itself)."""
+
+import time
+
+from actionlib_msgs.msg import GoalStatus
+
+
+def wait_until_goal_succeeds(client, goal, what, timeout_s, result_wait_s=10.0):
+    """Send ``goal`` through ``client`` (an ActionClientProxy) until it SUCCEEDS, for at most ``timeout_s`` [s]:
+    a planner answers only once it has the latched map and the robot's tf. AssertionError naming ``what`` and
+    the last answer if it never does."""
+    deadline = time.monotonic() + timeout_s
+    answer = "no answer"
+    while time.monotonic() < deadline:
+        client.send_goal(goal)
+        if client.wait_for_result(result_wait_s):
+            if client.state() == GoalStatus.SUCCEEDED:
+                return
+            answer = client.result().message if client.result() is not None else f"state {client.state()}"
+        time.sleep(0.1)
+    raise AssertionError(f"{what} did not succeed within {timeout_s} s (map or robot tf missing?); "
+                         f"last answer: {answer}")
