@@ -10,7 +10,9 @@ import rostest
 import tf2_ros
 from actionlib_msgs.msg import GoalStatus
 from geometry_msgs.msg import PoseStamped
+from nav_msgs.msg import Path
 from readiness import wait_until_goal_succeeds
+from std_msgs.msg import Header
 
 from flex_nav.msg import (
     ClearCostmapAction,
@@ -48,9 +50,13 @@ class TestTwoRobots(unittest.TestCase):
             cls.controllers[robot] = ActionClientProxy(f"/{robot}/pure_pursuit_path", FollowPathAction)
             for client in (cls.planners[robot], cls.controllers[robot]):
                 assert client.is_available(WAIT_S), f"{robot}'s servers did not come up"
-        for robot, (_start, goal) in ROBOTS.items():
+        for robot, (start, goal) in ROBOTS.items():
             wait_until_goal_succeeds(cls.planners[robot], GetPathGoal(pose=goal_pose(goal)),
                                      f"{robot}'s get_path_server planning its goal", READY_WAIT_S)
+            # a one-pose path where the robot stands: reached at once, once the controller has odometry
+            here = Path(header=Header(frame_id="map"), poses=[goal_pose(start)])
+            wait_until_goal_succeeds(cls.controllers[robot], FollowPathGoal(path=here),
+                                     f"{robot}'s pure_pursuit_path following a path to where it stands", READY_WAIT_S)
 
     def robot_xy(self, robot):
         tf = self.tf.lookup_transform("map", f"{robot}/base_footprint", rospy.Time(0), rospy.Duration(2.0))
