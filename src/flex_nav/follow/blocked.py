@@ -2,11 +2,12 @@
 
 A controller's collision check looks at the arc it is about to drive; a behavior that wants to *react*
 to an obstacle (classify it, push it, wait for it, plan around it) needs to know that the path itself is
-blocked, as early as the sensors see it. :func:`obstacle_on_path` samples the path every costmap cell from
-the robot's arc position ``s_from`` [m] up to ``distance_m`` ahead and reports the first sample whose cell
-is an obstacle for the robot's centre (cost >= INSCRIBED and not NO_INFORMATION: unknown space outside a
-rolling window does not block). :class:`BlockedPathWatch` adds the time rule: blocked only once the same
-condition held for ``timeout_s`` [s], so one noisy scan does not end a goal.
+blocked, as early as the sensors see it. :func:`obstacle_on_path` (:mod:`flex_nav.nav.path_obstacle`)
+samples the path every costmap cell from the robot's arc position ``s_from`` [m] up to ``distance_m``
+ahead and reports the first sample whose cell is an obstacle for the robot's centre (cost >= INSCRIBED
+and not NO_INFORMATION: unknown space outside a rolling window does not block). :class:`BlockedPathWatch`
+adds the time rule: blocked only once the same condition held for ``timeout_s`` [s], so one noisy scan
+does not end a goal.
 
 Pure: no ROS, no clock of its own (times are passed in [s]).
 """
@@ -14,62 +15,12 @@ Pure: no ROS, no clock of its own (times are passed in [s]).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import Optional
 
-import numpy as np
-
 from flex_nav.exceptions import ConfigError
-from flex_nav.nav.costmap_grid import INSCRIBED, NO_INFORMATION, CostmapGeometry
+from flex_nav.nav.path_obstacle import PathObstacle, obstacle_on_path
 
-
-@dataclass(frozen=True)
-class PathObstacle:
-    """Where the path is blocked: the sample (x [m], y [m]) in the path frame and how far ahead [m] it is."""
-
-    x: float
-    y: float
-    ahead_m: float
-
-
-def obstacle_on_path(
-    path: np.ndarray,
-    lengths: np.ndarray,
-    s_from: float,
-    *,
-    distance_m: float,
-    costs: np.ndarray,
-    geometry: CostmapGeometry,
-) -> Optional[PathObstacle]:
-    """The first path sample in [``s_from``, ``s_from + distance_m``] [m of arc] lying on an obstacle cell.
-
-    ``path`` (N, 2|3) and ``lengths`` (its cumulative arc lengths, N) are in the costmap's frame; samples
-    are spaced one costmap cell apart and stop at the path's end. None when that stretch is free (or off
-    the grid).
-    """
-    if path.shape[0] == 0 or distance_m <= 0.0:
-        return None
-    end = min(float(lengths[-1]), s_from + distance_m)
-    if end < s_from:
-        return None
-    step = geometry.resolution
-    samples = np.arange(max(s_from, 0.0), end + 1e-9, step)
-    if samples.size == 0:
-        samples = np.array([end])
-    xs = np.interp(samples, lengths, path[:, 0])
-    ys = np.interp(samples, lengths, path[:, 1])
-    rows, cols = geometry.world_to_cells(xs, ys)
-    inside = (rows >= 0) & (rows < geometry.height) & (cols >= 0) & (cols < geometry.width)
-    if not inside.any():
-        return None
-    hit = np.zeros(samples.shape, dtype=bool)
-    cell_costs = costs[rows[inside], cols[inside]]
-    hit[inside] = (cell_costs >= INSCRIBED) & (cell_costs != NO_INFORMATION)
-    found = np.flatnonzero(hit)
-    if found.size == 0:
-        return None
-    k = int(found[0])
-    return PathObstacle(float(xs[k]), float(ys[k]), float(samples[k] - s_from))
+__all__ = ["BlockedPathWatch", "PathObstacle", "obstacle_on_path"]
 
 
 class BlockedPathWatch:

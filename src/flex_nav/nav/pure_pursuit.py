@@ -44,6 +44,7 @@ from numba import njit
 from flex_nav.exceptions import ConfigError, choices_message
 from flex_nav.nav.costmap_grid import INSCRIBED, LETHAL, MAX_NON_OBSTACLE, NO_INFORMATION, CostmapGeometry
 from flex_nav.nav.path import PathPoint, as_path, closest_point, cumulative_lengths, lookahead_point
+from flex_nav.nav.path_obstacle import obstacle_on_path
 
 
 class PursuitStatus(enum.Enum):
@@ -283,18 +284,8 @@ class RegulatedPurePursuit:
         then may a nearer carrot replace the far one (its shorter arc must not skip an obstacle on the path)."""
         if costs is None or geometry is None or self._path is None:
             return False
-        end = min(s_start + length, float(self._lengths[-1]))
-        samples = np.arange(s_start, end + 1e-9, 0.5 * geometry.resolution)
-        xs = np.interp(samples, self._lengths, self._path[:, 0])
-        ys = np.interp(samples, self._lengths, self._path[:, 1])
-        rows, cols = geometry.world_to_cells(xs, ys)
-        inside = (rows >= 0) & (rows < costs.shape[0]) & (cols >= 0) & (cols < costs.shape[1])
-        cells = costs[rows[inside], cols[inside]].astype(np.int64)
-        unknown = cells == NO_INFORMATION
-        colliding = (cells >= INSCRIBED) & ~unknown
-        if not self.params.allow_unknown:
-            colliding |= unknown
-        return not bool(colliding.any())
+        return obstacle_on_path(self._path, self._lengths, s_start, distance_m=length, costs=costs,
+                                geometry=geometry, unknown_blocks=not self.params.allow_unknown) is None
 
     def _towards_carrot(  # noqa: PLR0917 - one step's state, passed on from _step
         self,

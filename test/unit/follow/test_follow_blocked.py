@@ -47,6 +47,14 @@ def test_which_costs_block(cost, blocks):
     assert (found is not None) is blocks
 
 
+def test_unknown_cells_block_when_asked_to():  # pure pursuit without allow_unknown
+    costs = costmap_with(1.0, cost=NO_INFORMATION)
+    found = obstacle_on_path(STRAIGHT, cumulative_lengths(STRAIGHT), 0.0, distance_m=2.0, costs=costs,
+                             geometry=GEOMETRY, unknown_blocks=True)
+    assert found is not None and found.x == pytest.approx(1.0, abs=0.05)
+    assert on_path(STRAIGHT, 0.0, costs) is None
+
+
 def test_off_grid_path_is_not_blocked():
     far = np.array([[10.0, 10.0], [12.0, 10.0]])
     assert on_path(far, 0.0, costmap_with(1.0)) is None
