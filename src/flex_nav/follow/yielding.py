@@ -143,7 +143,6 @@ class _People:
         self.velocity = vel
         self.future = pos[:, None, :] + vel[:, None, :] * times[None, :, None]
         self.reach = np.array([params.robot_radius_m + t.radius + params.margin_m for t in tracks])
-        self.growth_mps = params.uncertainty_mps
         self.grown = self.reach[:, None] + params.uncertainty_mps * times[None, :]
         self.times = times
 
@@ -313,7 +312,7 @@ class YieldRule:
         for i in conflicting:
             a, b = people.future[i, 0], people.future[i, -1]
             dist, frac = _segment_closest(points, a, b)
-            inside |= dist < people.reach[i] + people.growth_mps * p.horizon_s * frac
+            inside |= dist < people.reach[i] + p.uncertainty_mps * p.horizon_s * frac
         found = np.flatnonzero(inside)
         return float(samples[found[0]]) if found.size else end
 
