@@ -5,6 +5,16 @@ import time
 from actionlib_msgs.msg import GoalStatus
 
 
+def wait_until_active(client, timeout_s):
+    """Bounded wait until the server has accepted ``client``'s goal (an ActionClientProxy); a cancel sent before
+    that recalls the goal instead of preempting it."""
+    deadline = time.monotonic() + timeout_s
+    while client.state() != GoalStatus.ACTIVE and time.monotonic() < deadline:
+        time.sleep(0.01)
+    if client.state() != GoalStatus.ACTIVE:
+        raise AssertionError(f"the goal did not become ACTIVE within {timeout_s} s (state {client.state()})")
+
+
 def wait_until_goal_succeeds(client, goal, what, timeout_s, result_wait_s=10.0):
     """Send ``goal`` through ``client`` (an ActionClientProxy) until it SUCCEEDS, for at most ``timeout_s`` [s]:
     a planner answers only once it has the latched map and the robot's tf. AssertionError naming ``what`` and

@@ -2,13 +2,13 @@
 """rostest node: a client of each of the four actions, through a real master, against scripted servers."""
 
 import sys
-import time
 import unittest
 
 import rostest
 from actionlib_msgs.msg import GoalStatus
 from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import Path
+from readiness import wait_until_active
 
 from flex_nav.msg import (
     ClearCostmapAction,
@@ -58,11 +58,7 @@ class TestActions(unittest.TestCase):
     def test_follow_path_preempted(self):
         client = connected_client("follow_path_server", FollowPathAction)
         client.send_goal(FollowPathGoal(path=Path()))
-        # cancel only once the server has accepted the goal: a cancel before that recalls it instead
-        deadline = time.monotonic() + RESULT_WAIT_S
-        while client.state() != GoalStatus.ACTIVE and time.monotonic() < deadline:
-            time.sleep(0.01)
-        self.assertEqual(client.state(), GoalStatus.ACTIVE, f"the goal did not become ACTIVE within {RESULT_WAIT_S} s")
+        wait_until_active(client, RESULT_WAIT_S)  # also: the server is still working on it
         client.cancel()
         self.assertTrue(client.wait_for_result(RESULT_WAIT_S))
         self.assertEqual(client.state(), GoalStatus.PREEMPTED)

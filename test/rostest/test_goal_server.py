@@ -5,7 +5,6 @@ The server runs in this node with scripted ``run`` behaviours chosen by the goal
 
 import sys
 import threading
-import time
 import unittest
 
 import actionlib
@@ -14,6 +13,7 @@ import rostest
 from actionlib_msgs.msg import GoalStatus
 from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import Path
+from readiness import wait_until_active
 
 from flex_nav.action_types import action_type
 from flex_nav.msg import FollowPathAction, FollowPathGoal, FollowPathResult
@@ -29,15 +29,6 @@ def goal(behaviour):
     path = Path()
     path.poses = [PoseStamped() for _ in range(behaviour)]
     return FollowPathGoal(path=path)
-
-
-def wait_until_active(client):
-    """Bounded wait until the server has accepted ``client``'s goal (a cancel before that recalls it instead)."""
-    deadline = time.monotonic() + WAIT_S
-    while client.state() != GoalStatus.ACTIVE and time.monotonic() < deadline:
-        time.sleep(0.01)
-    if client.state() != GoalStatus.ACTIVE:
-        raise AssertionError(f"the goal did not become ACTIVE within {WAIT_S} s (state {client.state()})")
 
 
 class Script:
@@ -109,7 +100,7 @@ class TestGoalServer(unittest.TestCase):
 
     def test_cancel_calls_hook_while_the_goal_is_still_active(self):
         self.send(WAIT)
-        wait_until_active(self.client)
+        wait_until_active(self.client, WAIT_S)
         self.client.cancel()
         state, result = self.result()
         self.assertEqual(state, GoalStatus.PREEMPTED)
@@ -126,7 +117,7 @@ class TestGoalServer(unittest.TestCase):
         first = ActionClientProxy("scripted", FollowPathAction)
         self.assertTrue(first.is_available(WAIT_S))
         first.send_goal(goal(WAIT))
-        wait_until_active(first)
+        wait_until_active(first, WAIT_S)
         self.send(SUCCEED)
         self.assertTrue(first.wait_for_result(WAIT_S))
         self.assertEqual(first.state(), GoalStatus.PREEMPTED)

@@ -341,18 +341,15 @@ class RosProxies:
             self._services.clear()
 
 
-def _drain(publisher: rospy.Publisher, deadline: float) -> bool:
+def _drain(publisher: rospy.Publisher, deadline: float) -> None:
     """Wait until rospy has sent everything published on ``publisher``, or until ``deadline`` (time.monotonic()
-    [s]); True if nothing is left. A publisher made with ``queue_size`` hands messages to one writer thread per
+    [s]). A publisher made with ``queue_size`` hands messages to one writer thread per
     connection (rospy's QueuedConnection), which takes the whole queue and writes it outside its lock; the
     connection is idle once its queue is empty and its writer waits for data again. Connections without that
     machinery (or a closed one) count as idle."""
     connections = list(getattr(publisher.impl, "connections", None) or [])
-    while not all(_connection_idle(c) for c in connections):
-        if time.monotonic() >= deadline:
-            return False
+    while not all(_connection_idle(c) for c in connections) and time.monotonic() < deadline:
         time.sleep(0.005)
-    return True
 
 
 def _connection_idle(connection: Any) -> bool:
