@@ -23,7 +23,7 @@ import yaml
 from flex_nav.perception.classifier import FORMAT, ObstacleClassifier, metadata_path_for
 from flex_nav.perception.roi import Roi
 
-SPLITS = ("val", "val_extra", "val_extra2", "test", "unseen")
+SPLITS = ("val", "val_extra", "val_extra2", "val_extra3", "test", "unseen", "unseen2")
 BATCH = 256
 
 

@@ -33,6 +33,8 @@ SPLITS: Dict[str, Tuple[int, int]] = {  # split: (id in the seed, samples per la
     "train": (0, 2000), "val": (1, 200), "test": (2, 300), "unseen": (3, 300),
     "extra": (4, 3000), "val_extra": (5, 150),  # training-only models too (tools.perception.scenes.TRAIN_ONLY)
     "extra2": (6, 600), "val_extra2": (7, 100),  # boxes in passages against look-alikes (scenes.PASSAGE)
+    "extra3": (8, 2000), "val_extra3": (9, 100),  # randomised furniture and marked boxes (scenes.PROCEDURAL)
+    "unseen2": (10, 300),  # a second held-out set (scenes.HELD_OUT_2)
 }
 CHUNK = 20  # samples per label in a chunk (one generator per chunk)
 SHEET_FRAMES = 24

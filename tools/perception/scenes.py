@@ -52,7 +52,7 @@ TRAIN_ONLY: Dict[str, Tuple[str, ...]] = {  # extra training models, only in the
     MOVABLE: ("light_box", "suitcase", "tote", "sack"),
     CLEAR: ("stool", "ottoman", "sideboard", "cart", "radiator", "seat_row", "gurney", "desk", "corridor"),
 }
-EXTRA_SPLITS = ("extra", "val_extra", "extra2", "val_extra2")
+EXTRA_SPLITS = ("extra", "val_extra", "extra2", "val_extra2", "extra3", "val_extra3")
 PASSAGE: Dict[str, Tuple[str, ...]] = {  # the ``extra2`` splits: boxes in passages against corridors and furniture
     PERSON: TRAIN_MODELS[PERSON],
     MOVABLE: ("passage_box", "passage_box", "box", "light_box"),
@@ -62,6 +62,16 @@ HELD_OUT: Dict[str, Tuple[str, ...]] = {
     PERSON: ("deepmimic_humanoid", "dress_walker"),
     MOVABLE: ("crate", "textured_cube", "taped_parcel"),
     CLEAR: ("urdf_table", "bench", "bed", "door_frame"),
+}
+PROCEDURAL: Dict[str, Tuple[str, ...]] = {  # the ``extra3`` splits: randomised furniture and marked boxes
+    PERSON: TRAIN_MODELS[PERSON],
+    MOVABLE: ("marked_box", "marked_box", "box", "bin"),
+    CLEAR: ("random_furniture", "random_furniture", "random_furniture", "wall"),
+}
+HELD_OUT_2: Dict[str, Tuple[str, ...]] = {  # the ``unseen2`` split: defined before the extra3 model was trained
+    PERSON: ("child_walker", "bag_walker"),
+    MOVABLE: ("cooler", "drum", "wrapped_parcel"),
+    CLEAR: ("bookcase", "coat_rack", "pedestal_table", "partition"),
 }
 
 # -- colour palettes ----------------------------------------------------------------------------------
@@ -164,10 +174,12 @@ def person_capsule(sc: Scene, x: float, y: float, yaw: float) -> None:
     sc.capsule((x, y, height / 2.0), radius, height - 2.0 * radius, color, yaw=yaw)
 
 
-def person_walker(sc: Scene, x: float, y: float, yaw: float, dress: bool = False) -> None:
-    """A figure of primitives: legs in a walking pose, shoes, torso, arms, head (``dress``: a skirt)."""
+def person_walker(sc: Scene, x: float, y: float, yaw: float, *, dress: bool = False,
+                  size: Tuple[float, float] = (0.9, 1.1)) -> float:
+    """A figure of primitives: legs in a walking pose, shoes, torso, arms, head (``dress``: a skirt), scaled
+    by a factor drawn from ``size``; returns that factor."""
     rng = sc.rng
-    s = rng.uniform(0.9, 1.1)
+    s = rng.uniform(*size)
     hip_h, hip_w = 0.9 * s, rng.uniform(0.08, 0.12) * s
     leg_r = rng.uniform(0.05, 0.08) * s
     stride = rng.uniform(-0.45, 0.45)  # [rad] leg swing
@@ -210,6 +222,7 @@ def person_walker(sc: Scene, x: float, y: float, yaw: float, dress: bool = False
         ax, ay = local(x, y, yaw, 0.5 * 0.6 * math.sin(swing), side * (width / 2.0 + 0.05))
         sc.capsule((ax, ay, shoulder - 0.3 * s), 0.045 * s, 0.5 * s, shirt, yaw=yaw, pitch=-swing)
     sc.sphere((x, y, shoulder + 0.15 * s), 0.1 * s, skin)
+    return s
 
 
 @contextlib.contextmanager
@@ -812,6 +825,216 @@ def movable_sack(sc: Scene, x: float, y: float, yaw: float) -> None:
         sc.sphere((x, y, 2.2 * r), r * 0.8, color)
 
 
+# -- randomised models (``PROCEDURAL``: the ``extra3`` and ``val_extra3`` splits) ---------------------------
+# Domain randomisation instead of one more hand-made model: furniture as a board on a random support (legs,
+# end slabs, end frames, a trestle) with random proportions and extras, and boxes with random markings.
+def clear_random_furniture(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A board 0.3-1.1 m high on a random support, maybe a lower shelf, an apron or a back; random sizes."""
+    rng = sc.rng
+    length, depth, h = rng.uniform(0.4, 2.2), rng.uniform(0.3, 0.9), rng.uniform(0.3, 1.1)
+    t = rng.uniform(0.02, 0.07)  # [m] board thickness
+    top = furniture_color(rng)
+    frame = top if rng.random() < 0.5 else jitter(rng, pick(rng, (*METAL, *FURNITURE)))
+    inset = rng.uniform(0.0, min(0.15, depth / 4.0))  # [m] supports from the board's edges
+    leg_h = h - t
+    sc.box((x, y, h - t / 2.0), (depth / 2.0, length / 2.0, t / 2.0), top, yaw)
+    ends = (length / 2.0 - inset - 0.03, -length / 2.0 + inset + 0.03)
+    support = int(rng.integers(4))
+    if support == 0:  # four legs
+        half = rng.uniform(0.012, 0.04)
+        legs4(sc, x, y, yaw, dx=depth / 2.0 - inset - half, dy=length / 2.0 - inset - half, height=leg_h, half=half,
+              color=frame)
+    elif support == 1:  # a slab at each end
+        slab = rng.uniform(0.015, 0.05)
+        for fy in ends:
+            px, py = local(x, y, yaw, 0.0, fy)
+            sc.box((px, py, leg_h / 2.0), (depth / 2.0 - inset, slab, leg_h / 2.0), frame, yaw)
+    elif support == 2:  # a frame at each end: two posts on a foot bar
+        for fy in ends:
+            for fx in (depth / 2.0 - inset - 0.02, -depth / 2.0 + inset + 0.02):
+                px, py = local(x, y, yaw, fx, fy)
+                sc.box((px, py, leg_h / 2.0), (0.02, 0.02, leg_h / 2.0), frame, yaw)
+            px, py = local(x, y, yaw, 0.0, fy)
+            sc.box((px, py, 0.02), (depth / 2.0 - inset, 0.025, 0.02), frame, yaw)
+    else:  # a trestle: a post at each end joined by a low stretcher
+        for fy in ends:
+            px, py = local(x, y, yaw, 0.0, fy)
+            sc.box((px, py, leg_h / 2.0), (0.04, 0.04, leg_h / 2.0), frame, yaw)
+            sc.box((px, py, 0.02), (depth / 2.0 - inset, 0.03, 0.02), frame, yaw)
+        stretcher_z = rng.uniform(0.1, max(0.12, leg_h * 0.5))
+        sc.box((x, y, stretcher_z), (0.025, length / 2.0 - inset - 0.03, 0.025), frame, yaw)
+    if h > 0.45 and rng.random() < 0.35:  # a lower shelf
+        sc.box((x, y, rng.uniform(0.08, h * 0.45)), (depth / 2.0 - inset, length / 2.0 - inset, 0.012), top, yaw)
+    if rng.random() < 0.3:  # an apron board under the top along both long sides
+        apron = rng.uniform(0.05, min(0.2, leg_h * 0.5))
+        for side in (1.0, -1.0):
+            px, py = local(x, y, yaw, side * (depth / 2.0 - inset), 0.0)
+            sc.box((px, py, h - t - apron / 2.0), (0.01, length / 2.0 - inset, apron / 2.0), frame, yaw)
+    if rng.random() < 0.3:  # a back rest
+        back = rng.uniform(0.1, 0.3)
+        px, py = local(x, y, yaw, -depth / 2.0 + 0.02, 0.0)
+        sc.box((px, py, h + back), (0.02, length / 2.0, back), top, yaw, pitch=rng.uniform(-0.2, 0.0))
+
+
+def movable_marked_box(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A box of a random colour with random markings on its sides: patches (labels, print, handle holes),
+    tape bands over the top, maybe a lid rim."""
+    rng = sc.rng
+    sx, sy, sz = rng.uniform(0.2, 0.7), rng.uniform(0.2, 0.7), rng.uniform(0.15, 0.6)
+    base = box_color(rng) if rng.random() < 0.6 else jitter(rng, tuple(float(v) for v in rng.uniform(0.05, 0.95, 3)))
+    sc.box((x, y, sz / 2.0), (sx / 2.0, sy / 2.0, sz / 2.0), base, yaw)
+    for fx, fy, across in ((sx / 2.0, 0.0, sy), (-sx / 2.0, 0.0, sy), (0.0, sy / 2.0, sx), (0.0, -sy / 2.0, sx)):
+        for _ in range(int(rng.integers(0, 3))):
+            color = jitter(rng, tuple(float(v) for v in rng.uniform(0.0, 1.0, 3)), 0.0)
+            w, hh = rng.uniform(0.05, 0.45) * across, rng.uniform(0.05, 0.45) * sz
+            u, v = rng.uniform(-0.5, 0.5) * (across - w), rng.uniform(hh, sz - hh)
+            px, py = local(x, y, yaw, fx * 1.01 + (0.0 if fx else u), fy * 1.01 + (u if fx else 0.0))
+            half = (0.002, w / 2.0, hh / 2.0) if fx else (w / 2.0, 0.002, hh / 2.0)
+            sc.box((px, py, v), half, color, yaw)
+    for _ in range(int(rng.integers(0, 3))):  # tape bands over the top, along x or y
+        tape = jitter(rng, pick(rng, ((0.6, 0.45, 0.25), (0.2, 0.2, 0.2), (0.85, 0.85, 0.8), (0.8, 0.2, 0.1),
+                                      (0.2, 0.4, 0.8))), 0.03)
+        w = rng.uniform(0.03, 0.07)
+        if rng.random() < 0.5:
+            sc.box((x, y, sz / 2.0), (sx / 2.0 + 0.003, w, sz / 2.0 + 0.003), tape, yaw)
+        else:
+            sc.box((x, y, sz / 2.0), (w, sy / 2.0 + 0.003, sz / 2.0 + 0.003), tape, yaw)
+    if rng.random() < 0.3:  # a lid rim
+        lid = base if rng.random() < 0.5 else box_color(rng)
+        rim = rng.uniform(0.03, 0.08)
+        sc.box((x, y, sz - rim / 2.0 + 0.005), (sx / 2.0 + 0.01, sy / 2.0 + 0.01, rim / 2.0), lid, yaw)
+
+
+# -- the second held-out set (``HELD_OUT_2``: the ``unseen2`` split only) -----------------------------------
+def person_child(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A child: the walker at 0.6-0.75 scale (1.0-1.3 m tall)."""
+    person_walker(sc, x, y, yaw, size=(0.6, 0.75))
+
+
+def person_with_bag(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A walker with a backpack or a shoulder bag at the hip."""
+    rng = sc.rng
+    s = person_walker(sc, x, y, yaw)
+    color = jitter(rng, pick(rng, ((0.1, 0.1, 0.1), (0.2, 0.25, 0.45), (0.55, 0.1, 0.1), (0.45, 0.35, 0.2),
+                                   (0.3, 0.45, 0.3))))
+    if rng.random() < 0.5:  # backpack
+        px, py = local(x, y, yaw, -0.2 * s, 0.0)
+        sc.box((px, py, 1.25 * s), (0.08, 0.15 * s, 0.2 * s), color, yaw)
+    else:
+        side = 1.0 if rng.random() < 0.5 else -1.0
+        px, py = local(x, y, yaw, 0.0, side * 0.3 * s)
+        sc.box((px, py, 0.85 * s), (0.14 * s, 0.05, 0.12 * s), color, yaw)
+
+
+def movable_cooler(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A cool box: a body, a wider lid of another colour, a handle block on each end."""
+    rng = sc.rng
+    sx, sy, sz = rng.uniform(0.4, 0.7), rng.uniform(0.3, 0.45), rng.uniform(0.3, 0.45)
+    body = jitter(rng, pick(rng, ((0.2, 0.35, 0.75), (0.8, 0.15, 0.15), (0.2, 0.55, 0.35), (0.9, 0.9, 0.9))))
+    lid = jitter(rng, pick(rng, ((0.95, 0.95, 0.95), (0.3, 0.3, 0.32), (0.85, 0.75, 0.2))))
+    sc.box((x, y, sz * 0.42), (sx / 2.0, sy / 2.0, sz * 0.42), body, yaw)
+    sc.box((x, y, sz * 0.92), (sx / 2.0 + 0.015, sy / 2.0 + 0.015, sz * 0.08), lid, yaw)
+    for side in (1.0, -1.0):
+        px, py = local(x, y, yaw, side * (sx / 2.0 + 0.02), 0.0)
+        sc.box((px, py, sz * 0.7), (0.02, sy * 0.25, 0.025), lid, yaw)
+
+
+def movable_drum(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A fibre or plastic drum: a cylinder with two rolling rings and a lid."""
+    rng = sc.rng
+    r, h = rng.uniform(0.18, 0.28), rng.uniform(0.35, 0.6)
+    color = jitter(rng, pick(rng, ((0.15, 0.3, 0.65), (0.1, 0.1, 0.1), (0.55, 0.42, 0.28), (0.25, 0.5, 0.3),
+                                   (0.85, 0.85, 0.85))))
+    ring = jitter(rng, pick(rng, METAL))
+    sc.cylinder((x, y, h / 2.0), r, h, color)
+    for z in (h / 3.0, 2.0 * h / 3.0):
+        sc.cylinder((x, y, z), r + 0.012, 0.02, ring)
+    sc.cylinder((x, y, h + 0.01), r + 0.01, 0.02, ring if rng.random() < 0.5 else color)
+
+
+def movable_wrapped_parcel(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A parcel in brown or coloured paper tied with a string both ways."""
+    rng = sc.rng
+    sx, sy, sz = rng.uniform(0.25, 0.55), rng.uniform(0.25, 0.55), rng.uniform(0.15, 0.4)
+    paper = jitter(rng, pick(rng, ((0.62, 0.48, 0.32), (0.7, 0.58, 0.4), (0.3, 0.45, 0.7), (0.75, 0.3, 0.35))))
+    string = jitter(rng, pick(rng, ((0.9, 0.88, 0.8), (0.15, 0.15, 0.15), (0.8, 0.1, 0.1))), 0.03)
+    sc.box((x, y, sz / 2.0), (sx / 2.0, sy / 2.0, sz / 2.0), paper, yaw)
+    sc.box((x, y, sz / 2.0), (sx / 2.0 + 0.003, 0.008, sz / 2.0 + 0.003), string, yaw)
+    sc.box((x, y, sz / 2.0), (0.008, sy / 2.0 + 0.003, sz / 2.0 + 0.003), string, yaw)
+
+
+def clear_bookcase(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A bookcase with a back panel, shelves and rows of books."""
+    rng = sc.rng
+    w, d, h = rng.uniform(0.6, 1.2), rng.uniform(0.25, 0.4), rng.uniform(1.0, 2.0)
+    color = furniture_color(rng)
+    for fy in (w / 2.0, -w / 2.0):
+        px, py = local(x, y, yaw, 0.0, fy)
+        sc.box((px, py, h / 2.0), (d / 2.0, 0.015, h / 2.0), color, yaw)
+    bx, by = local(x, y, yaw, -d / 2.0 + 0.01, 0.0)
+    sc.box((bx, by, h / 2.0), (0.01, w / 2.0, h / 2.0), color, yaw)
+    levels = int(rng.integers(3, 6))
+    gap = (h - 0.05) / levels
+    for k in range(levels + 1):
+        sc.box((x, y, 0.03 + k * gap), (d / 2.0, w / 2.0, 0.012), color, yaw)
+    for k in range(levels):
+        fy = -w / 2.0 + 0.03
+        while fy < w / 2.0 - 0.05:
+            bw, bh = rng.uniform(0.02, 0.05), rng.uniform(0.5, 0.85) * gap
+            px, py = local(x, y, yaw, 0.0, fy + bw / 2.0)
+            book = jitter(rng, tuple(float(v) for v in rng.uniform(0.1, 0.9, 3)), 0.0)
+            sc.box((px, py, 0.045 + k * gap + bh / 2.0), (d / 2.0 - 0.03, bw / 2.0, bh / 2.0), book, yaw)
+            fy += bw + rng.uniform(0.0, 0.02)
+
+
+def clear_coat_rack(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A coat stand: a pole on three or four feet with hooks, sometimes a coat hanging from it."""
+    rng = sc.rng
+    h = rng.uniform(1.6, 1.85)
+    color = jitter(rng, pick(rng, (*METAL, (0.45, 0.3, 0.18), (0.1, 0.1, 0.1))))
+    sc.cylinder((x, y, h / 2.0), 0.018, h, color)
+    feet = int(rng.integers(3, 5))
+    for k in range(feet):
+        a = yaw + 2.0 * math.pi * k / feet
+        fx, fy = x + 0.16 * math.cos(a), y + 0.16 * math.sin(a)
+        sc.box((fx, fy, 0.02), (0.16, 0.015, 0.015), color, a)
+        hx, hy = x + 0.08 * math.cos(a), y + 0.08 * math.sin(a)
+        sc.box((hx, hy, h - 0.08), (0.08, 0.01, 0.01), color, a)
+    if rng.random() < 0.5:
+        coat = jitter(rng, pick(rng, CLOTHES))
+        cx, cy = local(x, y, yaw, 0.1, 0.0)
+        sc.box((cx, cy, h - 0.5), (0.05, 0.22, 0.4), coat, yaw)
+
+
+def clear_pedestal_table(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A round or square table on a single central column and a base disc or cross."""
+    rng = sc.rng
+    h, r = rng.uniform(0.45, 0.76), rng.uniform(0.3, 0.5)
+    top, stand = furniture_color(rng), jitter(rng, pick(rng, (*METAL, *FURNITURE)))
+    if rng.random() < 0.6:
+        sc.cylinder((x, y, h - 0.02), r, 0.04, top)
+    else:
+        sc.box((x, y, h - 0.02), (r, r, 0.02), top, yaw)
+    sc.cylinder((x, y, h / 2.0), rng.uniform(0.03, 0.06), h - 0.04, stand)
+    if rng.random() < 0.5:
+        sc.cylinder((x, y, 0.015), r * 0.6, 0.03, stand)
+    else:
+        for a in (yaw, yaw + math.pi / 2.0):
+            sc.box((x, y, 0.02), (r * 0.7, 0.025, 0.02), stand, a)
+
+
+def clear_partition(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A free-standing screen (room divider) raised on two feet: the floor shows under it."""
+    rng = sc.rng
+    w, h, lift = rng.uniform(0.8, 1.8), rng.uniform(1.2, 1.7), rng.uniform(0.05, 0.2)
+    panel = jitter(rng, pick(rng, ((0.85, 0.85, 0.8), (0.6, 0.7, 0.8), (0.45, 0.55, 0.45), (0.7, 0.65, 0.55))))
+    feet = jitter(rng, pick(rng, METAL))
+    sc.box((x, y, lift + h / 2.0), (0.025, w / 2.0, h / 2.0), panel, yaw)
+    for fy in (w / 2.0 - 0.1, -w / 2.0 + 0.1):
+        px, py = local(x, y, yaw, 0.0, fy)
+        sc.box((px, py, (lift + 0.1) / 2.0), (0.2, 0.02, (lift + 0.1) / 2.0), feet, yaw)
+
+
 def clear_empty(sc: Scene, x: float, y: float, yaw: float) -> None:
     """Nothing in front (only the background)."""
 
@@ -856,6 +1079,17 @@ BUILDERS: Dict[str, Builder] = {
     "passage_box": movable_passage_box,
     "tote": movable_tote,
     "sack": movable_sack,
+    "random_furniture": clear_random_furniture,
+    "marked_box": movable_marked_box,
+    "child_walker": person_child,
+    "bag_walker": person_with_bag,
+    "cooler": movable_cooler,
+    "drum": movable_drum,
+    "wrapped_parcel": movable_wrapped_parcel,
+    "bookcase": clear_bookcase,
+    "coat_rack": clear_coat_rack,
+    "pedestal_table": clear_pedestal_table,
+    "partition": clear_partition,
 }
 DISTANCES: Dict[str, Tuple[float, float]] = {  # [m] camera to target centre
     PERSON: (0.5, 2.2),
@@ -946,11 +1180,16 @@ class Renderer:
 
 def models_for(split: str) -> Dict[str, Tuple[str, ...]]:
     """The models of each label used in a split: ``train``/``val``/``test`` (seen), ``unseen`` (held out),
-    ``extra``/``val_extra`` (the seen ones and the training-only ones, :data:`TRAIN_ONLY`)."""
+    ``extra``/``val_extra`` (the seen ones and the training-only ones, :data:`TRAIN_ONLY`), ``extra2``/``val_extra2``
+    (:data:`PASSAGE`), ``extra3``/``val_extra3`` (:data:`PROCEDURAL`), ``unseen2`` (:data:`HELD_OUT_2`)."""
     if split == "unseen":
         return HELD_OUT
+    if split == "unseen2":
+        return HELD_OUT_2
     if split in ("extra2", "val_extra2"):
         return PASSAGE
+    if split in ("extra3", "val_extra3"):
+        return PROCEDURAL
     if split in EXTRA_SPLITS:
         return {label: TRAIN_MODELS[label] + TRAIN_ONLY[label] for label in TRAIN_MODELS}
     return TRAIN_MODELS

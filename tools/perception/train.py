@@ -29,8 +29,8 @@ import numpy as np
 MEAN = (0.5, 0.5, 0.5)
 STD = (0.25, 0.25, 0.25)
 DATASET_COMMAND = "python -m tools.perception.render_dataset --out build/dataset --seed {seed}"
-TRAIN_SPLITS = ("train", "extra", "extra2")
-VAL_SPLITS = ("val", "val_extra", "val_extra2")
+TRAIN_SPLITS = ("train", "extra", "extra2", "extra3")
+VAL_SPLITS = ("val", "val_extra", "val_extra2", "val_extra3")
 TRAIN_COMMAND = "python -m tools.perception.train --data build/dataset --seed {seed} --out {out}"
 
 

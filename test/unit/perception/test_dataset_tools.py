@@ -27,14 +27,23 @@ def _all(models: dict[str, tuple[str, ...]]) -> set[str]:
     return {m for ms in models.values() for m in ms}
 
 
-def test_held_out_models_never_reach_a_training_split() -> None:
-    held_out = _all(scenes.HELD_OUT)
+@pytest.mark.parametrize(("held_out_split", "held_out_models"), [("unseen", scenes.HELD_OUT),
+                                                                    ("unseen2", scenes.HELD_OUT_2)])
+def test_held_out_models_never_reach_another_split(held_out_split: str,
+                                                   held_out_models: dict[str, tuple[str, ...]]) -> None:
+    held_out = _all(held_out_models)
     for split in render_dataset.SPLITS:
         used = _all(scenes.models_for(split))
-        if split == "unseen":
+        if split == held_out_split:
             assert used == held_out
         else:
             assert not used & held_out, f"{split} uses held-out models {sorted(used & held_out)}"
+
+
+def test_training_and_selection_read_no_held_out_split() -> None:
+    for split in (*train.TRAIN_SPLITS, *train.VAL_SPLITS):
+        assert split in render_dataset.SPLITS
+        assert not split.startswith(("test", "unseen")), split
 
 
 def test_extra_splits_add_the_training_only_models_to_the_seen_ones() -> None:
@@ -54,7 +63,8 @@ def test_split_ids_are_unique_so_every_split_has_its_own_scenes() -> None:
 
 
 def test_every_model_has_a_builder_and_every_builder_is_used() -> None:
-    listed = _all(scenes.TRAIN_MODELS) | _all(scenes.TRAIN_ONLY) | _all(scenes.PASSAGE) | _all(scenes.HELD_OUT)
+    listed = (_all(scenes.TRAIN_MODELS) | _all(scenes.TRAIN_ONLY) | _all(scenes.PASSAGE) | _all(scenes.PROCEDURAL)
+              | _all(scenes.HELD_OUT) | _all(scenes.HELD_OUT_2))
     assert listed == set(scenes.BUILDERS)
     assert set(scenes.SIDE_DISTRACTORS) <= _all(scenes.TRAIN_MODELS)
 
@@ -91,8 +101,9 @@ def _roi_of(model: str | None) -> np.ndarray:
     return roi_patch(rgb, Roi(), 64, 64).astype(np.int16)
 
 
-@pytest.mark.parametrize("model", sorted(_all(scenes.TRAIN_ONLY) | _all(scenes.PASSAGE) - _all(scenes.TRAIN_MODELS)))
-def test_every_training_only_model_is_visible_in_the_roi(model: str) -> None:
+@pytest.mark.parametrize("model", sorted((_all(scenes.TRAIN_ONLY) | _all(scenes.PASSAGE) | _all(scenes.PROCEDURAL)
+                                           | _all(scenes.HELD_OUT_2)) - _all(scenes.TRAIN_MODELS)))
+def test_every_added_model_is_visible_in_the_roi(model: str) -> None:
     changed = np.abs(_roi_of(model) - _empty_roi()).max(axis=2) > 10
     assert changed.mean() > 0.03, f"{model} changes only {100 * changed.mean():.1f} % of the ROI"
 
