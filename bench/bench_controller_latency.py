@@ -24,6 +24,7 @@ import tempfile
 import threading
 import time
 from pathlib import Path
+from typing import Any, List, Tuple
 
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO / "src"))
@@ -35,7 +36,7 @@ from geometry_msgs.msg import PoseStamped, TransformStamped, TwistStamped  # noq
 from nav_msgs.msg import Odometry  # noqa: E402
 from nav_msgs.msg import Path as PathMsg  # noqa: E402
 
-from flex_nav.follow.controller import SafeFollower  # noqa: E402
+from flex_nav.follow.controller import Pose2D, SafeFollower  # noqa: E402
 from flex_nav.msg import FollowPathAction, FollowPathGoal  # noqa: E402
 from flex_nav.nav.costmap_grid import CostmapGeometry  # noqa: E402
 from flex_nav.nav.pure_pursuit import PurePursuitParams  # noqa: E402
@@ -69,12 +70,12 @@ class Probe:
 
     def __init__(self, odom_topic: str, cmd_topic: str) -> None:
         self.cond = threading.Condition()
-        self.received: list = []  # (monotonic time, msg)
+        self.received: List[Tuple[float, Any]] = []  # (monotonic time, msg)
         self.pub = rospy.Publisher(odom_topic, Odometry, queue_size=1, tcp_nodelay=True)
         self.tf = tf2_ros.TransformBroadcaster()
         self.sub = rospy.Subscriber(cmd_topic, TwistStamped, self.on_cmd, queue_size=10, tcp_nodelay=True)
 
-    def on_cmd(self, msg: object) -> None:
+    def on_cmd(self, msg: TwistStamped) -> None:
         now = time.monotonic()
         with self.cond:
             self.received.append((now, msg))
@@ -87,7 +88,7 @@ class Probe:
                 raise SystemExit("bench: the node under test did not connect")
             time.sleep(0.05)
 
-    def odom(self, v: float = 0.0) -> object:
+    def odom(self, v: float = 0.0) -> Odometry:
         msg = Odometry()
         msg.header.stamp = rospy.Time.now()
         msg.header.frame_id, msg.child_frame_id = "odom", "base_footprint"
@@ -144,7 +145,11 @@ def tick_time() -> float:
     times, x, v = [], 0.0, 0.0
     for k in range(2000):
         t = time.perf_counter()
-        d = follower.tick(0.05 * (k + 1), lambda x=x: (x, 0.0, 0.0), (v, 0.0), lambda: snapshot)
+
+        def pose(x: float = x) -> Pose2D:  # x bound at this step, as the lambda default `x=x` did
+            return (x, 0.0, 0.0)
+
+        d = follower.tick(0.05 * (k + 1), pose, (v, 0.0), lambda: snapshot)
         times.append(time.perf_counter() - t)
         v = d.v
         x += v * CONTROL_PERIOD_S

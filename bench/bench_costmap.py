@@ -20,6 +20,7 @@ import statistics
 import sys
 import time
 from pathlib import Path
+from typing import Tuple
 
 import numpy as np
 
@@ -32,7 +33,8 @@ except ImportError as err:  # bench-only reference
     sys.exit(f"{err}: install the bench references first: bench/run.sh costmap")
 
 from flex_nav.nav.costmap import Costmap  # noqa: E402
-from flex_nav.nav.costmap_grid import INSCRIBED, LETHAL, NO_INFORMATION  # noqa: E402
+from flex_nav.nav.costmap_grid import INSCRIBED, LETHAL, NO_INFORMATION, CostmapGeometry  # noqa: E402
+from flex_nav.nav.grid_map import GridMap  # noqa: E402
 from flex_nav.nav.inflation import InflationParams, Inflator  # noqa: E402
 from flex_nav.nav.map_io import load_map  # noqa: E402
 from flex_nav.nav.obstacle_layer import LaserScan, ObstacleLayerParams  # noqa: E402
@@ -98,7 +100,7 @@ def simulate_scans(occupancy: np.ndarray, grid_resolution: float, poses: np.ndar
     return scans
 
 
-def bench_rolling(grid, global_costs, geo) -> float:
+def bench_rolling(grid: GridMap, global_costs: np.ndarray, geo: CostmapGeometry) -> float:
     # a robot pose every 5 cm along a planned path across the map
     planner = GridPlanner()
     result = planner.plan(global_costs, geo, (20.0, 20.0), (60.0, 55.0))
@@ -134,7 +136,7 @@ def bench_rolling(grid, global_costs, geo) -> float:
     return med
 
 
-def bench_global_scan(grid, scans_pose=(50.0, 50.0, 0.0)) -> None:
+def bench_global_scan(grid: GridMap, scans_pose: Tuple[float, float, float] = (50.0, 50.0, 0.0)) -> None:
     cm = Costmap.from_map(grid, obstacles=ObstacleLayerParams(track_unknown_space=True), inflation=INFLATION)
     scans = simulate_scans(grid.occupancy, grid.resolution, np.array([scans_pose]))
     times = []

@@ -30,15 +30,18 @@ import statistics
 import sys
 import time
 from pathlib import Path
+from typing import Dict, List, Tuple
 
 import numpy as np
+
+Cell = Tuple[int, int]  # (row, col)
 
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO / "src"))
 
 try:
     import pyastar2d
-    import pyastar2d.astar as pyastar_c
+    import pyastar2d.astar as pyastar_c  # type: ignore[import-untyped]
     from scipy.sparse import csr_matrix
     from scipy.sparse.csgraph import dijkstra
 except ImportError as err:  # bench-only references
@@ -56,20 +59,20 @@ PAIRS = 100
 DIJKSTRA_PAIRS = int(os.environ.get("FLEX_NAV_BENCH_DIJKSTRA_PAIRS", "4"))  # per map
 
 
-def nav2_pairs(costs: np.ndarray, resolution: float, count: int = PAIRS) -> list:
+def nav2_pairs(costs: np.ndarray, resolution: float, count: int = PAIRS) -> List[Tuple[Cell, Cell]]:
     """Start/goal cells (row, col) drawn as Nav2's planner benchmark does."""
     rng = random.Random(33)
     border, max_cost, min_dist = 100, 210, 3.0
     height, width = costs.shape
 
-    def draw() -> tuple:
+    def draw() -> Cell:
         while True:
             row = rng.randint(border, height - border)
             col = rng.randint(border, width - border)
             if costs[row, col] < max_cost:
                 return row, col
 
-    pairs = []
+    pairs: List[Tuple[Cell, Cell]] = []
     while len(pairs) < count:
         start, goal = draw(), draw()
         if math.hypot(start[0] - goal[0], start[1] - goal[1]) * resolution >= min_dist:
@@ -138,7 +141,7 @@ def main() -> int:
         flat_a = weights_a.ravel()
         height, width = costs.shape
 
-        rows = {"mine_a": [], "py_c": [], "py_wrap": [], "mine_b": [], "py_c_b": []}
+        rows: Dict[str, List[float]] = {"mine_a": [], "py_c": [], "py_wrap": [], "mine_b": [], "py_c_b": []}
         costs_a, py_costs_a, same_ok, expanded = [], [], 0, []
         for start, goal in pairs:
             sx, sy = geo.cell_to_world(*start)

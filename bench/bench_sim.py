@@ -25,8 +25,12 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+from typing import TYPE_CHECKING, Any, Callable, Dict, Sequence, Tuple, Union
 
 import yaml
+
+if TYPE_CHECKING:
+    import numpy as np
 
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO / "src"))
@@ -60,7 +64,9 @@ def bench_profile(folder: Path, camera: bool) -> Path:
     return path
 
 
-def wander(ranges, angle_min: float, increment: float, t: float) -> tuple:
+def wander(
+    ranges: Union[np.ndarray, Sequence[float]], angle_min: float, increment: float, t: float
+) -> Tuple[float, float]:
     """(v [m/s], w [rad/s]): forward with a slow weave; turn in place when blocked within 0.5 m ahead."""
     n = len(ranges)
     ahead = [ranges[i] for i in range(n) if abs(angle_min + i * increment) < math.radians(35.0)]
@@ -149,7 +155,7 @@ def run_node(camera: bool) -> dict:
             if listener is not None:
                 listener.stop()
             master.stop()
-    figures = {k: float(v) for k, v in matches[-1].groupdict().items()}
+    figures: Dict[str, Union[float, str]] = {k: float(v) for k, v in matches[-1].groupdict().items()}
     figures["listener"] = listened.strip().splitlines()[-1] if listened.strip() else "(no listener output)"
     return figures
 
@@ -177,8 +183,8 @@ def listener_main(out: Path) -> int:
         )
     ]
 
-    def count(topic: str):
-        def callback(_msg) -> None:
+    def count(topic: str) -> Callable[[Any], None]:
+        def callback(_msg: Any) -> None:
             counts[topic] = counts.get(topic, 0) + 1
 
         return callback

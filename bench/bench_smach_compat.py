@@ -14,6 +14,8 @@ from __future__ import annotations
 import sys
 import threading
 import time
+from types import ModuleType
+from typing import Any, Callable
 
 try:
     import smach as ref_smach  # standalone-smach, bench/requirements.txt
@@ -33,20 +35,22 @@ if not hasattr(threading.Thread, "isAlive"):  # standalone-smach 0.0.9's Concurr
     threading.Thread.isAlive = threading.Thread.is_alive  # type: ignore[attr-defined]
 
 
-def loop_seconds(smach, transitions):
-    class Ping(smach.State):
-        def __init__(self):
+def loop_seconds(smach: ModuleType, transitions: int) -> float:
+    state_base: Any = smach.State  # either library's State: a base class mypy cannot resolve statically
+
+    class Ping(state_base):
+        def __init__(self) -> None:
             smach.State.__init__(self, outcomes=["next"])
 
-        def execute(self, ud):
+        def execute(self, ud: Any) -> str:
             return "next"
 
-    class Count(smach.State):
-        def __init__(self, limit):
+    class Count(state_base):
+        def __init__(self, limit: int) -> None:
             smach.State.__init__(self, outcomes=["next", "done"])
             self.left = limit
 
-        def execute(self, ud):
+        def execute(self, ud: Any) -> str:
             self.left -= 1
             return "next" if self.left > 0 else "done"
 
@@ -61,12 +65,14 @@ def loop_seconds(smach, transitions):
     return elapsed
 
 
-def concurrence_seconds(smach, executes):
-    class Once(smach.State):
-        def __init__(self):
+def concurrence_seconds(smach: ModuleType, executes: int) -> float:
+    state_base: Any = smach.State
+
+    class Once(state_base):
+        def __init__(self) -> None:
             smach.State.__init__(self, outcomes=["done"])
 
-        def execute(self, ud):
+        def execute(self, ud: Any) -> str:
             return "done"
 
     cc = smach.Concurrence(outcomes=["done"], default_outcome="done", outcome_map={"done": {"A": "done", "B": "done"}})
@@ -79,11 +85,11 @@ def concurrence_seconds(smach, executes):
     return time.perf_counter() - start
 
 
-def best_of(fn):
+def best_of(fn: Callable[[], float]) -> float:
     return min(fn() for _ in range(REPEATS))
 
 
-def main():
+def main() -> None:
     print(f"python {sys.version.split()[0]}, standalone-smach vs flex_nav.compat.smach, best of {REPEATS} runs\n")
     ref = best_of(lambda: loop_seconds(ref_smach, LOOP_TRANSITIONS)) / LOOP_TRANSITIONS * 1e6
     ours = best_of(lambda: loop_seconds(compat_smach, LOOP_TRANSITIONS)) / LOOP_TRANSITIONS * 1e6

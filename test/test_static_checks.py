@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 import sys
 
+import pytest
 from harness import REPO_ROOT, run_command_bounded
 
 VENV_BIN = REPO_ROOT / ".venv" / "bin"
@@ -15,12 +16,16 @@ def test_ruff_clean() -> None:
     assert outcome.returncode == 0, f"ruff found problems:\n{outcome.output[-8000:]}"
 
 
-def test_mypy_clean() -> None:
-    outcome = run_command_bounded(
-        [sys.executable, "-m", "mypy", "-p", "flex_nav", "-p", "flex_nav_states", "-p", "flex_nav_sim"],
-        env=_env(),
-        timeout_s=600,
-    )
+@pytest.mark.parametrize(
+    "targets",
+    [
+        ["-p", "flex_nav", "-p", "flex_nav_states", "-p", "flex_nav_sim", "-p", "tools"],
+        sorted(str(p.relative_to(REPO_ROOT)) for p in (REPO_ROOT / "bench").glob("*.py")),  # scripts, not a package
+    ],
+    ids=["packages", "bench"],
+)
+def test_mypy_clean(targets: list[str]) -> None:
+    outcome = run_command_bounded([sys.executable, "-m", "mypy", *targets], env=_env(), timeout_s=600)
     assert outcome.returncode == 0, f"mypy found problems:\n{outcome.output[-8000:]}"
     assert "Success" in outcome.output
 

@@ -62,7 +62,7 @@ def evaluate_splits(model: Path, data: Path, splits: Sequence[str] = SPLITS) -> 
         with np.load(file) as f:
             patches, labels, models = f["patches"], f["labels"], f["models"]
             data_classes = [str(c) for c in f["classes"]]
-        predicted = []
+        predicted: List[int] = []
         for i in range(0, len(patches), BATCH):
             probs = classifier.probabilities(classifier.normaliser.batch(patches[i : i + BATCH]))
             predicted.extend(data_classes.index(classifier.decide(p).label) for p in probs)

@@ -18,6 +18,7 @@ import json
 import sys
 import time
 from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Dict, List, Tuple
 
@@ -40,8 +41,20 @@ CHUNK = 20  # samples per label in a chunk (one generator per chunk)
 SHEET_FRAMES = 24
 
 
-def render_chunk(args: Tuple[int, str, int, int, int]) -> Dict[str, object]:
-    """Render ``count`` samples per label of one chunk; returns plain arrays (picklable for the worker pool)."""
+@dataclass(frozen=True)
+class Chunk:
+    """The samples of one chunk (picklable, for the worker pool)."""
+
+    patches: np.ndarray  # uint8 (N, PATCH_H, PATCH_W, 3)
+    labels: np.ndarray  # int64 (N,), indices into LABELS
+    models: List[str]
+    profiles: List[str]
+    distances: np.ndarray  # float32 (N,) [m]
+    frames: List[np.ndarray]  # full frames for the contact sheet (chunk 0 only)
+
+
+def render_chunk(args: Tuple[int, str, int, int, int]) -> Chunk:
+    """Render ``count`` samples per label of one chunk."""
     from tools.perception.scenes import Renderer, plan
 
     seed, split, split_id, chunk, count = args
@@ -49,7 +62,12 @@ def render_chunk(args: Tuple[int, str, int, int, int]) -> Dict[str, object]:
     jobs = plan(LABELS, count, split, rng, offset=chunk)
     renderer = Renderer(rng)
     roi = Roi()
-    patches, labels, models, profiles, distances, frames = [], [], [], [], [], []
+    patches: List[np.ndarray] = []
+    labels: List[int] = []
+    models: List[str] = []
+    profiles: List[str] = []
+    distances: List[float] = []
+    frames: List[np.ndarray] = []
     try:
         for label, model in jobs:
             sample = renderer.render(label, model)
@@ -62,8 +80,8 @@ def render_chunk(args: Tuple[int, str, int, int, int]) -> Dict[str, object]:
                 frames.append(sample.rgb)
     finally:
         renderer.close()
-    return {"patches": np.stack(patches), "labels": np.array(labels, dtype=np.int64), "models": models,
-            "profiles": profiles, "distances": np.array(distances, dtype=np.float32), "frames": frames}
+    return Chunk(np.stack(patches), np.array(labels, dtype=np.int64), models, profiles,
+                 np.array(distances, dtype=np.float32), frames)
 
 
 def contact_sheet(frames: List[np.ndarray], roi: Roi, columns: int = 6) -> np.ndarray:
@@ -105,14 +123,14 @@ def main(argv: List[str]) -> int:
                 parts = list(pool.map(render_chunk, chunks))
         else:
             parts = [render_chunk(c) for c in chunks]
-        patches = np.concatenate([p["patches"] for p in parts])  # type: ignore[misc]
-        labels = np.concatenate([p["labels"] for p in parts])  # type: ignore[misc]
-        models = [m for p in parts for m in p["models"]]  # type: ignore[attr-defined]
-        profiles = [m for p in parts for m in p["profiles"]]  # type: ignore[attr-defined]
-        distances = np.concatenate([p["distances"] for p in parts])  # type: ignore[misc]
+        patches = np.concatenate([p.patches for p in parts])
+        labels = np.concatenate([p.labels for p in parts])
+        models = [m for p in parts for m in p.models]
+        profiles = [m for p in parts for m in p.profiles]
+        distances = np.concatenate([p.distances for p in parts])
         np.savez_compressed(args.out / f"{split}.npz", patches=patches, labels=labels, models=np.array(models),
                             profiles=np.array(profiles), distances=distances, classes=np.array(LABELS))
-        sheet = contact_sheet(parts[0]["frames"], Roi())  # type: ignore[arg-type]
+        sheet = contact_sheet(parts[0].frames, Roi())
         cv2.imwrite(str(args.out / f"sheet_{split}.png"), cv2.cvtColor(sheet, cv2.COLOR_RGB2BGR))
         counts = {label: int((labels == i).sum()) for i, label in enumerate(LABELS)}
         summary[split] = {"samples": len(labels), "per_label": counts, "models": sorted(set(models)),

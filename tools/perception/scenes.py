@@ -110,6 +110,12 @@ def pick(rng: np.random.Generator, palette: Sequence[Vec3]) -> Vec3:
     return palette[int(rng.integers(len(palette)))]
 
 
+def random_color(rng: np.random.Generator, lo: float, hi: float, amount: float = 0.0) -> Rgba:
+    """Any colour: each channel uniform in [lo, hi], then :func:`jitter` by ``amount``."""
+    r, g, b = (float(v) for v in rng.uniform(lo, hi, 3))
+    return jitter(rng, (r, g, b), amount)
+
+
 @dataclass(frozen=True)
 class Sample:
     """One rendered sample: the image and what is in it."""
@@ -881,11 +887,11 @@ def movable_marked_box(sc: Scene, x: float, y: float, yaw: float) -> None:
     tape bands over the top, maybe a lid rim."""
     rng = sc.rng
     sx, sy, sz = rng.uniform(0.2, 0.7), rng.uniform(0.2, 0.7), rng.uniform(0.15, 0.6)
-    base = box_color(rng) if rng.random() < 0.6 else jitter(rng, tuple(float(v) for v in rng.uniform(0.05, 0.95, 3)))
+    base = box_color(rng) if rng.random() < 0.6 else random_color(rng, 0.05, 0.95, 0.06)
     sc.box((x, y, sz / 2.0), (sx / 2.0, sy / 2.0, sz / 2.0), base, yaw)
     for fx, fy, across in ((sx / 2.0, 0.0, sy), (-sx / 2.0, 0.0, sy), (0.0, sy / 2.0, sx), (0.0, -sy / 2.0, sx)):
         for _ in range(int(rng.integers(0, 3))):
-            color = jitter(rng, tuple(float(v) for v in rng.uniform(0.0, 1.0, 3)), 0.0)
+            color = random_color(rng, 0.0, 1.0)
             w, hh = rng.uniform(0.05, 0.45) * across, rng.uniform(0.05, 0.45) * sz
             u, v = rng.uniform(-0.5, 0.5) * (across - w), rng.uniform(hh, sz - hh)
             px, py = local(x, y, yaw, fx * 1.01 + (0.0 if fx else u), fy * 1.01 + (u if fx else 0.0))
@@ -982,7 +988,7 @@ def clear_bookcase(sc: Scene, x: float, y: float, yaw: float) -> None:
         while fy < w / 2.0 - 0.05:
             bw, bh = rng.uniform(0.02, 0.05), rng.uniform(0.5, 0.85) * gap
             px, py = local(x, y, yaw, 0.0, fy + bw / 2.0)
-            book = jitter(rng, tuple(float(v) for v in rng.uniform(0.1, 0.9, 3)), 0.0)
+            book = random_color(rng, 0.1, 0.9)
             sc.box((px, py, 0.045 + k * gap + bh / 2.0), (d / 2.0 - 0.03, bw / 2.0, bh / 2.0), book, yaw)
             fy += bw + rng.uniform(0.0, 0.02)
 
@@ -1039,7 +1045,7 @@ def clear_empty(sc: Scene, x: float, y: float, yaw: float) -> None:
     """Nothing in front (only the background)."""
 
 
-Builder = Callable[[Scene, float, float, float], None]
+Builder = Callable[[Scene, float, float, float], object]  # what a builder returns is not used
 BUILDERS: Dict[str, Builder] = {
     "capsule": person_capsule,
     "walker": person_walker,
