@@ -41,7 +41,7 @@ sys.path.insert(0, str(REPO / "src"))
 
 try:
     import pyastar2d
-    import pyastar2d.astar as pyastar_c  # type: ignore[import-untyped]
+    import pyastar2d.astar as pyastar_c
     from scipy.sparse import csr_matrix
     from scipy.sparse.csgraph import dijkstra
 except ImportError as err:  # bench-only references
