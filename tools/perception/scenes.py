@@ -594,15 +594,22 @@ def legs4(sc: Scene, x: float, y: float, yaw: float, *, dx: float, dy: float, he
             sc.box((px, py, height / 2.0), (half, half, height / 2.0), color, yaw)
 
 
+def round_or_square_top(sc: Scene, x: float, y: float, yaw: float, *, z: float, radius: float, thickness: float,
+                        color: Rgba, round_chance: float) -> None:
+    """A seat or table top centred at height ``z`` [m]: a disc of ``radius`` [m] (with ``round_chance``) or a
+    square of the same half-width."""
+    if sc.rng.random() < round_chance:
+        sc.cylinder((x, y, z), radius, thickness, color)
+    else:
+        sc.box((x, y, z), (radius, radius, thickness / 2.0), color, yaw)
+
+
 def clear_stool(sc: Scene, x: float, y: float, yaw: float) -> None:
     """A stool: a round or square seat on three or four thin legs, sometimes a foot rest."""
     rng = sc.rng
     h, r = rng.uniform(0.4, 0.78), rng.uniform(0.15, 0.22)
     seat, legs = furniture_color(rng), jitter(rng, pick(rng, (*METAL, *FURNITURE)))
-    if rng.random() < 0.5:
-        sc.cylinder((x, y, h - 0.03), r, 0.06, seat)
-    else:
-        sc.box((x, y, h - 0.03), (r, r, 0.03), seat, yaw)
+    round_or_square_top(sc, x, y, yaw, z=h - 0.03, radius=r, thickness=0.06, color=seat, round_chance=0.5)
     n = 3 if rng.random() < 0.4 else 4
     for k in range(n):
         a = yaw + 2.0 * math.pi * k / n
@@ -1017,10 +1024,7 @@ def clear_pedestal_table(sc: Scene, x: float, y: float, yaw: float) -> None:
     rng = sc.rng
     h, r = rng.uniform(0.45, 0.76), rng.uniform(0.3, 0.5)
     top, stand = furniture_color(rng), jitter(rng, pick(rng, (*METAL, *FURNITURE)))
-    if rng.random() < 0.6:
-        sc.cylinder((x, y, h - 0.02), r, 0.04, top)
-    else:
-        sc.box((x, y, h - 0.02), (r, r, 0.02), top, yaw)
+    round_or_square_top(sc, x, y, yaw, z=h - 0.02, radius=r, thickness=0.04, color=top, round_chance=0.6)
     sc.cylinder((x, y, h / 2.0), rng.uniform(0.03, 0.06), h - 0.04, stand)
     if rng.random() < 0.5:
         sc.cylinder((x, y, 0.015), r * 0.6, 0.03, stand)
