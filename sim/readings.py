@@ -56,11 +56,12 @@ class BumperReading:
 
 @dataclass(frozen=True)
 class ImageReading:
-    """One camera image, RGB, row 0 at the top."""
+    """One camera frame, row 0 at the top: the colour image and the depth image registered to it."""
 
     robot: str
     stamp: float  # [s]
     rgb: np.ndarray  # uint8 (height, width, 3)
+    depth: np.ndarray  # float32 (height, width) [m] along the optical axis; +inf where nothing is in range
 
 
 @dataclass(frozen=True)

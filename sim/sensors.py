@@ -1,4 +1,4 @@
-"""Lidar by batched ray casts and an RGB camera by offscreen rendering, for one robot.
+"""Lidar by batched ray casts and an RGB-D camera by offscreen rendering, for one robot.
 
 Lidar rays start at the robot's body outline (never inside its own cylinder, so a robot does not see
 itself) and end at ``range_max``; other robots, people, boxes and obstacles taller than the scan
@@ -9,7 +9,7 @@ no return within range gives +inf (REP 117).
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, Tuple
 
 import numpy as np
 import pybullet
@@ -68,8 +68,19 @@ class Lidar:
         return ranges.astype(np.float32)
 
 
+def depth_from_buffer(buffer: Any, width: int, height: int, near: float, far: float) -> np.ndarray:
+    """Metric depth [m] (float32, height x width) from pybullet's OpenGL depth buffer (values 0..1).
+
+    Depth along the optical axis as in a REP 118 depth image; pixels at the far plane (nothing rendered)
+    are +inf, like a depth camera's "no return"."""
+    d = np.asarray(buffer, dtype=np.float64).reshape(height, width)
+    z = far * near / (far - (far - near) * d)
+    return np.where(d >= 1.0, np.inf, z).astype(np.float32)
+
+
 class Camera:
-    """A forward-looking RGB camera rendered with ER_TINY_RENDERER (no display needed)."""
+    """A forward-looking RGB-D camera rendered with ER_TINY_RENDERER (no display needed); the depth
+    image is registered to the colour image (same pixels)."""
 
     def __init__(self, client: Any, spec: CameraSpec) -> None:
         self.client = client
@@ -78,8 +89,9 @@ class Camera:
             math.degrees(spec.vfov), spec.width / spec.height, spec.near, spec.far
         )
 
-    def render(self, pose: Pose2D) -> np.ndarray:
-        """An RGB image uint8 (height, width, 3) seen from the robot at ``pose`` (map frame)."""
+    def render(self, pose: Pose2D) -> Tuple[np.ndarray, np.ndarray]:
+        """The RGB image uint8 (height, width, 3) and depth [m] float32 (height, width) seen from the
+        robot at ``pose`` (map frame)."""
         spec = self.spec
         c, s = math.cos(pose.yaw), math.sin(pose.yaw)
         mx, my, mz = spec.mount
@@ -88,7 +100,7 @@ class Camera:
         target = [eye[0] + c * cp, eye[1] + s * cp, mz - sp]
         up = [c * sp, s * sp, cp]
         view = self.client.computeViewMatrix(eye, target, up)
-        _, _, rgba, _, _ = self.client.getCameraImage(
+        _, _, rgba, depth, _ = self.client.getCameraImage(
             spec.width,
             spec.height,
             view,
@@ -98,4 +110,5 @@ class Camera:
             shadow=0,
         )
         image = np.asarray(rgba, dtype=np.uint8).reshape(spec.height, spec.width, 4)
-        return np.ascontiguousarray(image[:, :, :3])
+        rgb = np.ascontiguousarray(image[:, :, :3])
+        return rgb, depth_from_buffer(depth, spec.width, spec.height, spec.near, spec.far)

@@ -376,7 +376,7 @@ class Simulation:
             slot.next_image += 1.0 / slot.camera.spec.rate
             if pose is None:
                 pose = robot.truth()[0]
-            out.append(ImageReading(robot.name, t, slot.camera.render(pose)))
+            out.append(ImageReading(robot.name, t, *slot.camera.render(pose)))
             costs["camera"] += time.perf_counter() - mid
 
     def _contact_events(self, robot: SimRobot, contacts: Mapping[int, Contact], out: List[Reading]) -> None:

@@ -5,10 +5,12 @@
 Writes ``train.npz``, ``val.npz``, ``test.npz`` (models seen in training, new scenes) and ``unseen.npz``
 (held-out people, objects and furniture; see :mod:`tools.perception.scenes`), each with ``patches``
 (N, H, W, 3) uint8 = the model input before normalisation (:func:`flex_nav.perception.preprocess.roi_patch`
-with the default ROI), ``labels`` (indices into ``classes``), ``models``, ``profiles`` and ``distances``
-[m]; plus ``sheet_<split>.png`` contact sheets of full frames with the ROI drawn. Every split is cut
-into chunks with their own generator from ``SeedSequence([seed, split, chunk])``, so the output does
-not depend on ``--workers``.
+with the default ROI), ``depths`` (N, H, W) uint16 [mm] = the same region of the registered depth image
+(:func:`flex_nav.perception.preprocess.depth_patch`, no return or beyond ``DEPTH_RANGE`` = ``DEPTH_RANGE``),
+``labels`` (indices into ``classes``), ``models``, ``profiles`` and ``distances`` [m]; plus
+``sheet_<split>.png`` contact sheets of full frames with the ROI drawn. Every split is cut into chunks
+with their own generator from ``SeedSequence([seed, split, chunk])``, so the output does not depend on
+``--workers``.
 """
 
 from __future__ import annotations
@@ -26,16 +28,18 @@ import cv2
 import numpy as np
 
 from flex_nav.perception.labels import LABELS
-from flex_nav.perception.preprocess import roi_patch
+from flex_nav.perception.preprocess import depth_patch, roi_patch
 from flex_nav.perception.roi import Roi
 
 PATCH_W, PATCH_H = 64, 64  # [px] the model input size (models/obstacle_classifier.yaml)
+DEPTH_RANGE = 4.0  # [m] depth patches are clipped here (a Kinect's range; farther or no return = this)
 SPLITS: Dict[str, Tuple[int, int]] = {  # split: (id in the seed, samples per label)
     "train": (0, 2000), "val": (1, 200), "test": (2, 300), "unseen": (3, 300),
     "extra": (4, 3000), "val_extra": (5, 150),  # training-only models too (tools.perception.scenes.TRAIN_ONLY)
     "extra2": (6, 600), "val_extra2": (7, 100),  # boxes in passages against look-alikes (scenes.PASSAGE)
     "extra3": (8, 2000), "val_extra3": (9, 100),  # randomised furniture and marked boxes (scenes.PROCEDURAL)
     "unseen2": (10, 300),  # a second held-out set (scenes.HELD_OUT_2)
+    "unseen3": (11, 300),  # a third held-out set (scenes.HELD_OUT_3)
 }
 CHUNK = 20  # samples per label in a chunk (one generator per chunk)
 SHEET_FRAMES = 24
@@ -46,6 +50,7 @@ class Chunk:
     """The samples of one chunk (picklable, for the worker pool)."""
 
     patches: np.ndarray  # uint8 (N, PATCH_H, PATCH_W, 3)
+    depths: np.ndarray  # uint16 (N, PATCH_H, PATCH_W) [mm]
     labels: np.ndarray  # int64 (N,), indices into LABELS
     models: List[str]
     profiles: List[str]
@@ -63,6 +68,7 @@ def render_chunk(args: Tuple[int, str, int, int, int]) -> Chunk:
     renderer = Renderer(rng)
     roi = Roi()
     patches: List[np.ndarray] = []
+    depths: List[np.ndarray] = []
     labels: List[int] = []
     models: List[str] = []
     profiles: List[str] = []
@@ -72,6 +78,8 @@ def render_chunk(args: Tuple[int, str, int, int, int]) -> Chunk:
         for label, model in jobs:
             sample = renderer.render(label, model)
             patches.append(roi_patch(sample.rgb, roi, PATCH_W, PATCH_H))
+            depth = depth_patch(sample.depth, roi, PATCH_W, PATCH_H, DEPTH_RANGE)
+            depths.append(np.round(depth * 1000.0).astype(np.uint16))
             labels.append(LABELS.index(label))
             models.append(model)
             profiles.append(sample.profile)
@@ -80,7 +88,7 @@ def render_chunk(args: Tuple[int, str, int, int, int]) -> Chunk:
                 frames.append(sample.rgb)
     finally:
         renderer.close()
-    return Chunk(np.stack(patches), np.array(labels, dtype=np.int64), models, profiles,
+    return Chunk(np.stack(patches), np.stack(depths), np.array(labels, dtype=np.int64), models, profiles,
                  np.array(distances, dtype=np.float32), frames)
 
 
@@ -124,12 +132,14 @@ def main(argv: List[str]) -> int:
         else:
             parts = [render_chunk(c) for c in chunks]
         patches = np.concatenate([p.patches for p in parts])
+        depths = np.concatenate([p.depths for p in parts])
         labels = np.concatenate([p.labels for p in parts])
         models = [m for p in parts for m in p.models]
         profiles = [m for p in parts for m in p.profiles]
         distances = np.concatenate([p.distances for p in parts])
-        np.savez_compressed(args.out / f"{split}.npz", patches=patches, labels=labels, models=np.array(models),
-                            profiles=np.array(profiles), distances=distances, classes=np.array(LABELS))
+        np.savez_compressed(args.out / f"{split}.npz", patches=patches, depths=depths, labels=labels,
+                            models=np.array(models), profiles=np.array(profiles), distances=distances,
+                            classes=np.array(LABELS))
         sheet = contact_sheet(parts[0].frames, Roi())
         cv2.imwrite(str(args.out / f"sheet_{split}.png"), cv2.cvtColor(sheet, cv2.COLOR_RGB2BGR))
         counts = {label: int((labels == i).sum()) for i, label in enumerate(LABELS)}

@@ -1,8 +1,10 @@
-"""Model inputs from an RGB image: the classifier's normalised ROI patch and the YOLO letterbox.
+"""Model inputs from an RGB (and depth) image: the classifier's normalised ROI patch and the YOLO letterbox.
 
 Both return float32 NCHW tensors with a batch of one. The classifier patch is the region of interest
 resized (area averaging) to the model's input size, then ``(pixel / 255 - mean) / std`` per channel;
 training (``tools/perception``) uses :func:`roi_patch` too, so training and runtime see the same pixels.
+An RGB-D classifier adds the same region of the registered depth image (:func:`depth_patch`) as a
+fourth channel, ``(depth / max_range - mean) / std``.
 The letterbox keeps the aspect ratio (ultralytics convention: scale to fit, pad evenly with grey 114,
 pixel / 255) and :class:`Letterbox` maps boxes back to the original image.
 """
@@ -29,6 +31,47 @@ def roi_patch(rgb: np.ndarray, roi: Roi, width: int, height: int) -> np.ndarray:
         return np.ascontiguousarray(crop)
     interpolation = cv2.INTER_AREA if crop.shape[1] >= width else cv2.INTER_LINEAR
     return cv2.resize(np.ascontiguousarray(crop), (width, height), interpolation=interpolation)
+
+
+def depth_patch(depth: np.ndarray, roi: Roi, width: int, height: int, max_range: float) -> np.ndarray:
+    """The region of interest of a depth image [m] (H, W) resized to (height, width) float32 [m] (area averaging).
+
+    Pixels without a return (NaN, +-inf, <= 0: REP 118's "no measurement" values) and pixels beyond
+    ``max_range`` [m] count as ``max_range``: the model sees "nothing within range" there. The depth
+    image must be registered to the colour image (same field of view); its resolution may differ."""
+    crop = roi.crop(depth).astype(np.float32)
+    with np.errstate(invalid="ignore"):
+        valid = np.isfinite(crop) & (crop > 0.0)
+    crop = np.where(valid, np.minimum(crop, np.float32(max_range)), np.float32(max_range))
+    if crop.shape[1] == width and crop.shape[0] == height:
+        return np.ascontiguousarray(crop, dtype=np.float32)
+    interpolation = cv2.INTER_AREA if crop.shape[1] >= width else cv2.INTER_LINEAR
+    return cv2.resize(np.ascontiguousarray(crop), (width, height), interpolation=interpolation)
+
+
+@dataclass(frozen=True)
+class DepthScaling:
+    """The depth channel of an RGB-D classifier: ``(depth / max_range - mean) / std`` (depth in [m])."""
+
+    max_range: float  # [m] farther or missing returns count as this
+    mean: float
+    std: float
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.max_range) and self.max_range > 0.0):
+            raise ConfigError(f"depth max_range {self.max_range!r} must be a finite number of metres > 0")
+        if not (math.isfinite(self.std) and self.std > 0.0 and math.isfinite(self.mean)):
+            raise ConfigError(f"depth std {self.std!r} must be finite and > 0, mean {self.mean!r} finite")
+
+    def __call__(self, patch: np.ndarray) -> np.ndarray:
+        """(H, W) [m] -> (1, 1, H, W) float32."""
+        scale = np.float32(1.0 / (self.max_range * self.std))
+        return (patch.astype(np.float32) * scale - np.float32(self.mean / self.std))[None, None]
+
+    def batch(self, patches: np.ndarray) -> np.ndarray:
+        """(N, H, W) [m] -> (N, 1, H, W) float32."""
+        scale = np.float32(1.0 / (self.max_range * self.std))
+        return (patches.astype(np.float32) * scale - np.float32(self.mean / self.std))[:, None]
 
 
 class Normaliser:
