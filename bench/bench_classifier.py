@@ -2,14 +2,14 @@
 
     .venv/bin/python bench/bench_classifier.py [--frames 500] [--samples 100]
 
-1. Speed: the whole per-frame path of the node (``sensor_msgs/Image`` bytes -> RGB -> ROI patch ->
-   normalise -> onnxruntime (1 intra-op + 1 inter-op thread) -> label) on simulator images of the
+1. Speed: the whole per-frame path of the node (``sensor_msgs/Image`` bytes -> RGB and depth [m] -> ROI
+   patches -> normalise -> onnxruntime (1 intra-op + 1 inter-op thread) -> label) on simulator frames of the
    classifier world, against the target of 5 ms and against the raw onnxruntime call on a prepared
    input measured in the same run (the reference). Also the YOLO decoder alone on a COCO-sized raw
    output (1, 84, 8400), for users who load their own detector (their network's time comes on top).
 2. Accuracy: ``--samples`` per label of freshly rendered scenes (a seed never used for training) with
-   the models seen in training and with each set of held-out models (``unseen``, ``unseen2``), against the
-   95 % target.
+   the models seen in training and with each set of held-out models (``unseen``, ``unseen2``, ``unseen3``),
+   against the 95 % target.
 Prints the figures, the ratios, and PASS/FAIL; the exit status is 1 on FAIL.
 """
 
@@ -28,7 +28,7 @@ REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
 
 from flex_nav.perception.classifier import DEFAULT_MODEL, ObstacleClassifier  # noqa: E402
-from flex_nav.perception.image import to_rgb  # noqa: E402
+from flex_nav.perception.image import to_depth, to_rgb  # noqa: E402
 from flex_nav.perception.labels import LABELS  # noqa: E402
 from flex_nav.perception.preprocess import roi_patch  # noqa: E402
 from flex_nav.perception.yolo import decode  # noqa: E402
@@ -43,10 +43,10 @@ WORLD = REPO / "test" / "data" / "perception" / "classifier_world.yaml"
 BENCH_SEED = 20261121  # never used for the training data (seed 7)
 
 
-def sim_images() -> list[np.ndarray]:
+def sim_images() -> list[ImageReading]:
     options = SensorOptions(odometry=False, lidar=False, bumpers=False, camera=True)
     with Simulation(load_world(WORLD), seed=0, sensors=options) as sim:
-        return [r.rgb for r in sim.step() if isinstance(r, ImageReading)]
+        return [r for r in sim.step() if isinstance(r, ImageReading)]
 
 
 def timed(fn: Callable[[], object], repeats: int) -> list[float]:
@@ -65,17 +65,23 @@ def summary(ms: list[float]) -> str:
 
 
 def bench_speed(clf: ObstacleClassifier, frames: int) -> bool:
-    images = sim_images()
-    buffers = [(np.ascontiguousarray(img).tobytes(), img.shape[1], img.shape[0]) for img in images]
-    for data, w, h in buffers:  # warm up
-        clf.classify(to_rgb(data, w, h, "rgb8"))
-    tensor = clf.input_tensor(images[0])
+    frames_in = sim_images()
+    images = [f.rgb for f in frames_in]
+    buffers = [(np.ascontiguousarray(f.rgb).tobytes(), f.depth.astype(np.float32).tobytes(), f.rgb.shape[1],
+                f.rgb.shape[0]) for f in frames_in]
+
+    def classify(data: bytes, depth: bytes, w: int, h: int) -> None:
+        clf.classify(to_rgb(data, w, h, "rgb8"), to_depth(depth, w, h, "32FC1") if clf.uses_depth else None)
+
+    for buffer in buffers:  # warm up
+        classify(*buffer)
+    tensor = clf.input_tensor(images[0], frames_in[0].depth)
     state = {"i": 0}
 
     def frame() -> None:
-        data, w, h = buffers[state["i"] % len(buffers)]
+        buffer = buffers[state["i"] % len(buffers)]
         state["i"] += 1
-        clf.classify(to_rgb(data, w, h, "rgb8"))
+        classify(*buffer)
 
     # interleave the measured path and the reference so load changes hit both alike
     full, raw, patch = [], [], []
@@ -84,11 +90,12 @@ def bench_speed(clf: ObstacleClassifier, frames: int) -> bool:
         raw += timed(lambda: clf.session.run(None, {clf.input_name: tensor}), 50)
         patch += timed(lambda: roi_patch(images[0], clf.roi, clf.metadata.width, clf.metadata.height), 50)
     median_full, median_raw = statistics.median(full), statistics.median(raw)
-    print(f"images: {len(images)} simulator frames {images[0].shape[1]}x{images[0].shape[0]} (rgb8), "
+    inputs = "rgb8 + 32FC1 depth" if clf.uses_depth else "rgb8"
+    print(f"images: {len(images)} simulator frames {images[0].shape[1]}x{images[0].shape[0]} ({inputs}), "
           f"model {DEFAULT_MODEL.name} {DEFAULT_MODEL.stat().st_size / 1024:.0f} KiB, one thread")
     print(f"  per frame (bytes -> label)      : {summary(full)}")
     print(f"  reference: onnxruntime run only : {summary(raw)}")
-    print(f"  of which ROI crop + resize      : {summary(patch)}")
+    print(f"  of which colour ROI crop + resize: {summary(patch)}")
     print(f"  ratio to the raw onnxruntime call: {median_full / median_raw:.2f}x")
     print(f"  ratio to the {TARGET_MS:.0f} ms target       : {median_full / TARGET_MS:.3f}x")
 
@@ -113,20 +120,21 @@ def bench_speed(clf: ObstacleClassifier, frames: int) -> bool:
 
 def bench_accuracy(clf: ObstacleClassifier, samples: int) -> bool:
     ok = True
-    for split_id, split in enumerate(("test", "unseen", "unseen2")):
+    for split_id, split in enumerate(("test", "unseen", "unseen2", "unseen3")):
         rng = np.random.default_rng(np.random.SeedSequence([BENCH_SEED, split_id]))
         renderer = Renderer(rng)
         correct = {label: 0 for label in LABELS}
         t0 = time.perf_counter()
         try:
             for label, model in plan(LABELS, samples, split, rng):
-                correct[label] += clf.classify(renderer.render(label, model).rgb).label == label
+                sample = renderer.render(label, model)
+                correct[label] += clf.classify(sample.rgb, sample.depth).label == label
         finally:
             renderer.close()
         accuracy = sum(correct.values()) / (samples * len(LABELS))
         recalls = ", ".join(f"{label} {100 * n / samples:.1f} %" for label, n in correct.items())
         what = {"test": "models seen in training", "unseen": "held-out models",
-                "unseen2": "the second set of held-out models"}[split]
+                "unseen2": "the second set of held-out models", "unseen3": "the third set of held-out models"}[split]
         print(f"accuracy, {samples * len(LABELS)} fresh renders with {what}: {100 * accuracy:.2f} % "
               f"(recall {recalls}; {time.perf_counter() - t0:.0f} s) -> "
               f"{'PASS' if accuracy >= TARGET_ACCURACY else 'FAIL'} (target {100 * TARGET_ACCURACY:.0f} %)")

@@ -3,10 +3,11 @@
     python -m tools.perception.evaluate --model models/obstacle_classifier.onnx --data build/dataset
 
 Runs the model exactly as the node does (:class:`flex_nav.perception.classifier.ObstacleClassifier`,
-onnxruntime, one thread) on the stored ROI patches of ``val`` and ``val_extra`` (the selection
-splits), ``test`` (models seen in training, new scenes) and ``unseen`` (people, objects and furniture
-held out of training), and prints per split the accuracy, per class precision and recall, the
-confusion matrix and the accuracy per scene model.
+onnxruntime, one thread) on the stored ROI patches (and depth patches, for an RGB-D model) of the
+``val*`` splits (model selection), ``test`` (models seen in training, new scenes) and ``unseen``,
+``unseen2``, ``unseen3`` (three sets of people, objects and furniture held out of training), and prints
+per split the accuracy, per class precision and recall, the confusion matrix and the accuracy per scene
+model.
 ``--write`` stores the figures in the model's YAML (``evaluation``).
 """
 
@@ -21,9 +22,10 @@ import numpy as np
 import yaml
 
 from flex_nav.perception.classifier import FORMAT, ObstacleClassifier, metadata_path_for
+from flex_nav.perception.preprocess import DepthScaling
 from flex_nav.perception.roi import Roi
 
-SPLITS = ("val", "val_extra", "val_extra2", "val_extra3", "test", "unseen", "unseen2")
+SPLITS = ("val", "val_extra", "val_extra2", "val_extra3", "test", "unseen", "unseen2", "unseen3")
 BATCH = 256
 
 
@@ -62,9 +64,11 @@ def evaluate_splits(model: Path, data: Path, splits: Sequence[str] = SPLITS) -> 
         with np.load(file) as f:
             patches, labels, models = f["patches"], f["labels"], f["models"]
             data_classes = [str(c) for c in f["classes"]]
+            depths = f["depths"].astype(np.float32) / np.float32(1000.0) if "depths" in f else None  # [m]
         predicted: List[int] = []
         for i in range(0, len(patches), BATCH):
-            probs = classifier.probabilities(classifier.normaliser.batch(patches[i : i + BATCH]))
+            depth = None if depths is None or not classifier.uses_depth else depths[i : i + BATCH]
+            probs = classifier.probabilities(classifier.batch_tensor(patches[i : i + BATCH], depth))
             predicted.extend(data_classes.index(classifier.decide(p).label) for p in probs)
         results[split] = metrics(labels, np.array(predicted), data_classes, models)
         report(split, results[split], data_classes)
@@ -92,17 +96,23 @@ def write_metadata(
     std: Sequence[float],
     size: Tuple[int, int],
     *,
+    depth: Optional[DepthScaling] = None,
     training: Optional[Dict[str, Any]] = None,
     evaluation: Optional[Dict[str, Any]] = None,
 ) -> Path:
     """Write (or update) the model's YAML: what the runtime needs, then training and evaluation records."""
     path = metadata_path_for(model)
     old = yaml.safe_load(path.read_text()) if path.exists() else {}
+    inp: Dict[str, Any] = {"width": size[0], "height": size[1], "mean": [float(m) for m in mean],
+                           "std": [float(s) for s in std], "layout": "NCHW, RGB, pixel / 255 then (x - mean) / std"}
+    if depth is not None:
+        inp["depth"] = {"max_range": depth.max_range, "mean": depth.mean, "std": depth.std}
+        inp["layout"] = ("NCHW, R G B D: pixel / 255 then (x - mean) / std; D = depth [m] (registered; none or "
+                         "beyond max_range = max_range) / max_range then (x - depth.mean) / depth.std")
     doc = {
         "format": FORMAT,
         "model": model.name,
-        "input": {"width": size[0], "height": size[1], "mean": [float(m) for m in mean],
-                  "std": [float(s) for s in std], "layout": "NCHW, RGB, pixel / 255 then (x - mean) / std"},
+        "input": inp,
         "output": "probabilities",
         "classes": list(classes),
         "roi": [Roi().x_min, Roi().y_min, Roi().x_max, Roi().y_max],
@@ -131,7 +141,8 @@ def main(argv: List[str]) -> int:
     if args.write:
         classifier = ObstacleClassifier(args.model)
         meta = classifier.metadata
-        write_metadata(args.model, meta.classes, meta.mean, meta.std, (meta.width, meta.height), evaluation=results)
+        write_metadata(args.model, meta.classes, meta.mean, meta.std, (meta.width, meta.height), depth=meta.depth,
+                       evaluation=results)
     return 0
 
 

@@ -4,9 +4,12 @@
     python -m tools.perception.render_dataset --out build/dataset --seed 7
     python -m tools.perception.train --data build/dataset --seed 7 --out models/obstacle_classifier.onnx
 
-Trains on ``train`` + ``extra`` + ``extra2`` (the latter two add the training-only models of
-:data:`tools.perception.scenes.TRAIN_ONLY` and boxes in passages, :data:`~tools.perception.scenes.PASSAGE`)
-and selects on ``val`` + ``val_extra`` + ``val_extra2``: never on ``test`` or ``unseen``. Fixed seed,
+Trains on ``train`` + ``extra`` + ``extra2`` + ``extra3`` (the latter add the training-only models of
+:data:`tools.perception.scenes.TRAIN_ONLY`, boxes in passages, :data:`~tools.perception.scenes.PASSAGE`, and
+randomised furniture, :data:`~tools.perception.scenes.PROCEDURAL`) and selects on the ``val*`` splits: never
+on ``test`` or the ``unseen*`` splits. ``--input rgbd`` (the default) adds the registered depth patch as a
+fourth channel (depth / ``DEPTH_RANGE``, with sensor-like noise, holes and a minimum range as
+augmentation); ``--input rgb`` trains a colour-only model. Fixed seed,
 CPU, ``--threads`` torch threads (1 by default; the result depends on it). The
 model is picked at the epoch with the best validation accuracy, exported with
 ``torch.onnx.export(..., dynamo=False)`` (softmax inside the graph, dynamic batch), then evaluated
@@ -28,16 +31,18 @@ import numpy as np
 
 MEAN = (0.5, 0.5, 0.5)
 STD = (0.25, 0.25, 0.25)
+DEPTH_MEAN, DEPTH_STD = 0.5, 0.25  # on depth / DEPTH_RANGE
+INPUTS = ("rgbd", "rgb")
 DATASET_COMMAND = "python -m tools.perception.render_dataset --out build/dataset --seed {seed}"
 TRAIN_SPLITS = ("train", "extra", "extra2", "extra3")
 VAL_SPLITS = ("val", "val_extra", "val_extra2", "val_extra3")
-TRAIN_COMMAND = "python -m tools.perception.train --data build/dataset --seed {seed} --out {out}"
+TRAIN_COMMAND = "python -m tools.perception.train --data build/dataset --seed {seed} --epochs {epochs} --out {out}"
 
 
 WIDTHS = (16, 32, 64, 96, 128)  # output channels of the conv blocks
 
 
-def build_model(classes: int, widths: Sequence[int] = WIDTHS) -> Any:
+def build_model(classes: int, widths: Sequence[int] = WIDTHS, channels: int = 4) -> Any:
     """conv3x3 blocks (``widths``) with batch norm and 2x2 max pooling after every block but the last,
     global average pooling, dropout, linear. Five blocks on 64 px: the last one sees the whole patch at
     4 x 4, so the shape of the whole object (long and raised furniture against a box) counts."""
@@ -48,14 +53,15 @@ def build_model(classes: int, widths: Sequence[int] = WIDTHS) -> Any:
         return [*layers, nn.MaxPool2d(2)] if pool else layers
 
     layers: List[Any] = []
-    for i, (cin, cout) in enumerate(zip((3, *widths[:-1]), widths)):
+    for i, (cin, cout) in enumerate(zip((channels, *widths[:-1]), widths)):
         layers += block(cin, cout, i < len(widths) - 1)
     return nn.Sequential(*layers, nn.AdaptiveAvgPool2d(1), nn.Flatten(), nn.Dropout(0.2),
                          nn.Linear(widths[-1], classes))
 
 
 def augment(batch: Any, gen: Any) -> Any:
-    """Flips, shifts of up to 4 px, brightness/contrast/colour jitter and sensor noise (on 0..1 images)."""
+    """Flips and shifts of up to 4 px (every channel), then :func:`augment_colour` on the first three
+    channels and :func:`augment_depth` on the fourth if there is one (on 0..1 images)."""
     import torch
 
     n = batch.shape[0]
@@ -64,6 +70,39 @@ def augment(batch: Any, gen: Any) -> Any:
     padded = torch.nn.functional.pad(batch, (4, 4, 4, 4), mode="replicate")
     dx, dy = torch.randint(0, 9, (2,), generator=gen).tolist()
     batch = padded[:, :, dy : dy + batch.shape[2], dx : dx + batch.shape[3]]
+    if batch.shape[1] == 3:
+        return augment_colour(batch, gen)
+    return torch.cat([augment_colour(batch[:, :3], gen), augment_depth(batch[:, 3:], gen)], dim=1)
+
+
+def augment_depth(depth: Any, gen: Any) -> Any:
+    """Depth (N, 1, H, W) as depth / DEPTH_RANGE: a scale error of up to 3 %, noise growing with the square of
+    the distance (about 1 cm at 1 m, as stereo and structured light), and in some frames what real depth
+    cameras lose: returns closer than a minimum range (0.3-0.6 m) and scattered holes; lost returns read as
+    the range limit (1.0), as :func:`flex_nav.perception.preprocess.depth_patch` maps them."""
+    import torch
+
+    from tools.perception.render_dataset import DEPTH_RANGE
+
+    n = depth.shape[0]
+    far = depth >= 0.999
+    scale = 1.0 + 0.06 * torch.rand(n, 1, 1, 1, generator=gen) - 0.03
+    metres = depth * DEPTH_RANGE * scale
+    metres = metres + (0.002 + 0.01 * metres * metres) * torch.randn(depth.shape, generator=gen)
+    lost = far | (metres <= 0.0)
+    min_range = 0.3 + 0.3 * torch.rand(n, 1, 1, 1, generator=gen)
+    clipped = torch.rand(n, 1, 1, 1, generator=gen) < 0.3
+    lost |= clipped & (metres < min_range)
+    holes = torch.rand(n, 1, 1, 1, generator=gen) < 0.3
+    lost |= holes & (torch.rand(depth.shape, generator=gen) < 0.1 * torch.rand(n, 1, 1, 1, generator=gen))
+    return torch.where(lost, torch.ones_like(depth), (metres / DEPTH_RANGE).clamp(0.0, 1.0))
+
+
+def augment_colour(batch: Any, gen: Any) -> Any:
+    """Brightness/contrast/colour jitter and sensor noise on RGB (N, 3, H, W) in 0..1."""
+    import torch
+
+    n = batch.shape[0]
     contrast = 0.75 + 0.5 * torch.rand(n, 1, 1, 1, generator=gen)
     brightness = 0.16 * torch.rand(n, 1, 1, 1, generator=gen) - 0.08
     tint = 1.0 + 0.1 * torch.rand(n, 3, 1, 1, generator=gen) - 0.05
@@ -73,14 +112,23 @@ def augment(batch: Any, gen: Any) -> Any:
     return batch.clamp(0.0, 1.0)
 
 
-def load_split(data: Path, split: str) -> Tuple[np.ndarray, np.ndarray, np.ndarray, List[str]]:
+def load_split(data: Path, split: str, depth: bool) -> Tuple[np.ndarray, np.ndarray, np.ndarray, List[str]]:
+    """(N, H, W, 3 or 4) float32 images in 0..1 (depth: / DEPTH_RANGE), labels, models, classes."""
+    from tools.perception.render_dataset import DEPTH_RANGE
+
     with np.load(data / f"{split}.npz") as f:
-        return f["patches"], f["labels"], f["models"], [str(c) for c in f["classes"]]
+        images = f["patches"].astype(np.float32) / np.float32(255.0)
+        if depth:
+            if "depths" not in f:
+                raise ValueError(f"split {split!r} in {data} has no depth patches: render it again")
+            metres = f["depths"].astype(np.float32) / np.float32(1000.0)
+            images = np.concatenate([images, (metres / np.float32(DEPTH_RANGE))[..., None]], axis=3)
+        return images, f["labels"], f["models"], [str(c) for c in f["classes"]]
 
 
-def load_splits(data: Path, splits: Sequence[str]) -> Tuple[np.ndarray, np.ndarray, List[str]]:
-    """The patches and labels of several splits, concatenated; ValueError if their classes differ."""
-    parts = [load_split(data, split) for split in splits]
+def load_splits(data: Path, splits: Sequence[str], depth: bool) -> Tuple[np.ndarray, np.ndarray, List[str]]:
+    """The images and labels of several splits, concatenated; ValueError if their classes differ."""
+    parts = [load_split(data, split, depth) for split in splits]
     classes = parts[0][3]
     for split, part in zip(splits, parts):
         if part[3] != classes:
@@ -106,28 +154,33 @@ def main(argv: List[str]) -> int:  # noqa: PLR0915 - one linear training script
     parser.add_argument("--train-splits", nargs="+", default=list(TRAIN_SPLITS))
     parser.add_argument("--val-splits", nargs="+", default=list(VAL_SPLITS), help="model selection only")
     parser.add_argument("--widths", type=int, nargs="+", default=list(WIDTHS), help="conv block channels")
+    parser.add_argument("--input", choices=INPUTS, default="rgbd", help="colour and depth, or colour only")
     args = parser.parse_args(argv)
+    depth = args.input == "rgbd"
 
     import torch
 
+    from flex_nav.perception.preprocess import DepthScaling
     from tools.perception.evaluate import evaluate_splits, write_metadata
+    from tools.perception.render_dataset import DEPTH_RANGE
 
     torch.manual_seed(args.seed)
     torch.set_num_threads(args.threads)
     torch.use_deterministic_algorithms(True, warn_only=True)
     gen = torch.Generator().manual_seed(args.seed)
 
-    x_train, y_train, classes = load_splits(args.data, args.train_splits)
-    x_val, y_val, val_classes = load_splits(args.data, args.val_splits)
+    x_train, y_train, classes = load_splits(args.data, args.train_splits, depth)
+    x_val, y_val, val_classes = load_splits(args.data, args.val_splits, depth)
     if val_classes != classes:
         raise ValueError(f"validation classes {val_classes} differ from the training classes {classes}")
-    to_tensor = lambda x: torch.from_numpy(x).permute(0, 3, 1, 2).float().div_(255.0)  # noqa: E731
+    to_tensor = lambda x: torch.from_numpy(x).permute(0, 3, 1, 2).contiguous()  # noqa: E731
     train_images, train_labels = to_tensor(x_train), torch.from_numpy(y_train)
     val_images, val_labels = to_tensor(x_val), torch.from_numpy(y_val)
-    mean = torch.tensor(MEAN).view(1, 3, 1, 1)
-    std = torch.tensor(STD).view(1, 3, 1, 1)
+    channels = train_images.shape[1]
+    mean = torch.tensor(MEAN + ((DEPTH_MEAN,) if depth else ())).view(1, channels, 1, 1)
+    std = torch.tensor(STD + ((DEPTH_STD,) if depth else ())).view(1, channels, 1, 1)
 
-    model = build_model(len(classes), args.widths)
+    model = build_model(len(classes), args.widths, channels)
     params = sum(p.numel() for p in model.parameters())
     optimiser = torch.optim.AdamW(model.parameters(), lr=args.lr, weight_decay=1e-4)
     steps = args.epochs * ((len(train_labels) + args.batch - 1) // args.batch)
@@ -166,7 +219,7 @@ def main(argv: List[str]) -> int:  # noqa: PLR0915 - one linear training script
     export = torch.nn.Sequential(model, torch.nn.Softmax(dim=1)).eval()
     args.out.parent.mkdir(parents=True, exist_ok=True)
     torch.onnx.export(
-        export, (torch.zeros(1, 3, x_train.shape[1], x_train.shape[2]),), str(args.out), dynamo=False,
+        export, (torch.zeros(1, channels, x_train.shape[1], x_train.shape[2]),), str(args.out), dynamo=False,
         input_names=["image"], output_names=["probabilities"], dynamic_axes={"image": {0: "batch"},
                                                                             "probabilities": {0: "batch"}},
         opset_version=17,
@@ -175,7 +228,8 @@ def main(argv: List[str]) -> int:  # noqa: PLR0915 - one linear training script
           f"wrote {args.out} ({args.out.stat().st_size / 1024:.0f} KiB)")
     training = {
         "dataset_command": DATASET_COMMAND.format(seed=dataset_seed(args.data, args.seed)),
-        "command": TRAIN_COMMAND.format(seed=args.seed, out=args.out),
+        "command": TRAIN_COMMAND.format(seed=args.seed, epochs=args.epochs, out=args.out)
+        + ("" if depth else " --input rgb"),
         "seed": args.seed,
         "epochs": args.epochs,
         "best_epoch": best["epoch"],
@@ -190,9 +244,10 @@ def main(argv: List[str]) -> int:  # noqa: PLR0915 - one linear training script
         "torch": torch.__version__.split("+")[0],
     }
     size = (x_train.shape[2], x_train.shape[1])
-    write_metadata(args.out, classes, MEAN, STD, size, training=training)
+    depth_input = DepthScaling(DEPTH_RANGE, DEPTH_MEAN, DEPTH_STD) if depth else None
+    write_metadata(args.out, classes, MEAN, STD, size, depth=depth_input, training=training)
     results = evaluate_splits(args.out, args.data)
-    write_metadata(args.out, classes, MEAN, STD, size, training=training, evaluation=results)
+    write_metadata(args.out, classes, MEAN, STD, size, depth=depth_input, training=training, evaluation=results)
     return 0
 
 

@@ -4,12 +4,15 @@ A classifier model comes with a metadata YAML beside it (same name, ``.yaml``) t
 it; ``models/obstacle_classifier.yaml`` is the shipped example::
 
     format: flex_nav_obstacle_classifier/1
-    input: {width: 64, height: 64, mean: [0.5, 0.5, 0.5], std: [0.25, 0.25, 0.25]}  # RGB, pixel/255
+    input: {width: 64, height: 64, mean: [0.5, 0.5, 0.5], std: [0.25, 0.25, 0.25],   # RGB, pixel/255
+            depth: {max_range: 4.0, mean: 0.5, std: 0.25}}   # optional: a 4th channel, depth [m] / max_range
     output: probabilities          # or logits (softmax applied here)
     classes: [person, movable, clear]
     roi: [0.2, 0.0, 0.8, 1.0]      # the region the model was trained on (the node may override it)
 
-Everything is checked when loading: a missing or malformed field raises ConfigError naming the file
+A model with ``input.depth`` takes N x 4 x H x W (R, G, B, depth) and needs the depth image registered
+to the colour image with every frame (:func:`flex_nav.perception.preprocess.depth_patch`); without it,
+N x 3 x H x W. Everything is checked when loading: a missing or malformed field raises ConfigError naming the file
 and the field. The class names map to person / movable / ignore (= clear) as in
 :func:`flex_nav.perception.labels.class_roles`; a frame's label is the role with the highest summed
 probability.
@@ -27,7 +30,7 @@ import yaml
 from flex_nav.exceptions import ConfigError, choices_message
 from flex_nav.perception.labels import LABELS, Prediction, class_roles, label_of_role
 from flex_nav.perception.onnx_model import image_input, make_session, static_size
-from flex_nav.perception.preprocess import Normaliser, roi_patch
+from flex_nav.perception.preprocess import DepthScaling, Normaliser, depth_patch, roi_patch
 from flex_nav.perception.roi import Roi
 
 FORMAT = "flex_nav_obstacle_classifier/1"
@@ -49,6 +52,11 @@ class ClassifierMetadata:
     output: str  # one of OUTPUTS
     classes: Tuple[str, ...]
     roi: Roi
+    depth: Optional[DepthScaling] = None  # None: a colour-only model
+
+    @property
+    def channels(self) -> int:
+        return 3 if self.depth is None else 4
 
 
 def metadata_path_for(model: PathLike) -> Path:
@@ -75,7 +83,7 @@ def load_metadata(path: PathLike) -> ClassifierMetadata:
 
     if field("format") != FORMAT:
         raise ConfigError(f"classifier metadata {file}: field format = {top['format']!r}, expected {FORMAT!r}")
-    (width, height), mean, std = _input_section(file, field("input"))
+    (width, height), mean, std, depth = _input_section(file, field("input"))
     output = field("output")
     if output not in OUTPUTS:
         raise ConfigError(choices_message(f"classifier metadata {file}: field output", output, OUTPUTS))
@@ -85,14 +93,14 @@ def load_metadata(path: PathLike) -> ClassifierMetadata:
     if len(set(classes)) != len(classes):
         raise ConfigError(f"classifier metadata {file}: field classes = {classes!r} has duplicates")
     roi = Roi.from_sequence(top["roi"], f"classifier metadata {file}: field roi") if "roi" in top else Roi()
-    return ClassifierMetadata(str(file), width, height, mean, std, output, tuple(classes), roi)
+    return ClassifierMetadata(str(file), width, height, mean, std, output, tuple(classes), roi, depth)
 
 
 Triple = Tuple[float, float, float]
 
 
-def _input_section(file: Path, inp: Any) -> Tuple[Tuple[int, int], Triple, Triple]:
-    """(width, height), mean, std from the metadata's ``input`` mapping."""
+def _input_section(file: Path, inp: Any) -> Tuple[Tuple[int, int], Triple, Triple, Optional[DepthScaling]]:
+    """(width, height), mean, std, depth scaling (None: colour only) from the metadata's ``input`` mapping."""
     if not isinstance(inp, dict):
         raise ConfigError(f"classifier metadata {file}: field input must be a mapping")
     size = []
@@ -111,11 +119,28 @@ def _input_section(file: Path, inp: Any) -> Tuple[Tuple[int, int], Triple, Tripl
         Normaliser(norm[0], norm[1])
     except ConfigError as err:
         raise ConfigError(f"classifier metadata {file}: field input: {err}") from err
-    return (size[0], size[1]), norm[0], norm[1]
+    return (size[0], size[1]), norm[0], norm[1], _depth_section(file, inp.get("depth"))
+
+
+def _depth_section(file: Path, depth: Any) -> Optional[DepthScaling]:
+    """The optional ``input.depth`` mapping: ``max_range`` [m], ``mean``, ``std``."""
+    if depth is None:
+        return None
+    keys = ("max_range", "mean", "std")
+    if not isinstance(depth, dict) or sorted(depth) != sorted(keys):
+        raise ConfigError(f"classifier metadata {file}: field input.depth = {depth!r} must map exactly "
+                          f"{', '.join(keys)} to numbers")
+    for key in keys:
+        if isinstance(depth[key], bool) or not isinstance(depth[key], (int, float)):
+            raise ConfigError(f"classifier metadata {file}: field input.depth.{key} = {depth[key]!r} must be a number")
+    try:
+        return DepthScaling(float(depth["max_range"]), float(depth["mean"]), float(depth["std"]))
+    except ConfigError as err:
+        raise ConfigError(f"classifier metadata {file}: field input.depth: {err}") from err
 
 
 class ObstacleClassifier:
-    """Classifies the region of interest of an RGB image as person / movable / clear.
+    """Classifies the region of interest of an RGB (or RGB + depth) image as person / movable / clear.
 
     ``model``: an ONNX file (default: the shipped ``models/obstacle_classifier.onnx``); ``metadata``:
     its YAML (default: beside the model); ``roi``: overrides the metadata's; ``class_map``: model class
@@ -132,9 +157,9 @@ class ObstacleClassifier:
         model_path = Path(model) if model is not None else DEFAULT_MODEL
         self.session = make_session(model_path, "classifier model")  # first: a wrong path is the likelier mistake
         self.metadata = load_metadata(metadata if metadata is not None else metadata_path_for(model_path))
-        self.input_name, shape = image_input(self.session, f"classifier model {model_path}")
-        size = static_size(shape)
         meta = self.metadata
+        self.input_name, shape = image_input(self.session, f"classifier model {model_path}", meta.channels)
+        size = static_size(shape)
         if size is not None and size != (meta.width, meta.height):
             raise ConfigError(
                 f"classifier model {model_path} takes {size[0]}x{size[1]} images but its metadata "
@@ -153,13 +178,39 @@ class ObstacleClassifier:
         self.roi = roi if roi is not None else meta.roi
         self.roles = class_roles(meta.classes, class_map, "class_map")
         self.normaliser = Normaliser(meta.mean, meta.std)
+        self.depth_scaling = meta.depth
         self._role_index = {label: np.array([i for i, r in enumerate(self.roles) if label_of_role(r) == label],
                                             dtype=np.int64) for label in LABELS}
-        self.description = f"classifier {model_path.name} ({', '.join(meta.classes)}; {meta.width}x{meta.height})"
+        inputs = "RGB-D" if meta.depth is not None else "RGB"
+        self.description = (f"classifier {model_path.name} ({', '.join(meta.classes)}; {inputs} "
+                            f"{meta.width}x{meta.height})")
 
-    def input_tensor(self, rgb: np.ndarray) -> np.ndarray:
-        """The normalised NCHW float32 input for an RGB image (H, W, 3) uint8."""
-        return self.normaliser(roi_patch(rgb, self.roi, self.metadata.width, self.metadata.height))
+    @property
+    def uses_depth(self) -> bool:
+        """True if every frame needs the registered depth image too."""
+        return self.depth_scaling is not None
+
+    def input_tensor(self, rgb: np.ndarray, depth: Optional[np.ndarray] = None) -> np.ndarray:
+        """The normalised NCHW float32 input for an RGB image (H, W, 3) uint8 and, for an RGB-D model, the
+        depth image [m] (H', W') registered to it; ConfigError if the model needs depth and none is given."""
+        meta = self.metadata
+        colour = self.normaliser(roi_patch(rgb, self.roi, meta.width, meta.height))
+        if self.depth_scaling is None:
+            return colour
+        if depth is None:
+            raise ConfigError(f"classifier model {self.path} takes colour and depth: a depth image is needed "
+                              "with every frame")
+        patch = depth_patch(depth, self.roi, meta.width, meta.height, self.depth_scaling.max_range)
+        return np.concatenate([colour, self.depth_scaling(patch)], axis=1)
+
+    def batch_tensor(self, patches: np.ndarray, depth_patches: Optional[np.ndarray] = None) -> np.ndarray:
+        """The normalised input for stored ROI patches (N, H, W, 3) uint8 and depth patches (N, H, W) [m]."""
+        colour = self.normaliser.batch(patches)
+        if self.depth_scaling is None:
+            return colour
+        if depth_patches is None:
+            raise ConfigError(f"classifier model {self.path} takes colour and depth: depth patches are needed")
+        return np.concatenate([colour, self.depth_scaling.batch(depth_patches)], axis=1)
 
     def probabilities(self, tensor: np.ndarray) -> np.ndarray:
         """Class probabilities (N, classes) for a normalised input batch."""
@@ -172,9 +223,10 @@ class ObstacleClassifier:
             scores /= scores.sum(axis=1, keepdims=True)
         return scores
 
-    def classify(self, rgb: np.ndarray) -> Prediction:
-        """The label of the region of interest of ``rgb`` (H, W, 3) uint8 and its probability."""
-        return self.decide(self.probabilities(self.input_tensor(rgb))[0])
+    def classify(self, rgb: np.ndarray, depth: Optional[np.ndarray] = None) -> Prediction:
+        """The label of the region of interest of ``rgb`` (H, W, 3) uint8 (with ``depth`` [m] registered to it
+        for an RGB-D model) and its probability."""
+        return self.decide(self.probabilities(self.input_tensor(rgb, depth))[0])
 
     def decide(self, probabilities: np.ndarray) -> Prediction:
         """Label = the role with the highest summed class probability."""

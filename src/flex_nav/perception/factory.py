@@ -2,7 +2,8 @@
 
 ``model_type`` ``classifier`` loads :class:`ObstacleClassifier` (the shipped model by default),
 ``yolo`` loads :class:`YoloObstacleDetector` (a user's ultralytics export). Both answer
-``classify(rgb) -> Prediction`` and carry a one-line ``description``.
+``classify(rgb, depth=None) -> Prediction``, say whether they need the depth image (``uses_depth``) and
+carry a one-line ``description``.
 """
 
 from __future__ import annotations
@@ -24,7 +25,11 @@ MODEL_TYPES = ("classifier", "yolo")
 class FrameClassifier(Protocol):
     description: str
 
-    def classify(self, rgb: np.ndarray) -> Prediction: ...
+    @property
+    def uses_depth(self) -> bool:
+        """True if :meth:`classify` needs the depth image registered to the colour image."""
+
+    def classify(self, rgb: np.ndarray, depth: Optional[np.ndarray] = None) -> Prediction: ...
 
 
 @dataclass(frozen=True)

@@ -1,8 +1,10 @@
-"""A ``sensor_msgs/Image``-like buffer -> an RGB ``uint8`` array (height, width, 3), without cv_bridge.
+"""A ``sensor_msgs/Image``-like buffer -> an RGB ``uint8`` array (height, width, 3), or a depth image
+[m] float32 (height, width), without cv_bridge.
 
-Only 8-bit encodings are accepted; each row may be padded (``step`` >= width * channels). The result
-is a view into the buffer where no channel reordering is needed (``rgb8`` without padding), so the
-caller must not keep it past the buffer's lifetime if the buffer is reused.
+Colour: only 8-bit encodings are accepted; depth: REP 118's ``32FC1`` [m] and ``16UC1`` [mm] (0 = no
+return). Each row may be padded (``step`` >= width * bytes per pixel). The colour result is a view into
+the buffer where no channel reordering is needed (``rgb8`` without padding), so the caller must not
+keep it past the buffer's lifetime if the buffer is reused.
 """
 
 from __future__ import annotations
@@ -48,3 +50,32 @@ def to_rgb(data: Buffer, width: int, height: int, encoding: str, step: int = 0) 
     if encoding == "rgba8":
         return pixels[:, :, :3]
     return pixels[:, :, 2::-1]  # bgr8 / bgra8: B, G, R -> R, G, B
+
+
+DEPTH_ENCODINGS: Dict[str, str] = {"32FC1": "f4", "16UC1": "u2"}  # numpy type (byte order added from the message)
+
+
+def to_depth(data: Buffer, width: int, height: int, encoding: str, step: int = 0, *,
+             bigendian: bool = False) -> np.ndarray:
+    """Depth [m] float32 (height, width) from a REP 118 depth image: ``32FC1`` in metres or ``16UC1`` in
+    millimetres (0 = no return, kept as 0: :func:`flex_nav.perception.preprocess.depth_patch` treats it as
+    missing). ConfigError names an unsupported encoding, a bad size, step or buffer length."""
+    kind = DEPTH_ENCODINGS.get(encoding)
+    if kind is None:
+        raise ConfigError(choices_message("depth image encoding", encoding, tuple(DEPTH_ENCODINGS)))
+    if width <= 0 or height <= 0:
+        raise ConfigError(f"depth image size {width}x{height} must be positive")
+    dtype = np.dtype(kind).newbyteorder(">" if bigendian else "<")
+    row = width * dtype.itemsize
+    step = row if step == 0 else step
+    if step < row or step % dtype.itemsize:
+        raise ConfigError(f"depth image step {step} must be >= a row ({width} px x {dtype.itemsize} bytes = {row}) "
+                          f"and a multiple of {dtype.itemsize}")
+    flat = np.frombuffer(data, dtype=np.uint8) if not isinstance(data, np.ndarray) else data.reshape(-1).view(np.uint8)
+    if flat.size < step * height:
+        raise ConfigError(f"depth image data has {flat.size} bytes, {step} x {height} = {step * height} expected")
+    rows = flat[: step * height].reshape(height, step)[:, :row]
+    values = np.ascontiguousarray(rows).view(dtype).reshape(height, width)
+    if encoding == "16UC1":
+        return values.astype(np.float32) * np.float32(0.001)
+    return values.astype(np.float32)

@@ -34,15 +34,17 @@ def make_session(path: Union[str, Path], what: str = "model") -> Any:
         raise ConfigError(f"{what} {str(path)!r} is not a loadable ONNX model: {err}") from err
 
 
-def image_input(session: Any, what: str = "model") -> Tuple[str, List[Dim]]:
-    """Name and shape of the model's single 4-D image input (N, 3, H, W); ConfigError otherwise."""
+def image_input(session: Any, what: str = "model", channels: int = 3) -> Tuple[str, List[Dim]]:
+    """Name and shape of the model's single 4-D image input (N, ``channels``, H, W); ConfigError otherwise."""
     inputs = session.get_inputs()
     if len(inputs) != 1:
-        raise ConfigError(f"{what} must have one input (an N x 3 x H x W image), it has {len(inputs)}: "
+        raise ConfigError(f"{what} must have one input (an N x {channels} x H x W image), it has {len(inputs)}: "
                           f"{[i.name for i in inputs]}")
     shape = list(inputs[0].shape)
-    if len(shape) != 4 or (shape[1] not in (3, None) and not isinstance(shape[1], str)):
-        raise ConfigError(f"{what} input {inputs[0].name!r} has shape {shape}; N x 3 x H x W expected")
+    if len(shape) != 4 or (shape[1] not in (channels, None) and not isinstance(shape[1], str)):
+        kind = {3: " (RGB)", 4: " (RGB + depth)"}.get(channels, "")
+        raise ConfigError(f"{what} input {inputs[0].name!r} has shape {shape}; N x {channels} x H x W{kind} "
+                          "expected")
     if "float" not in inputs[0].type:
         raise ConfigError(f"{what} input {inputs[0].name!r} is {inputs[0].type}; a float tensor expected")
     return str(inputs[0].name), shape

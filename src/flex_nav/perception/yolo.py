@@ -242,7 +242,10 @@ class YoloObstacleDetector:
                        iou_threshold=self.iou_threshold, max_detections=self.max_detections)
         return found.mapped(box)
 
-    def classify(self, rgb: np.ndarray) -> Prediction:
+    uses_depth = False  # a detector on colour images only
+
+    def classify(self, rgb: np.ndarray, depth: Optional[np.ndarray] = None) -> Prediction:
+        """The frame label from the detections in ``rgb`` (``depth`` is not used)."""
         return self.decide(self.detect(rgb), rgb.shape[1], rgb.shape[0])
 
     def decide(self, found: Detections, width: int, height: int) -> Prediction:

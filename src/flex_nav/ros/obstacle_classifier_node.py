@@ -4,7 +4,10 @@
 ``<group ns>``). Every received image (at most ``~max_rate`` per second) is classified
 (:mod:`flex_nav.perception`); the majority of the last ``~window`` frames is published.
 
-Subscribes ``camera/rgb/image_raw`` (sensor_msgs/Image: rgb8, bgr8, rgba8, bgra8 or mono8).
+Subscribes ``camera/rgb/image_raw`` (sensor_msgs/Image: rgb8, bgr8, rgba8, bgra8 or mono8) and, for a
+model that takes depth (the shipped one does), ``camera/depth/image_raw`` (32FC1 [m] or 16UC1 [mm], REP
+118, registered to the colour image: same field of view, any resolution); a colour frame is classified
+with the depth frame whose stamp is at most ``~max_depth_lag`` away, and skipped if none comes.
 Publishes ``obstacle_class`` (flex_nav/ObstacleClass) after every classified frame.
 Serves ``safe_to_push`` (std_srvs/SetBool): ``success`` is True only when the smoothed label is
 ``movable``, fewer than ``~person_veto`` frames of the window saw a person and the latest classified
@@ -33,6 +36,7 @@ status 2 and a message naming the parameter or field):
   ~person_veto         int    2            safe_to_push refuses with this many person frames in the window (0 = off)
   ~max_image_age       float  1.0          [s] safe_to_push refuses when the latest classified image is older
   ~fresh_vote_timeout  float  5.0          [s] wall-clock bound of a fresh vote (data = True)
+  ~max_depth_lag       float  0.1          [s] RGB-D models: largest stamp difference of a colour and a depth frame
 """
 
 from __future__ import annotations
@@ -48,7 +52,8 @@ from std_srvs.srv import SetBool, SetBoolResponse
 from flex_nav.exceptions import ConfigError
 from flex_nav.msg import ObstacleClass
 from flex_nav.perception.factory import PerceptionConfig, as_names, build
-from flex_nav.perception.image import to_rgb
+from flex_nav.perception.frame_pairing import FramePairing
+from flex_nav.perception.image import to_depth, to_rgb
 from flex_nav.perception.labels import LABELS, Prediction
 from flex_nav.perception.push_decision import describe, safe_to_push
 from flex_nav.perception.roi import Roi
@@ -58,7 +63,7 @@ from flex_nav.ros.params import param_float, param_int, param_str, reject_unknow
 PARAMS = (
     "model_type", "model", "metadata", "class_map", "class_names", "roi", "conf_threshold", "iou_threshold",
     "min_roi_overlap", "yolo_layout", "input_size", "window", "max_rate", "person_veto", "max_image_age",
-    "fresh_vote_timeout",
+    "fresh_vote_timeout", "max_depth_lag",
 )
 IMAGE_BUFFER = 1 << 24  # [bytes] socket buffer: a whole 640x480 image fits, so the queue of one holds the newest
 
@@ -116,6 +121,8 @@ class ObstacleClassifierNode:
         self.person_veto = param_int("~person_veto", 2, 0, MAX_WINDOW)
         self.max_image_age = param_float("~max_image_age", 1.0, 0.0)  # [s]
         self.fresh_vote_timeout = param_float("~fresh_vote_timeout", 5.0, 0.0)  # [s] wall clock
+        self.max_depth_lag = param_float("~max_depth_lag", 0.1, 0.0)  # [s]
+        self._pairing: FramePairing[Image, Image] = FramePairing(self.max_depth_lag)
         self._cond = threading.Condition()
         self._vote = MajorityVote(self.window)
         self._last_frame: Optional[float] = None  # [s] ROS time the latest classified image arrived
@@ -126,8 +133,15 @@ class ObstacleClassifierNode:
         self.subscriber = rospy.Subscriber(
             "camera/rgb/image_raw", Image, self._on_image, queue_size=1, buff_size=IMAGE_BUFFER
         )
+        self.depth_subscriber: Optional[rospy.Subscriber] = None
+        if self.classifier.uses_depth:
+            self.depth_subscriber = rospy.Subscriber(
+                "camera/depth/image_raw", Image, self._on_depth, queue_size=1, buff_size=IMAGE_BUFFER
+            )
+        depth = (f"; depth from {rospy.resolve_name('camera/depth/image_raw')} within {self.max_depth_lag:g} s"
+                 if self.classifier.uses_depth else "")
         rospy.loginfo(f"{rospy.get_name()}: {self.classifier.description}; window {self.window}, "
-                      f"at most {self.max_rate:g} Hz, person veto {self.person_veto}")
+                      f"at most {self.max_rate:g} Hz, person veto {self.person_veto}{depth}")
 
     # -- images -------------------------------------------------------------------------------------
     def _on_image(self, msg: Image) -> None:
@@ -135,22 +149,40 @@ class ObstacleClassifierNode:
         with self._cond:
             if self._last_start is not None and now < self._last_start:
                 self._last_start = None  # time went backwards (a simulation restarted)
+                self._pairing.clear()
             if (self.max_rate > 0.0 and self._last_start is not None
                     and now - self._last_start < 1.0 / self.max_rate):
                 return
             self._last_start = now
+            if self.depth_subscriber is None:
+                pair: Optional[Tuple[float, Image, Optional[Image]]] = (0.0, msg, None)
+            else:
+                pair = self._pairing.add_colour(msg.header.stamp.to_sec(), msg)
+        if pair is not None:
+            self._classify(pair[1], pair[2])
+
+    def _on_depth(self, msg: Image) -> None:
+        with self._cond:
+            pair = self._pairing.add_depth(msg.header.stamp.to_sec(), msg)
+        if pair is not None:
+            self._classify(pair[1], pair[2])
+
+    def _classify(self, colour: Image, depth_msg: Optional[Image]) -> None:
         try:
-            rgb = to_rgb(msg.data, msg.width, msg.height, msg.encoding, msg.step)
+            rgb = to_rgb(colour.data, colour.width, colour.height, colour.encoding, colour.step)
+            depth = None if depth_msg is None else to_depth(
+                depth_msg.data, depth_msg.width, depth_msg.height, depth_msg.encoding, depth_msg.step,
+                bigendian=bool(depth_msg.is_bigendian))
         except ConfigError as err:
-            rospy.logwarn_throttle(5.0, f"{rospy.get_name()}: image skipped: {err}")
+            rospy.logwarn_throttle(5.0, f"{rospy.get_name()}: frame skipped: {err}")
             return
-        prediction = self.classifier.classify(rgb)
+        prediction = self.classifier.classify(rgb, depth)
         with self._cond:
             vote = self._vote.add(prediction)
-            self._last_frame = now
+            self._last_frame = rospy.get_time()
             self._fresh_frames += 1
             self._cond.notify_all()
-        self.publisher.publish(self._message(vote, prediction, msg))
+        self.publisher.publish(self._message(vote, prediction, colour))
 
     @staticmethod
     def _message(vote: Vote, prediction: Prediction, image: Image) -> ObstacleClass:

@@ -22,8 +22,9 @@ Private parameters:
 
 Per robot ``NS`` (its name; frames are prefixed ``NS/``; an empty name is allowed for a single robot):
   publishes  NS/odom (nav_msgs/Odometry, NS/odom -> NS/base_footprint), NS/ground_truth (Odometry in
-             map), NS/scan (LaserScan, NS/laser), NS/camera/rgb/image_raw + camera_info
-             (NS/camera_rgb_optical_frame), NS/bumper_state (BumperState, latched, on change),
+             map), NS/scan (LaserScan, NS/laser), NS/camera/rgb/image_raw + camera_info and
+             NS/camera/depth/image_raw (32FC1 [m], registered: same frame, size and intrinsics) +
+             camera_info (NS/camera_rgb_optical_frame), NS/bumper_state (BumperState, latched, on change),
              NS/events/bumper (kobuki profiles: BumperEvent), NS/bumper (create profiles: CreateBumper),
              NS/sim_events (SimEvent: contacts begin/end, ignored/clamped/timed-out commands)
   tf         map -> NS/odom -> NS/base_footprint; static NS/base_footprint -> NS/base_link, NS/laser,
@@ -144,8 +145,14 @@ class RobotIO:
             self.pub_info: Optional[rospy.Publisher] = rospy.Publisher(
                 topic("camera/rgb/camera_info"), CameraInfo, queue_size=2
             )
+            self.pub_depth: Optional[rospy.Publisher] = rospy.Publisher(
+                topic("camera/depth/image_raw"), Image, queue_size=2
+            )
+            self.pub_depth_info: Optional[rospy.Publisher] = rospy.Publisher(
+                topic("camera/depth/camera_info"), CameraInfo, queue_size=2
+            )
         else:
-            self.pub_image = self.pub_info = None
+            self.pub_image = self.pub_info = self.pub_depth = self.pub_depth_info = None
         self.pub_state = rospy.Publisher(topic("bumper_state"), BumperState, queue_size=10, latch=True)
         style = profile.bumper.driver_style
         self.pub_kobuki = (
@@ -187,6 +194,12 @@ class RobotIO:
             self.image.height, self.image.width = cam.height, cam.width
             self.image.encoding = "rgb8"
             self.image.step = cam.width * 3
+            self.depth = Image()
+            self.depth.header.frame_id = self.frame_camera
+            self.depth.height, self.depth.width = cam.height, cam.width
+            self.depth.encoding = "32FC1"
+            self.depth.is_bigendian = int(sys.byteorder == "big")
+            self.depth.step = cam.width * 4
             self.info = CameraInfo()
             self.info.header.frame_id = self.frame_camera
             self.info.height, self.info.width = cam.height, cam.width
@@ -368,10 +381,13 @@ class SimBridge:
 
     def _on_image(self, r: ImageReading) -> None:
         io = self.robots[r.robot]
-        if io.pub_image is None or io.pub_info is None:
+        if io.pub_image is None or io.pub_info is None or io.pub_depth is None or io.pub_depth_info is None:
             return
         stamp = stamp_of(r.stamp)
-        io.image.header.stamp = io.info.header.stamp = stamp
+        io.image.header.stamp = io.info.header.stamp = io.depth.header.stamp = stamp
+        io.depth.data = r.depth.tobytes()  # float32 (ImageReading)
+        io.pub_depth.publish(io.depth)
+        io.pub_depth_info.publish(io.info)
         io.image.data = r.rgb.tobytes()
         io.pub_image.publish(io.image)
         io.pub_info.publish(io.info)

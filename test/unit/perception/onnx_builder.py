@@ -124,8 +124,9 @@ def constant_output_model(
 
 def mean_colour_classifier(path: Path, weights: np.ndarray, size: Tuple[int, int] = (8, 8),
                            softmax: bool = True) -> Path:
-    """image (N, 3, H, W) -> GlobalAveragePool -> Flatten -> MatMul(weights 3 x K) [-> Softmax]."""
-    k = weights.shape[1]
+    """image (N, C, H, W) -> GlobalAveragePool -> Flatten -> MatMul(weights C x K) [-> Softmax]; C = weights' rows
+    (3: RGB, 4: RGB + depth)."""
+    channels, k = weights.shape
     nodes = [
         node("GlobalAveragePool", ["image"], ["pooled"]),
         node("Flatten", ["pooled"], ["flat"], axis=1),
@@ -134,7 +135,7 @@ def mean_colour_classifier(path: Path, weights: np.ndarray, size: Tuple[int, int
     if softmax:
         nodes.append(node("Softmax", ["scores"], ["probabilities"], axis=1))
     out_name = "probabilities" if softmax else "logits"
-    data = model(nodes, inputs=[("image", ("batch", 3, size[1], size[0]))], outputs=[(out_name, ("batch", k))],
+    data = model(nodes, inputs=[("image", ("batch", channels, size[1], size[0]))], outputs=[(out_name, ("batch", k))],
                  initializers={"weights": weights.astype(np.float32)})
     path.write_bytes(data)
     return path

@@ -11,7 +11,7 @@ from unit.perception.onnx_builder import mean_colour_classifier
 
 from flex_nav.exceptions import ConfigError
 from flex_nav.perception.classifier import DEFAULT_MODEL, ObstacleClassifier, load_metadata, metadata_path_for
-from flex_nav.perception.image import to_rgb
+from flex_nav.perception.image import to_depth, to_rgb
 from flex_nav.perception.labels import CLEAR, MOVABLE, PERSON
 from flex_nav.perception.roi import Roi
 from flex_nav_sim.readings import ImageReading
@@ -104,6 +104,68 @@ def test_missing_field_and_files_are_named(tmp_path: Path) -> None:
         ObstacleClassifier(model, metadata=_write(tmp_path, dict(META, input=dict(META["input"], width=16))))
 
 
+# -- RGB-D: a fourth input channel from the registered depth image ----------------------------------------
+DEPTH_META = dict(META, input=dict(META["input"], depth={"max_range": 4.0, "mean": 1.0, "std": 0.1}))
+
+
+def _tiny_rgbd(tmp_path: Path) -> Path:
+    """Scores: legs = 10 x mean red, carton = -1 x mean depth channel = 10 - 2.5 x depth [m] (near -> high),
+    background = 10 x mean blue."""
+    weights = np.zeros((4, 3), np.float32)
+    weights[0, 0] = 10.0
+    weights[3, 1] = -1.0
+    weights[2, 2] = 10.0
+    model = mean_colour_classifier(tmp_path / "rgbd.onnx", weights)
+    metadata_path_for(model).write_text(yaml.safe_dump(DEPTH_META))
+    return model
+
+
+def test_rgbd_model_reads_the_depth_channel(tmp_path: Path) -> None:
+    clf = ObstacleClassifier(_tiny_rgbd(tmp_path), class_map={"legs": PERSON, "carton": MOVABLE})
+    assert clf.uses_depth and clf.metadata.channels == 4 and "RGB-D" in clf.description
+    grey = np.full((240, 320, 3), (0, 0, 60), np.uint8)  # background score 10 x 60 / 255
+    depth = np.zeros((120, 160), np.float32)  # half the colour resolution: the ROI is taken by fractions
+    depth[:, 32:128] = 0.2  # [m] inside the default ROI (x 0.2-0.8); outside: 0 = no return
+    probabilities = clf.probabilities(clf.input_tensor(grey, depth))[0]
+    scores = np.array([0.0, -(0.2 / 4.0 - 1.0) / 0.1, 10.0 * 60.0 / 255.0])
+    assert probabilities == pytest.approx(np.exp(scores) / np.exp(scores).sum(), rel=1e-4)
+    assert clf.classify(grey, depth).label == MOVABLE
+    depth[:, 32:128] = 0.0  # no return counts as max_range: carton score 0
+    assert clf.classify(grey, depth).label == CLEAR
+    depth[:, 32:128] = np.inf  # REP 118's "nothing in range": the same
+    assert clf.classify(grey, depth).label == CLEAR
+    depth[:, 32:128] = 9.0  # beyond max_range: clipped to it
+    assert clf.probabilities(clf.input_tensor(grey, depth))[0][1] == pytest.approx(
+        1.0 / (2.0 + np.exp(scores[2])), rel=1e-4)
+    with pytest.raises(ConfigError, match="a depth image is needed with every frame"):
+        clf.classify(grey)
+
+
+def test_rgbd_metadata_and_model_must_agree(tmp_path: Path) -> None:
+    rgb_model = _tiny(tmp_path)
+    with pytest.raises(ConfigError, match=r"N x 4 x H x W \(RGB \+ depth\) expected"):
+        ObstacleClassifier(rgb_model, metadata=_write(tmp_path, DEPTH_META))
+    with pytest.raises(ConfigError, match=r"N x 3 x H x W \(RGB\) expected"):
+        ObstacleClassifier(_tiny_rgbd(tmp_path), metadata=_write(tmp_path, META))
+
+
+@pytest.mark.parametrize(
+    ("depth", "needle"),
+    [
+        ({"max_range": 4.0, "mean": 0.5}, "must map exactly max_range, mean, std"),
+        ({"max_range": "far", "mean": 0.5, "std": 0.25}, "field input.depth.max_range = 'far' must be a number"),
+        ({"max_range": -1.0, "mean": 0.5, "std": 0.25}, "depth max_range -1.0 must be a finite number of metres"),
+        ({"max_range": 4.0, "mean": 0.5, "std": 0.0}, "depth std 0.0 must be finite and > 0"),
+        ([4.0, 0.5, 0.25], "field input.depth = [4.0, 0.5, 0.25]"),
+    ],
+)
+def test_bad_depth_metadata_names_the_field(tmp_path: Path, depth: object, needle: str) -> None:
+    path = _write(tmp_path, dict(META, input=dict(META["input"], depth=depth)))
+    with pytest.raises(ConfigError) as err:
+        load_metadata(path)
+    assert needle in str(err.value) and str(path) in str(err.value)
+
+
 def _write(tmp_path: Path, meta: dict) -> Path:
     path = tmp_path / "other.yaml"
     path.write_text(yaml.safe_dump(meta))
@@ -146,15 +208,15 @@ EXPECTED = {
 
 
 @pytest.fixture(scope="module")
-def sim_images(tmp_path_factory: pytest.TempPathFactory) -> dict[str, np.ndarray]:
+def sim_images(tmp_path_factory: pytest.TempPathFactory) -> dict[str, ImageReading]:
     world_file = tmp_path_factory.mktemp("world") / "classifier_check.yaml"
     world_file.write_text(WORLD)
-    images: dict[str, np.ndarray] = {}
+    images: dict[str, ImageReading] = {}
     options = SensorOptions(odometry=False, lidar=False, bumpers=False, camera=True)
     with Simulation(load_world(world_file), seed=1, sensors=options) as sim:
         for reading in sim.step():
             if isinstance(reading, ImageReading):
-                images[reading.robot] = reading.rgb
+                images[reading.robot] = reading
     return images
 
 
@@ -167,14 +229,18 @@ def test_shipped_model_is_small_and_described() -> None:
 
 
 @pytest.mark.parametrize("robot", sorted(EXPECTED))
-def test_shipped_model_on_fresh_simulator_images(sim_images: dict[str, np.ndarray], robot: str) -> None:
-    prediction = ObstacleClassifier().classify(sim_images[robot])
+def test_shipped_model_on_fresh_simulator_images(sim_images: dict[str, ImageReading], robot: str) -> None:
+    frame = sim_images[robot]
+    prediction = ObstacleClassifier().classify(frame.rgb, frame.depth)
     assert prediction.label == EXPECTED[robot], f"{robot}: {prediction}"
     assert prediction.confidence > 0.5
 
 
-def test_shipped_model_reads_bgr_through_the_image_path(sim_images: dict[str, np.ndarray]) -> None:
-    rgb = sim_images["sees_person_tb4"]
+def test_shipped_model_reads_bgr_and_millimetres_through_the_image_path(sim_images: dict[str, ImageReading]) -> None:
+    frame = sim_images["sees_person_tb4"]
+    rgb = frame.rgb
     bgr_bytes = np.ascontiguousarray(rgb[:, :, ::-1]).tobytes()
     again = to_rgb(bgr_bytes, rgb.shape[1], rgb.shape[0], "bgr8")
-    assert ObstacleClassifier().classify(again).label == PERSON
+    millimetres = np.where(np.isfinite(frame.depth), np.round(frame.depth * 1000.0), 0).astype(np.uint16)
+    depth = to_depth(millimetres.tobytes(), rgb.shape[1], rgb.shape[0], "16UC1")
+    assert ObstacleClassifier().classify(again, depth).label == PERSON

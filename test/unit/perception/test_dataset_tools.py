@@ -28,7 +28,8 @@ def _all(models: dict[str, tuple[str, ...]]) -> set[str]:
 
 
 @pytest.mark.parametrize(("held_out_split", "held_out_models"), [("unseen", scenes.HELD_OUT),
-                                                                    ("unseen2", scenes.HELD_OUT_2)])
+                                                                    ("unseen2", scenes.HELD_OUT_2),
+                                                                    ("unseen3", scenes.HELD_OUT_3)])
 def test_held_out_models_never_reach_another_split(held_out_split: str,
                                                    held_out_models: dict[str, tuple[str, ...]]) -> None:
     held_out = _all(held_out_models)
@@ -64,7 +65,7 @@ def test_split_ids_are_unique_so_every_split_has_its_own_scenes() -> None:
 
 def test_every_model_has_a_builder_and_every_builder_is_used() -> None:
     listed = (_all(scenes.TRAIN_MODELS) | _all(scenes.TRAIN_ONLY) | _all(scenes.PASSAGE) | _all(scenes.PROCEDURAL)
-              | _all(scenes.HELD_OUT) | _all(scenes.HELD_OUT_2))
+              | _all(scenes.HELD_OUT) | _all(scenes.HELD_OUT_2) | _all(scenes.HELD_OUT_3))
     assert listed == set(scenes.BUILDERS)
     assert set(scenes.SIDE_DISTRACTORS) <= _all(scenes.TRAIN_MODELS)
 
@@ -95,14 +96,15 @@ def _roi_of(model: str | None) -> np.ndarray:
         if model is not None:
             scenes.BUILDERS[model](scene, spec.mount[0] + 1.4, 0.0, math.radians(20.0))
         renderer.rng = np.random.default_rng(2)  # the same light for both pictures
-        rgb = renderer._shoot(spec, (spec.mount[0], 0.0, spec.mount[2]), spec.pitch)
+        rgb, _ = renderer._shoot(spec, (spec.mount[0], 0.0, spec.mount[2]), spec.pitch)
     finally:
         renderer.close()
     return roi_patch(rgb, Roi(), 64, 64).astype(np.int16)
 
 
 @pytest.mark.parametrize("model", sorted((_all(scenes.TRAIN_ONLY) | _all(scenes.PASSAGE) | _all(scenes.PROCEDURAL)
-                                           | _all(scenes.HELD_OUT_2)) - _all(scenes.TRAIN_MODELS)))
+                                           | _all(scenes.HELD_OUT_2) | _all(scenes.HELD_OUT_3))
+                                          - _all(scenes.TRAIN_MODELS)))
 def test_every_added_model_is_visible_in_the_roi(model: str) -> None:
     changed = np.abs(_roi_of(model) - _empty_roi()).max(axis=2) > 10
     assert changed.mean() > 0.03, f"{model} changes only {100 * changed.mean():.1f} % of the ROI"
@@ -110,14 +112,41 @@ def test_every_added_model_is_visible_in_the_roi(model: str) -> None:
 
 def test_load_splits_concatenates_and_checks_the_classes(tmp_path: Path) -> None:
     for name, n, classes in (("a", 3, LABELS), ("b", 2, LABELS), ("c", 1, ("x", "y"))):
-        np.savez(tmp_path / f"{name}.npz", patches=np.full((n, 4, 4, 3), n, np.uint8),
-                 labels=np.arange(n), models=np.array(["m"] * n), classes=np.array(classes))
-    patches, labels, classes = train.load_splits(tmp_path, ["a", "b"])
-    assert patches.shape == (5, 4, 4, 3)
+        np.savez(tmp_path / f"{name}.npz", patches=np.full((n, 4, 4, 3), 51 * n, np.uint8),
+                 depths=np.full((n, 4, 4), 1000 * n, np.uint16), labels=np.arange(n), models=np.array(["m"] * n),
+                 classes=np.array(classes))
+    np.savez(tmp_path / "old.npz", patches=np.zeros((1, 4, 4, 3), np.uint8), labels=np.arange(1),
+             models=np.array(["m"]), classes=np.array(LABELS))
+    images, labels, classes = train.load_splits(tmp_path, ["a", "b"], depth=False)
+    assert images.shape == (5, 4, 4, 3)
+    assert images[0, 0, 0, 0] == pytest.approx(0.6) and images[-1, 0, 0, 0] == pytest.approx(0.4)
     assert labels.tolist() == [0, 1, 2, 0, 1]
     assert classes == list(LABELS)
+    images, _, _ = train.load_splits(tmp_path, ["a", "b"], depth=True)
+    assert images.shape == (5, 4, 4, 4)
+    metres = images[:, 0, 0, 3] * render_dataset.DEPTH_RANGE  # depth channel = depth / DEPTH_RANGE
+    np.testing.assert_allclose(metres, [3.0, 3.0, 3.0, 2.0, 2.0], rtol=1e-6)
     with pytest.raises(ValueError, match="'c' has classes"):
-        train.load_splits(tmp_path, ["a", "c"])
+        train.load_splits(tmp_path, ["a", "c"], depth=False)
+    with pytest.raises(ValueError, match=r"split 'old' .* has no depth patches"):
+        train.load_splits(tmp_path, ["old"], depth=True)
+
+
+def test_depth_augmentation_loses_returns_as_real_cameras_do() -> None:
+    torch = pytest.importorskip("torch")  # training-only dependency: skipped in the runtime venv
+    gen = torch.Generator().manual_seed(0)
+    depth = torch.full((400, 1, 16, 16), 2.0 / render_dataset.DEPTH_RANGE)  # 2 m everywhere
+    depth[:, :, 12:] = 0.4 / render_dataset.DEPTH_RANGE  # the floor 0.4 m ahead at the bottom
+    depth[:, :, :2] = 1.0  # nothing in range at the top
+    out = train.augment_depth(depth, gen)
+    assert out.shape == depth.shape and float(out.min()) >= 0.0 and float(out.max()) <= 1.0
+    assert bool((out[:, :, :2] == 1.0).all())  # lost stays lost
+    middle = out[:, :, 4:10] * render_dataset.DEPTH_RANGE
+    kept = middle[middle < 3.9]
+    assert 1.8 < float(kept.mean()) < 2.2 and 0.02 < float(kept.std()) < 0.2  # scale error and noise, about 2 m
+    lost_near = (out[:, :, 12:] == 1.0).flatten(1).float().mean(1)
+    assert 0.15 < float((lost_near > 0.99).float().mean()) < 0.45  # some frames lose the near floor (min range)
+    assert float((middle >= 3.99).float().mean()) < 0.05  # scattered holes only
 
 
 def test_ensemble_averages_the_members_probabilities(tmp_path: Path) -> None:

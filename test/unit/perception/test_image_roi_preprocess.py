@@ -1,4 +1,4 @@
-"""Image buffers -> RGB, the region of interest, the classifier patch and the YOLO letterbox."""
+"""Image buffers -> RGB and depth, the region of interest, the classifier patches and the YOLO letterbox."""
 
 from __future__ import annotations
 
@@ -6,8 +6,16 @@ import numpy as np
 import pytest
 
 from flex_nav.exceptions import ConfigError
-from flex_nav.perception.image import to_rgb
-from flex_nav.perception.preprocess import LETTERBOX_PAD, Letterbox, Normaliser, letterbox, roi_patch
+from flex_nav.perception.image import to_depth, to_rgb
+from flex_nav.perception.preprocess import (
+    LETTERBOX_PAD,
+    DepthScaling,
+    Letterbox,
+    Normaliser,
+    depth_patch,
+    letterbox,
+    roi_patch,
+)
 from flex_nav.perception.roi import Roi
 
 
@@ -134,3 +142,63 @@ def test_letterbox_maps_boxes_back_to_the_image_and_clips() -> None:
     out = box.to_image(np.array([[24.0, 24.0, 40.0, 40.0], [-5.0, 0.0, 70.0, 64.0]], np.float32))
     np.testing.assert_allclose(out[0], (120.0, 80.0, 200.0, 160.0))
     np.testing.assert_allclose(out[1], (0.0, 0.0, 320.0, 240.0))  # the padding maps outside: clipped
+
+
+# -- depth images (REP 118) ------------------------------------------------------------------------------
+def test_32fc1_is_metres_and_16uc1_millimetres() -> None:
+    metres = np.array([[0.5, 1.25, np.inf], [np.nan, 0.0, 3.0]], np.float32)
+    np.testing.assert_array_equal(to_depth(metres.tobytes(), 3, 2, "32FC1"), metres)
+    mm = np.array([[500, 1250, 0], [0, 65535, 3000]], np.uint16)
+    np.testing.assert_allclose(to_depth(mm.tobytes(), 3, 2, "16UC1"), mm.astype(np.float32) / 1000.0, rtol=1e-6)
+    assert to_depth(mm.tobytes(), 3, 2, "16UC1").dtype == np.float32
+
+
+def test_depth_rows_may_be_padded_and_big_endian() -> None:
+    values = np.array([[1.0, 2.0], [3.0, 4.0]], np.float32)
+    padded = np.zeros((2, 4), ">f4")  # 2 px + 2 px of padding per row, big-endian
+    padded[:, :2] = values
+    out = to_depth(padded.tobytes(), 2, 2, "32FC1", step=16, bigendian=True)
+    np.testing.assert_array_equal(out, values)
+
+
+@pytest.mark.parametrize(
+    ("args", "needle"),
+    [
+        ((bytes(8), 2, 1, "mono8"), "depth image encoding 'mono8' is not valid (valid: 32FC1, 16UC1)"),
+        ((bytes(8), 0, 1, "32FC1"), "depth image size 0x1"),
+        ((bytes(4), 2, 1, "32FC1"), "has 4 bytes, 8 x 1 = 8 expected"),
+        ((bytes(12), 2, 1, "32FC1", 6), "step 6 must be >= a row"),
+        ((bytes(12), 2, 1, "32FC1", 10), "step 10 must be >= a row (2 px x 4 bytes = 8) and a multiple of 4"),
+    ],
+)
+def test_bad_depth_images_are_named(args: tuple, needle: str) -> None:
+    with pytest.raises(ConfigError) as err:
+        to_depth(*args)
+    assert needle in str(err.value)
+
+
+def test_depth_patch_counts_missing_and_far_returns_as_the_range_limit() -> None:
+    depth = np.full((4, 10), 1.0, np.float32)
+    depth[0, 2] = np.nan
+    depth[1, 3] = 0.0
+    depth[2, 4] = -np.inf
+    depth[3, 5] = np.inf
+    depth[3, 6] = 9.0
+    patch = depth_patch(depth, Roi(0.2, 0.0, 0.8, 1.0), 6, 4, max_range=4.0)  # columns 2..7, same size
+    expected = np.full((4, 6), 1.0, np.float32)
+    expected[0, 0] = expected[1, 1] = expected[2, 2] = expected[3, 3] = expected[3, 4] = 4.0
+    np.testing.assert_array_equal(patch, expected)
+    small = depth_patch(depth, Roi(0.2, 0.0, 0.8, 1.0), 3, 2, max_range=4.0)  # area average of 2 x 2 blocks
+    np.testing.assert_allclose(small, [[2.5, 1.0, 1.0], [1.0, 2.5, 1.75]])
+    assert small.dtype == np.float32
+
+
+def test_depth_scaling_and_its_checks() -> None:
+    scaling = DepthScaling(max_range=4.0, mean=0.5, std=0.25)
+    patch = np.array([[0.0, 2.0], [4.0, 1.0]], np.float32)
+    np.testing.assert_allclose(scaling(patch), [[[[-2.0, 0.0], [2.0, -1.0]]]])
+    np.testing.assert_allclose(scaling.batch(np.stack([patch, patch]))[1, 0], [[-2.0, 0.0], [2.0, -1.0]])
+    with pytest.raises(ConfigError, match=r"depth max_range 0\.0 must be a finite number of metres > 0"):
+        DepthScaling(0.0, 0.5, 0.25)
+    with pytest.raises(ConfigError, match=r"depth std -1.0 must be finite and > 0, mean 0.5 finite"):
+        DepthScaling(4.0, 0.5, -1.0)

@@ -46,9 +46,9 @@ def test_scenario_target_is_classified_from_a_blocked_stop(
     for gap in GAPS:
         spawn = dataclasses.replace(spec.spawns[0], pose=(face_x - gap - ROBOT_RADIUS, y, 0.0))
         with Simulation(dataclasses.replace(spec, spawns=(spawn,)), seed=0, sensors=options) as sim:
-            images = [r.rgb for r in sim.step() if isinstance(r, ImageReading)]
+            images = [r for r in sim.step() if isinstance(r, ImageReading)]
         assert images, f"{world}: no camera image"
-        seen.append((gap, classifier.classify(images[0])))
+        seen.append((gap, classifier.classify(images[0].rgb, images[0].depth)))
     wrong = [(gap, p.label, round(p.confidence, 2)) for gap, p in seen if p.label != expected]
     assert not wrong, f"{world}: expected {expected}, got (gap [m], label, confidence) {wrong}"
 

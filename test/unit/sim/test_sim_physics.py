@@ -392,6 +392,13 @@ def test_camera_sees_a_person_ahead(tmp_path: Path) -> None:
     assert (centre[:, 0] > centre[:, 1] + 60).all()  # red person in the middle
     side = image.rgb[h // 2, 5].astype(int)
     assert not side[0] > side[1] + 60  # not red at the edge
+    # depth registered to the colour image: the person's near side in the middle, [m] along the optical axis
+    assert image.depth.shape == (h, w) and image.depth.dtype == np.float32
+    person_radius = sim.world.people[0].radius
+    expected = 1.2 - spec.mount[0] - person_radius
+    np.testing.assert_allclose(image.depth[h // 2 - 5 : h // 2 + 5, w // 2 - 5 : w // 2 + 5], expected, atol=0.03)
+    assert image.depth[h // 2, 5] > expected + 0.3  # beside the person: farther
+    assert np.isinf(image.depth[0]).any() or (image.depth[0] > 2.0).all()  # the top row looks past the walls
 
 
 def test_shipped_worlds_run(tmp_path: Path) -> None:
