@@ -10,7 +10,13 @@ import yaml
 from unit.perception.onnx_builder import mean_colour_classifier
 
 from flex_nav.exceptions import ConfigError
-from flex_nav.perception.classifier import DEFAULT_MODEL, ObstacleClassifier, load_metadata, metadata_path_for
+from flex_nav.perception.classifier import (
+    DEFAULT_MODEL,
+    MODELS_DIR,
+    ObstacleClassifier,
+    load_metadata,
+    metadata_path_for,
+)
 from flex_nav.perception.image import to_depth, to_rgb
 from flex_nav.perception.labels import CLEAR, MOVABLE, PERSON
 from flex_nav.perception.roi import Roi
@@ -220,12 +226,17 @@ def sim_images(tmp_path_factory: pytest.TempPathFactory) -> dict[str, ImageReadi
     return images
 
 
-def test_shipped_model_is_small_and_described() -> None:
-    assert DEFAULT_MODEL.is_file()
-    assert DEFAULT_MODEL.stat().st_size < 2 * 1024 * 1024
-    clf = ObstacleClassifier()
+RGB_MODEL = MODELS_DIR / "obstacle_classifier_rgb.onnx"  # the colour-only model, for cameras without depth
+
+
+@pytest.mark.parametrize(("model", "uses_depth"), [(DEFAULT_MODEL, True), (RGB_MODEL, False)])
+def test_shipped_models_are_small_and_described(model: Path, uses_depth: bool) -> None:
+    assert model.is_file()
+    assert model.stat().st_size < 2 * 1024 * 1024
+    clf = ObstacleClassifier(model)
     assert clf.metadata.classes == (PERSON, MOVABLE, CLEAR)
     assert clf.roles == (PERSON, MOVABLE, "ignore")
+    assert clf.uses_depth is uses_depth
 
 
 @pytest.mark.parametrize("robot", sorted(EXPECTED))
@@ -234,6 +245,12 @@ def test_shipped_model_on_fresh_simulator_images(sim_images: dict[str, ImageRead
     prediction = ObstacleClassifier().classify(frame.rgb, frame.depth)
     assert prediction.label == EXPECTED[robot], f"{robot}: {prediction}"
     assert prediction.confidence > 0.5
+
+
+@pytest.mark.parametrize("robot", sorted(EXPECTED))
+def test_colour_only_model_on_fresh_simulator_images(sim_images: dict[str, ImageReading], robot: str) -> None:
+    prediction = ObstacleClassifier(RGB_MODEL).classify(sim_images[robot].rgb)
+    assert prediction.label == EXPECTED[robot], f"{robot}: {prediction}"
 
 
 def test_shipped_model_reads_bgr_and_millimetres_through_the_image_path(sim_images: dict[str, ImageReading]) -> None:
