@@ -72,6 +72,16 @@ class TestObstacleClassifier(unittest.TestCase):
         self.assertTrue(fresh.success, fresh.message)
         self.assertRegex(fresh.message, r"^safe: movable [3-5]/5 votes")
 
+    def test_without_depth_images_nothing_is_classified_or_safe(self):
+        Latest("/robot2/obstacle_class").wait_for(lambda m: m.votes >= 3)  # colour and depth frames are flowing
+        without = Latest("/robot2/obstacle_class_without_depth")
+        answer = call("/robot2/safe_to_push_without_depth", False)
+        self.assertFalse(answer.success, answer.message)
+        self.assertIn("no camera image classified yet", answer.message)
+        self.assertIn("needs a depth image on /robot2/camera/depth/not_published", answer.message)
+        with without.lock:
+            self.assertEqual(without.msgs, [])
+
 
 if __name__ == "__main__":
     init_node("test_obstacle_classifier", master_timeout_s=WAIT_S)

@@ -218,4 +218,9 @@ class ObstacleClassifierNode:
                     self._cond.wait(min(remaining, 0.1))
             vote = self._vote.vote()
             age = None if self._last_frame is None else max(0.0, rospy.get_time() - self._last_frame)
-        return safe_to_push(vote, age, self.max_image_age, self.person_veto)
+            unpaired = self._pairing.dropped
+        safe, message = safe_to_push(vote, age, self.max_image_age, self.person_veto)
+        if age is None and self.depth_subscriber is not None:
+            message += (f" (this model needs a depth image on {self.depth_subscriber.resolved_name} within "
+                        f"{self.max_depth_lag:g} s of each colour image; {unpaired} frame(s) found no partner)")
+        return safe, message
