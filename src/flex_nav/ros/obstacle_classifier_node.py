@@ -134,12 +134,12 @@ class ObstacleClassifierNode:
             "camera/rgb/image_raw", Image, self._on_image, queue_size=1, buff_size=IMAGE_BUFFER
         )
         self.depth_subscriber: Optional[rospy.Subscriber] = None
+        depth = ""
         if self.classifier.uses_depth:
             self.depth_subscriber = rospy.Subscriber(
                 "camera/depth/image_raw", Image, self._on_depth, queue_size=1, buff_size=IMAGE_BUFFER
             )
-        depth = (f"; depth from {rospy.resolve_name('camera/depth/image_raw')} within {self.max_depth_lag:g} s"
-                 if self.classifier.uses_depth else "")
+            depth = f"; depth from {self.depth_subscriber.resolved_name} within {self.max_depth_lag:g} s"
         rospy.loginfo(f"{rospy.get_name()}: {self.classifier.description}; window {self.window}, "
                       f"at most {self.max_rate:g} Hz, person veto {self.person_veto}{depth}")
 
