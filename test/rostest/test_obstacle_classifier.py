@@ -8,9 +8,11 @@ import unittest
 
 import rospy
 import rostest
+from sensor_msgs.msg import Image
 from std_srvs.srv import SetBool
 
 from flex_nav.msg import ObstacleClass
+from flex_nav.perception.image import to_depth
 from flex_nav.ros.node import init_node
 
 WAIT_S = 60.0  # [s] the sim and two classifiers start on a shared 2-core machine
@@ -71,6 +73,19 @@ class TestObstacleClassifier(unittest.TestCase):
         fresh = call("/robot2/safe_to_push", True)  # forget the window, wait for 5 new frames
         self.assertTrue(fresh.success, fresh.message)
         self.assertRegex(fresh.message, r"^safe: movable [3-5]/5 votes")
+
+    def test_the_simulated_depth_image_is_registered_to_the_colour_image(self):
+        rgb = rospy.wait_for_message("/robot1/camera/rgb/image_raw", Image, timeout=WAIT_S)
+        depth = rospy.wait_for_message("/robot1/camera/depth/image_raw", Image, timeout=WAIT_S)
+        self.assertEqual(depth.encoding, "32FC1")
+        self.assertEqual((depth.width, depth.height, depth.header.frame_id),
+                         (rgb.width, rgb.height, rgb.header.frame_id))
+        metres = to_depth(depth.data, depth.width, depth.height, depth.encoding, depth.step,
+                          bigendian=bool(depth.is_bigendian))
+        centre = float(metres[depth.height // 2, depth.width // 2])
+        # the person stands 1.1 m ahead of the robot's centre, the camera 0.18 m forward of it: the near side
+        # of the person is closer than 0.92 m, and more than 0.5 m away (a person is < 0.42 m in radius)
+        self.assertTrue(0.5 < centre < 0.92, f"depth in the image centre {centre} m")
 
     def test_without_depth_images_nothing_is_classified_or_safe(self):
         Latest("/robot2/obstacle_class").wait_for(lambda m: m.votes >= 3)  # colour and depth frames are flowing
