@@ -10,7 +10,7 @@ same run, is real time: 1.0x. RTF = simulated time / wall time.
 2. node: ``rosrun flex_nav sim`` at ``_rtf:=0`` against a private roscore, with a listener process
    subscribed to every topic the node publishes (so every message is serialised and sent) and
    driving the robot from the scans; camera off. Target >= 5x.
-3. node as in 2 with the camera (320x240) at 5 Hz. Target >= 3x.
+3. node as in 2 with the RGB-D camera (320x240 colour + 32FC1 depth) at 5 Hz. Target >= 3x.
 
 Each run prints the cost split: physics, rays (lidar), camera, other sensors and ROS publishing.
 Exit status 1 if a target is missed.
@@ -180,6 +180,8 @@ def listener_main(out: Path) -> int:
             "sim_events",
             "camera/rgb/image_raw",
             "camera/rgb/camera_info",
+            "camera/depth/image_raw",
+            "camera/depth/camera_info",
         )
     ]
 
