@@ -143,13 +143,13 @@ class RobotIO:
                 topic("camera/rgb/image_raw"), Image, queue_size=2
             )
             self.pub_info: Optional[rospy.Publisher] = rospy.Publisher(
-                topic("camera/rgb/camera_info"), CameraInfo, queue_size=2
+                topic("camera/rgb/camera_info"), CameraInfo, queue_size=10
             )
             self.pub_depth: Optional[rospy.Publisher] = rospy.Publisher(
                 topic("camera/depth/image_raw"), Image, queue_size=2
             )
             self.pub_depth_info: Optional[rospy.Publisher] = rospy.Publisher(
-                topic("camera/depth/camera_info"), CameraInfo, queue_size=2
+                topic("camera/depth/camera_info"), CameraInfo, queue_size=10
             )
         else:
             self.pub_image = self.pub_info = self.pub_depth = self.pub_depth_info = None
