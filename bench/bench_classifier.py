@@ -67,7 +67,7 @@ def summary(ms: list[float]) -> str:
 def bench_speed(clf: ObstacleClassifier, frames: int) -> bool:
     frames_in = sim_images()
     images = [f.rgb for f in frames_in]
-    buffers = [(np.ascontiguousarray(f.rgb).tobytes(), f.depth.astype(np.float32).tobytes(), f.rgb.shape[1],
+    buffers = [(np.ascontiguousarray(f.rgb).tobytes(), f.depth.tobytes(), f.rgb.shape[1],
                 f.rgb.shape[0]) for f in frames_in]
 
     def classify(data: bytes, depth: bytes, w: int, h: int) -> None:

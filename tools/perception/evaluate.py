@@ -24,6 +24,7 @@ import yaml
 from flex_nav.perception.classifier import FORMAT, ObstacleClassifier, metadata_path_for
 from flex_nav.perception.preprocess import DepthScaling
 from flex_nav.perception.roi import Roi
+from tools.perception.render_dataset import stored_depth_metres
 
 SPLITS = ("val", "val_extra", "val_extra2", "val_extra3", "test", "unseen", "unseen2", "unseen3")
 BATCH = 256
@@ -64,7 +65,7 @@ def evaluate_splits(model: Path, data: Path, splits: Sequence[str] = SPLITS) -> 
         with np.load(file) as f:
             patches, labels, models = f["patches"], f["labels"], f["models"]
             data_classes = [str(c) for c in f["classes"]]
-            depths = f["depths"].astype(np.float32) / np.float32(1000.0) if "depths" in f else None  # [m]
+            depths = stored_depth_metres(f["depths"]) if "depths" in f else None
         predicted: List[int] = []
         for i in range(0, len(patches), BATCH):
             depth = None if depths is None or not classifier.uses_depth else depths[i : i + BATCH]

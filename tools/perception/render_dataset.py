@@ -33,6 +33,7 @@ from flex_nav.perception.roi import Roi
 
 PATCH_W, PATCH_H = 64, 64  # [px] the model input size (models/obstacle_classifier.yaml)
 DEPTH_RANGE = 4.0  # [m] depth patches are clipped here (a Kinect's range; farther or no return = this)
+DEPTH_UNIT = 0.001  # [m] per stored depth value (uint16 millimetres)
 SPLITS: Dict[str, Tuple[int, int]] = {  # split: (id in the seed, samples per label)
     "train": (0, 2000), "val": (1, 200), "test": (2, 300), "unseen": (3, 300),
     "extra": (4, 3000), "val_extra": (5, 150),  # training-only models too (tools.perception.scenes.TRAIN_ONLY)
@@ -79,7 +80,7 @@ def render_chunk(args: Tuple[int, str, int, int, int]) -> Chunk:
             sample = renderer.render(label, model)
             patches.append(roi_patch(sample.rgb, roi, PATCH_W, PATCH_H))
             depth = depth_patch(sample.depth, roi, PATCH_W, PATCH_H, DEPTH_RANGE)
-            depths.append(np.round(depth * 1000.0).astype(np.uint16))
+            depths.append(np.round(depth / DEPTH_UNIT).astype(np.uint16))
             labels.append(LABELS.index(label))
             models.append(model)
             profiles.append(sample.profile)
@@ -90,6 +91,11 @@ def render_chunk(args: Tuple[int, str, int, int, int]) -> Chunk:
         renderer.close()
     return Chunk(np.stack(patches), np.stack(depths), np.array(labels, dtype=np.int64), models, profiles,
                  np.array(distances, dtype=np.float32), frames)
+
+
+def stored_depth_metres(depths: np.ndarray) -> np.ndarray:
+    """The ``depths`` array of a split file (uint16, :data:`DEPTH_UNIT`) in metres, float32."""
+    return depths.astype(np.float32) * np.float32(DEPTH_UNIT)
 
 
 def contact_sheet(frames: List[np.ndarray], roi: Roi, columns: int = 6) -> np.ndarray:

@@ -114,14 +114,14 @@ def augment_colour(batch: Any, gen: Any) -> Any:
 
 def load_split(data: Path, split: str, depth: bool) -> Tuple[np.ndarray, np.ndarray, np.ndarray, List[str]]:
     """(N, H, W, 3 or 4) float32 images in 0..1 (depth: / DEPTH_RANGE), labels, models, classes."""
-    from tools.perception.render_dataset import DEPTH_RANGE
+    from tools.perception.render_dataset import DEPTH_RANGE, stored_depth_metres
 
     with np.load(data / f"{split}.npz") as f:
         images = f["patches"].astype(np.float32) / np.float32(255.0)
         if depth:
             if "depths" not in f:
                 raise ValueError(f"split {split!r} in {data} has no depth patches: render it again")
-            metres = f["depths"].astype(np.float32) / np.float32(1000.0)
+            metres = stored_depth_metres(f["depths"])
             images = np.concatenate([images, (metres / np.float32(DEPTH_RANGE))[..., None]], axis=3)
         return images, f["labels"], f["models"], [str(c) for c in f["classes"]]
 

@@ -178,7 +178,6 @@ class ObstacleClassifier:
         self.roi = roi if roi is not None else meta.roi
         self.roles = class_roles(meta.classes, class_map, "class_map")
         self.normaliser = Normaliser(meta.mean, meta.std)
-        self.depth_scaling = meta.depth
         self._role_index = {label: np.array([i for i, r in enumerate(self.roles) if label_of_role(r) == label],
                                             dtype=np.int64) for label in LABELS}
         inputs = "RGB-D" if meta.depth is not None else "RGB"
@@ -188,29 +187,28 @@ class ObstacleClassifier:
     @property
     def uses_depth(self) -> bool:
         """True if every frame needs the registered depth image too."""
-        return self.depth_scaling is not None
+        return self.metadata.depth is not None
 
     def input_tensor(self, rgb: np.ndarray, depth: Optional[np.ndarray] = None) -> np.ndarray:
         """The normalised NCHW float32 input for an RGB image (H, W, 3) uint8 and, for an RGB-D model, the
         depth image [m] (H', W') registered to it; ConfigError if the model needs depth and none is given."""
         meta = self.metadata
-        colour = self.normaliser(roi_patch(rgb, self.roi, meta.width, meta.height))
-        if self.depth_scaling is None:
-            return colour
-        if depth is None:
-            raise ConfigError(f"classifier model {self.path} takes colour and depth: a depth image is needed "
-                              "with every frame")
-        patch = depth_patch(depth, self.roi, meta.width, meta.height, self.depth_scaling.max_range)
-        return np.concatenate([colour, self.depth_scaling(patch)], axis=1)
+        patch = roi_patch(rgb, self.roi, meta.width, meta.height)[None]
+        if meta.depth is None or depth is None:
+            return self.batch_tensor(patch)
+        depth_in_roi = depth_patch(depth, self.roi, meta.width, meta.height, meta.depth.max_range)
+        return self.batch_tensor(patch, depth_in_roi[None])
 
     def batch_tensor(self, patches: np.ndarray, depth_patches: Optional[np.ndarray] = None) -> np.ndarray:
-        """The normalised input for stored ROI patches (N, H, W, 3) uint8 and depth patches (N, H, W) [m]."""
+        """The normalised input for ROI patches (N, H, W, 3) uint8 and, for an RGB-D model, depth patches
+        (N, H, W) [m]; ConfigError if the model needs depth and none is given."""
         colour = self.normaliser.batch(patches)
-        if self.depth_scaling is None:
+        if self.metadata.depth is None:
             return colour
         if depth_patches is None:
-            raise ConfigError(f"classifier model {self.path} takes colour and depth: depth patches are needed")
-        return np.concatenate([colour, self.depth_scaling.batch(depth_patches)], axis=1)
+            raise ConfigError(f"classifier model {self.path} takes colour and depth: a depth image is needed "
+                              "with every frame")
+        return np.concatenate([colour, self.metadata.depth.batch(depth_patches)], axis=1)
 
     def probabilities(self, tensor: np.ndarray) -> np.ndarray:
         """Class probabilities (N, classes) for a normalised input batch."""

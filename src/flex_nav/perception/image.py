@@ -30,19 +30,7 @@ def to_rgb(data: Buffer, width: int, height: int, encoding: str, step: int = 0) 
     channels = CHANNELS.get(encoding)
     if channels is None:
         raise ConfigError(choices_message("image encoding", encoding, ENCODINGS))
-    if width <= 0 or height <= 0:
-        raise ConfigError(f"image size {width}x{height} must be positive")
-    row = width * channels
-    step = row if step == 0 else step
-    if step < row:
-        raise ConfigError(f"image step {step} is shorter than a row ({width} px x {channels} bytes = {row})")
-    flat = np.frombuffer(data, dtype=np.uint8) if not isinstance(data, np.ndarray) else data.reshape(-1)
-    if flat.dtype != np.uint8:
-        raise ConfigError(f"image data must be uint8 bytes, got {flat.dtype}")
-    if flat.size < step * height:
-        raise ConfigError(f"image data has {flat.size} bytes, {step} x {height} = {step * height} expected")
-    rows = flat[: step * height].reshape(height, step)[:, :row]
-    pixels = rows.reshape(height, width, channels)
+    pixels = _rows(data, width, height, channels, step, what="image").reshape(height, width, channels)
     if encoding == "rgb8":
         return pixels
     if encoding == "mono8":
@@ -59,23 +47,33 @@ def to_depth(data: Buffer, width: int, height: int, encoding: str, step: int = 0
              bigendian: bool = False) -> np.ndarray:
     """Depth [m] float32 (height, width) from a REP 118 depth image: ``32FC1`` in metres or ``16UC1`` in
     millimetres (0 = no return, kept as 0: :func:`flex_nav.perception.preprocess.depth_patch` treats it as
-    missing). ConfigError names an unsupported encoding, a bad size, step or buffer length."""
+    missing). ConfigError names an unsupported encoding, a bad size, step or buffer length (:func:`_rows`)."""
     kind = DEPTH_ENCODINGS.get(encoding)
     if kind is None:
         raise ConfigError(choices_message("depth image encoding", encoding, tuple(DEPTH_ENCODINGS)))
-    if width <= 0 or height <= 0:
-        raise ConfigError(f"depth image size {width}x{height} must be positive")
     dtype = np.dtype(kind).newbyteorder(">" if bigendian else "<")
-    row = width * dtype.itemsize
-    step = row if step == 0 else step
-    if step < row or step % dtype.itemsize:
-        raise ConfigError(f"depth image step {step} must be >= a row ({width} px x {dtype.itemsize} bytes = {row}) "
-                          f"and a multiple of {dtype.itemsize}")
-    flat = np.frombuffer(data, dtype=np.uint8) if not isinstance(data, np.ndarray) else data.reshape(-1).view(np.uint8)
-    if flat.size < step * height:
-        raise ConfigError(f"depth image data has {flat.size} bytes, {step} x {height} = {step * height} expected")
-    rows = flat[: step * height].reshape(height, step)[:, :row]
+    if step % dtype.itemsize:
+        raise ConfigError(f"depth image step {step} is not a multiple of the {dtype.itemsize} bytes of a pixel")
+    rows = _rows(data, width, height, dtype.itemsize, step, what="depth image")
     values = np.ascontiguousarray(rows).view(dtype).reshape(height, width)
     if encoding == "16UC1":
         return values.astype(np.float32) * np.float32(0.001)
     return values.astype(np.float32)
+
+
+def _rows(data: Buffer, width: int, height: int, pixel_bytes: int, step: int, *, what: str) -> np.ndarray:
+    """The (height, width * pixel_bytes) uint8 rows of an image buffer without row padding; ``step`` [bytes
+    per row], 0 = packed. ConfigError names ``what`` and a non-positive size, a step shorter than a row,
+    non-byte data or a buffer shorter than ``step * height``."""
+    if width <= 0 or height <= 0:
+        raise ConfigError(f"{what} size {width}x{height} must be positive")
+    row = width * pixel_bytes
+    step = row if step == 0 else step
+    if step < row:
+        raise ConfigError(f"{what} step {step} is shorter than a row ({width} px x {pixel_bytes} bytes = {row})")
+    flat = np.frombuffer(data, dtype=np.uint8) if not isinstance(data, np.ndarray) else data.reshape(-1)
+    if flat.dtype != np.uint8:
+        raise ConfigError(f"{what} data must be uint8 bytes, got {flat.dtype}")
+    if flat.size < step * height:
+        raise ConfigError(f"{what} data has {flat.size} bytes, {step} x {height} = {step * height} expected")
+    return flat[: step * height].reshape(height, step)[:, :row]

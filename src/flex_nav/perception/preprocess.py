@@ -26,7 +26,11 @@ LETTERBOX_PAD = 114  # grey value of the letterbox border (ultralytics)
 
 def roi_patch(rgb: np.ndarray, roi: Roi, width: int, height: int) -> np.ndarray:
     """The region of interest of ``rgb`` (H, W, 3) resized to (height, width, 3) uint8 (area averaging)."""
-    crop = roi.crop(rgb)
+    return _resized(roi.crop(rgb), width, height)
+
+
+def _resized(crop: np.ndarray, width: int, height: int) -> np.ndarray:
+    """``crop`` at (height, width): area averaging when shrinking, bilinear when enlarging, as is if it fits."""
     if crop.shape[1] == width and crop.shape[0] == height:
         return np.ascontiguousarray(crop)
     interpolation = cv2.INTER_AREA if crop.shape[1] >= width else cv2.INTER_LINEAR
@@ -42,11 +46,7 @@ def depth_patch(depth: np.ndarray, roi: Roi, width: int, height: int, max_range:
     crop = roi.crop(depth).astype(np.float32)
     with np.errstate(invalid="ignore"):
         valid = np.isfinite(crop) & (crop > 0.0)
-    crop = np.where(valid, np.minimum(crop, np.float32(max_range)), np.float32(max_range))
-    if crop.shape[1] == width and crop.shape[0] == height:
-        return np.ascontiguousarray(crop, dtype=np.float32)
-    interpolation = cv2.INTER_AREA if crop.shape[1] >= width else cv2.INTER_LINEAR
-    return cv2.resize(np.ascontiguousarray(crop), (width, height), interpolation=interpolation)
+    return _resized(np.where(valid, np.minimum(crop, np.float32(max_range)), np.float32(max_range)), width, height)
 
 
 @dataclass(frozen=True)
@@ -63,11 +63,6 @@ class DepthScaling:
         if not (math.isfinite(self.std) and self.std > 0.0 and math.isfinite(self.mean)):
             raise ConfigError(f"depth std {self.std!r} must be finite and > 0, mean {self.mean!r} finite")
 
-    def __call__(self, patch: np.ndarray) -> np.ndarray:
-        """(H, W) [m] -> (1, 1, H, W) float32."""
-        scale = np.float32(1.0 / (self.max_range * self.std))
-        return (patch.astype(np.float32) * scale - np.float32(self.mean / self.std))[None, None]
-
     def batch(self, patches: np.ndarray) -> np.ndarray:
         """(N, H, W) [m] -> (N, 1, H, W) float32."""
         scale = np.float32(1.0 / (self.max_range * self.std))
@@ -75,7 +70,7 @@ class DepthScaling:
 
 
 class Normaliser:
-    """``(pixel / 255 - mean) / std`` per channel, HWC uint8 -> NCHW float32 (batch of one)."""
+    """``(pixel / 255 - mean) / std`` per channel, NHWC uint8 -> NCHW float32."""
 
     def __init__(self, mean: Sequence[float], std: Sequence[float]) -> None:
         if len(mean) != 3 or len(std) != 3:
@@ -86,12 +81,6 @@ class Normaliser:
         self.std = tuple(float(s) for s in std)
         self._scale = np.array([1.0 / (255.0 * s) for s in self.std], dtype=np.float32)
         self._offset = np.array([-m / s for m, s in zip(self.mean, self.std)], dtype=np.float32)
-
-    def __call__(self, patch: np.ndarray) -> np.ndarray:
-        chw = patch.astype(np.float32).transpose(2, 0, 1)
-        chw *= self._scale[:, None, None]
-        chw += self._offset[:, None, None]
-        return chw[None]
 
     def batch(self, patches: np.ndarray) -> np.ndarray:
         """(N, H, W, 3) uint8 -> (N, 3, H, W) float32."""

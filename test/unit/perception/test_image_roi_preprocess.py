@@ -109,12 +109,12 @@ def test_normaliser_matches_the_formula() -> None:
     norm = Normaliser((0.5, 0.25, 0.0), (0.25, 0.5, 1.0))
     patch = np.zeros((2, 3, 3), np.uint8)
     patch[..., 0], patch[..., 1], patch[..., 2] = 255, 51, 102
-    out = norm(patch)
-    assert out.shape == (1, 3, 2, 3) and out.dtype == np.float32
-    np.testing.assert_allclose(out[0, 0], (1.0 - 0.5) / 0.25, rtol=1e-6)
-    np.testing.assert_allclose(out[0, 1], (0.2 - 0.25) / 0.5, rtol=1e-5)
-    np.testing.assert_allclose(out[0, 2], 0.4, rtol=1e-5)
-    np.testing.assert_allclose(norm.batch(patch[None]), out, rtol=1e-6)
+    out = norm.batch(np.stack([patch, patch]))
+    assert out.shape == (2, 3, 2, 3) and out.dtype == np.float32
+    np.testing.assert_allclose(out[1, 0], (1.0 - 0.5) / 0.25, rtol=1e-6)
+    np.testing.assert_allclose(out[1, 1], (0.2 - 0.25) / 0.5, rtol=1e-5)
+    np.testing.assert_allclose(out[1, 2], 0.4, rtol=1e-5)
+    np.testing.assert_allclose(out[0], out[1], rtol=1e-6)
     with pytest.raises(ConfigError, match="must be finite and > 0"):
         Normaliser((0.5, 0.5, 0.5), (0.25, 0.0, 0.25))
 
@@ -167,8 +167,8 @@ def test_depth_rows_may_be_padded_and_big_endian() -> None:
         ((bytes(8), 2, 1, "mono8"), "depth image encoding 'mono8' is not valid (valid: 32FC1, 16UC1)"),
         ((bytes(8), 0, 1, "32FC1"), "depth image size 0x1"),
         ((bytes(4), 2, 1, "32FC1"), "has 4 bytes, 8 x 1 = 8 expected"),
-        ((bytes(12), 2, 1, "32FC1", 6), "step 6 must be >= a row"),
-        ((bytes(12), 2, 1, "32FC1", 10), "step 10 must be >= a row (2 px x 4 bytes = 8) and a multiple of 4"),
+        ((bytes(12), 2, 1, "32FC1", 4), "depth image step 4 is shorter than a row (2 px x 4 bytes = 8)"),
+        ((bytes(12), 2, 1, "32FC1", 10), "depth image step 10 is not a multiple of the 4 bytes of a pixel"),
     ],
 )
 def test_bad_depth_images_are_named(args: tuple, needle: str) -> None:
@@ -196,8 +196,9 @@ def test_depth_patch_counts_missing_and_far_returns_as_the_range_limit() -> None
 def test_depth_scaling_and_its_checks() -> None:
     scaling = DepthScaling(max_range=4.0, mean=0.5, std=0.25)
     patch = np.array([[0.0, 2.0], [4.0, 1.0]], np.float32)
-    np.testing.assert_allclose(scaling(patch), [[[[-2.0, 0.0], [2.0, -1.0]]]])
-    np.testing.assert_allclose(scaling.batch(np.stack([patch, patch]))[1, 0], [[-2.0, 0.0], [2.0, -1.0]])
+    out = scaling.batch(np.stack([patch, patch]))
+    assert out.shape == (2, 1, 2, 2) and out.dtype == np.float32
+    np.testing.assert_allclose(out[1, 0], [[-2.0, 0.0], [2.0, -1.0]])
     with pytest.raises(ConfigError, match=r"depth max_range 0\.0 must be a finite number of metres > 0"):
         DepthScaling(0.0, 0.5, 0.25)
     with pytest.raises(ConfigError, match=r"depth std -1.0 must be finite and > 0, mean 0.5 finite"):
