@@ -8,7 +8,8 @@
    input measured in the same run (the reference). Also the YOLO decoder alone on a COCO-sized raw
    output (1, 84, 8400), for users who load their own detector (their network's time comes on top).
 2. Accuracy: ``--samples`` per label of freshly rendered scenes (a seed never used for training) with
-   the models seen in training and with each set of held-out models (``unseen``, ``unseen2``, ``unseen3``),
+   the models seen in training and with each set of held-out models (``unseen`` to
+   ``unseen4``),
    against the 95 % target.
 Prints the figures, the ratios, and PASS/FAIL; the exit status is 1 on FAIL.
 """
@@ -120,7 +121,7 @@ def bench_speed(clf: ObstacleClassifier, frames: int) -> bool:
 
 def bench_accuracy(clf: ObstacleClassifier, samples: int) -> bool:
     ok = True
-    for split_id, split in enumerate(("test", "unseen", "unseen2", "unseen3")):
+    for split_id, split in enumerate(("test", "unseen", "unseen2", "unseen3", "unseen4")):
         rng = np.random.default_rng(np.random.SeedSequence([BENCH_SEED, split_id]))
         renderer = Renderer(rng)
         correct = {label: 0 for label in LABELS}
@@ -134,7 +135,8 @@ def bench_accuracy(clf: ObstacleClassifier, samples: int) -> bool:
         accuracy = sum(correct.values()) / (samples * len(LABELS))
         recalls = ", ".join(f"{label} {100 * n / samples:.1f} %" for label, n in correct.items())
         what = {"test": "models seen in training", "unseen": "held-out models",
-                "unseen2": "the second set of held-out models", "unseen3": "the third set of held-out models"}[split]
+                "unseen2": "the second set of held-out models", "unseen3": "the third set of held-out models",
+                "unseen4": "the fourth set of held-out models"}[split]
         print(f"accuracy, {samples * len(LABELS)} fresh renders with {what}: {100 * accuracy:.2f} % "
               f"(recall {recalls}; {time.perf_counter() - t0:.0f} s) -> "
               f"{'PASS' if accuracy >= TARGET_ACCURACY else 'FAIL'} (target {100 * TARGET_ACCURACY:.0f} %)")

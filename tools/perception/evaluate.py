@@ -5,7 +5,7 @@
 Runs the model exactly as the node does (:class:`flex_nav.perception.classifier.ObstacleClassifier`,
 onnxruntime, one thread) on the stored ROI patches (and depth patches, for an RGB-D model) of the
 ``val*`` splits (model selection), ``test`` (models seen in training, new scenes) and ``unseen``,
-``unseen2``, ``unseen3`` (three sets of people, objects and furniture held out of training), and prints
+``unseen2``, ``unseen3``, ``unseen4`` (four sets of people, objects and furniture held out of training), and prints
 per split the accuracy, per class precision and recall, the confusion matrix and the accuracy per scene
 model.
 ``--write`` stores the figures in the model's YAML (``evaluation``).
@@ -26,7 +26,7 @@ from flex_nav.perception.preprocess import DepthScaling
 from flex_nav.perception.roi import Roi
 from tools.perception.render_dataset import stored_depth_metres
 
-SPLITS = ("val", "val_extra", "val_extra2", "val_extra3", "test", "unseen", "unseen2", "unseen3")
+SPLITS = ("val", "val_extra", "val_extra2", "val_extra3", "test", "unseen", "unseen2", "unseen3", "unseen4")
 BATCH = 256
 
 

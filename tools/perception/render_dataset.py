@@ -41,6 +41,7 @@ SPLITS: Dict[str, Tuple[int, int]] = {  # split: (id in the seed, samples per la
     "extra3": (8, 2000), "val_extra3": (9, 100),  # randomised furniture and marked boxes (scenes.PROCEDURAL)
     "unseen2": (10, 300),  # a second held-out set (scenes.HELD_OUT_2)
     "unseen3": (11, 300),  # a third held-out set (scenes.HELD_OUT_3)
+    "unseen4": (12, 300),  # a fourth held-out set (scenes.HELD_OUT_4)
 }
 CHUNK = 20  # samples per label in a chunk (one generator per chunk)
 SHEET_FRAMES = 24

@@ -29,7 +29,8 @@ def _all(models: dict[str, tuple[str, ...]]) -> set[str]:
 
 @pytest.mark.parametrize(("held_out_split", "held_out_models"), [("unseen", scenes.HELD_OUT),
                                                                     ("unseen2", scenes.HELD_OUT_2),
-                                                                    ("unseen3", scenes.HELD_OUT_3)])
+                                                                    ("unseen3", scenes.HELD_OUT_3),
+                                                                    ("unseen4", scenes.HELD_OUT_4)])
 def test_held_out_models_never_reach_another_split(held_out_split: str,
                                                    held_out_models: dict[str, tuple[str, ...]]) -> None:
     held_out = _all(held_out_models)
@@ -65,7 +66,7 @@ def test_split_ids_are_unique_so_every_split_has_its_own_scenes() -> None:
 
 def test_every_model_has_a_builder_and_every_builder_is_used() -> None:
     listed = (_all(scenes.TRAIN_MODELS) | _all(scenes.TRAIN_ONLY) | _all(scenes.PASSAGE) | _all(scenes.PROCEDURAL)
-              | _all(scenes.HELD_OUT) | _all(scenes.HELD_OUT_2) | _all(scenes.HELD_OUT_3))
+              | _all(scenes.HELD_OUT) | _all(scenes.HELD_OUT_2) | _all(scenes.HELD_OUT_3) | _all(scenes.HELD_OUT_4))
     assert listed == set(scenes.BUILDERS)
     assert set(scenes.SIDE_DISTRACTORS) <= _all(scenes.TRAIN_MODELS)
 
@@ -102,9 +103,12 @@ def _roi_of(model: str | None) -> np.ndarray:
     return roi_patch(rgb, Roi(), 64, 64).astype(np.int16)
 
 
-@pytest.mark.parametrize("model", sorted((_all(scenes.TRAIN_ONLY) | _all(scenes.PASSAGE) | _all(scenes.PROCEDURAL)
-                                           | _all(scenes.HELD_OUT_2) | _all(scenes.HELD_OUT_3))
-                                          - _all(scenes.TRAIN_MODELS)))
+ADDED_MODELS = sorted((_all(scenes.TRAIN_ONLY) | _all(scenes.PASSAGE) | _all(scenes.PROCEDURAL)
+                       | _all(scenes.HELD_OUT_2) | _all(scenes.HELD_OUT_3) | _all(scenes.HELD_OUT_4))
+                      - _all(scenes.TRAIN_MODELS))
+
+
+@pytest.mark.parametrize("model", ADDED_MODELS)
 def test_every_added_model_is_visible_in_the_roi(model: str) -> None:
     changed = np.abs(_roi_of(model) - _empty_roi()).max(axis=2) > 10
     assert changed.mean() > 0.03, f"{model} changes only {100 * changed.mean():.1f} % of the ROI"
