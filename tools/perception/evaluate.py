@@ -26,7 +26,8 @@ from flex_nav.perception.preprocess import DepthScaling
 from flex_nav.perception.roi import Roi
 from tools.perception.render_dataset import stored_depth_metres
 
-SPLITS = ("val", "val_extra", "val_extra2", "val_extra3", "test", "unseen", "unseen2", "unseen3", "unseen4")
+SPLITS = ("val", "val_extra", "val_extra2", "val_extra3", "val_extra4",
+          "test", "unseen", "unseen2", "unseen3", "unseen4")
 BATCH = 256
 
 

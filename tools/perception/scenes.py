@@ -53,7 +53,7 @@ TRAIN_ONLY: Dict[str, Tuple[str, ...]] = {  # extra training models, only in the
     MOVABLE: ("light_box", "suitcase", "tote", "sack"),
     CLEAR: ("stool", "ottoman", "sideboard", "cart", "radiator", "seat_row", "gurney", "desk", "corridor"),
 }
-EXTRA_SPLITS = ("extra", "val_extra", "extra2", "val_extra2", "extra3", "val_extra3")
+EXTRA_SPLITS = ("extra", "val_extra", "extra2", "val_extra2", "extra3", "val_extra3", "extra4", "val_extra4")
 PASSAGE: Dict[str, Tuple[str, ...]] = {  # the ``extra2`` splits: boxes in passages against corridors and furniture
     PERSON: TRAIN_MODELS[PERSON],
     MOVABLE: ("passage_box", "passage_box", "box", "light_box"),
@@ -78,6 +78,11 @@ HELD_OUT_3: Dict[str, Tuple[str, ...]] = {  # the ``unseen3`` split: defined bef
     PERSON: ("wheelchair_user", "crutch_walker"),
     MOVABLE: ("linen_bag", "trunk", "parcel_stack"),
     CLEAR: ("iv_stand", "wardrobe", "vending_machine"),
+}
+ASSISTIVE: Dict[str, Tuple[str, ...]] = {  # the ``extra4`` splits: seated people, poles on castors, tall blocks
+    PERSON: ("seated_person", "wheelchair_rider", "wheelchair_rider", "frame_walker", "trolley_pusher", "walker"),
+    MOVABLE: ("box", "bin", "suitcase", "tote", "sack", "light_box"),
+    CLEAR: ("castor_pole", "tall_appliance", "locker", "empty_wheelchair", "random_furniture", "wall"),
 }
 HELD_OUT_4: Dict[str, Tuple[str, ...]] = {  # the ``unseen4`` split: defined before seated people were trained on
     PERSON: ("power_chair_user", "cart_pusher"),
@@ -1434,6 +1439,259 @@ def clear_photocopier(sc: Scene, x: float, y: float, yaw: float) -> None:
             sc.sphere((cx, cy, 0.025), 0.025, (0.1, 0.1, 0.1, 1.0))
 
 
+# -- seated people and what stands on thin supports (``ASSISTIVE``: the ``extra4`` and ``val_extra4`` splits) --
+# Chosen from the RGB-D model's failures on ``unseen3``: people who sit (on chairs, stools, in wheelchairs of
+# random build, empty wheelchairs as the furniture they are), walkers with a frame or pushing a trolley, poles on
+# castor bases and tall appliances and lockers. None of them is a held-out model (``HELD_OUT_4`` included).
+FRAMES: Tuple[Vec3, ...] = (*METAL, (0.1, 0.1, 0.1), (0.7, 0.1, 0.1), (0.1, 0.45, 0.25), (0.15, 0.2, 0.55))
+
+
+def ring(sc: Scene, centre: Tuple[float, float, float], yaw: float, *, radius: float, tube: float, color: Rgba,
+         segments: int = 12) -> None:
+    """A wheel's tyre seen from the side: ``segments`` capsules round a circle of ``radius`` [m] in the vertical
+    plane across ``yaw`` (the hub and the spokes stay see-through)."""
+    chord = 2.0 * radius * math.sin(math.pi / segments)
+    for k in range(segments):
+        a = 2.0 * math.pi * (k + 0.5) / segments
+        px, py = local(centre[0], centre[1], yaw, radius * math.cos(a), 0.0)
+        sc.capsule((px, py, centre[2] + radius * math.sin(a)), tube, chord, color, yaw=yaw, pitch=-a)
+
+
+def wheelchair(sc: Scene, x: float, y: float, yaw: float) -> Tuple[float, float, float]:
+    """A manual wheelchair of random build facing +x: rear wheels (self-propelling, spoked or solid) or small
+    transit wheels, castors, a sling seat and back, push handles, maybe armrests, footplates.
+    Returns (seat height, footplate height, armrest height or 0) [m]."""
+    rng = sc.rng
+    frame = jitter(rng, pick(rng, FRAMES))
+    cloth = jitter(rng, pick(rng, UPHOLSTERY))
+    tyre = jitter(rng, (0.07, 0.07, 0.07), 0.02)
+    seat_h, half_w = rng.uniform(0.44, 0.52), rng.uniform(0.2, 0.27)
+    rear_r = rng.uniform(0.24, 0.33) if rng.random() < 0.75 else rng.uniform(0.1, 0.16)
+    spoked = rng.random() < 0.6
+    for side in (1.0, -1.0):
+        wx, wy = local(x, y, yaw, -0.12, side * (half_w + 0.05))
+        if spoked and rear_r > 0.2:
+            ring(sc, (wx, wy, rear_r), yaw, radius=rear_r - 0.015, tube=0.015, color=tyre)
+            ring(sc, (wx, wy, rear_r), yaw, radius=rear_r - 0.05, tube=0.006, color=jitter(rng, pick(rng, METAL)))
+            sc.cylinder((wx, wy, rear_r), 0.04, 0.05, frame, yaw=yaw, roll=math.pi / 2.0)
+        else:
+            sc.cylinder((wx, wy, rear_r), rear_r, 0.03, tyre, yaw=yaw, roll=math.pi / 2.0)
+            sc.cylinder((wx, wy, rear_r), rear_r * 0.8, 0.035, frame, yaw=yaw, roll=math.pi / 2.0)
+        castor_r = rng.uniform(0.05, 0.1)
+        cx, cy = local(x, y, yaw, 0.28, side * (half_w - 0.02))
+        sc.cylinder((cx, cy, castor_r), castor_r, 0.03, tyre, yaw=yaw, roll=math.pi / 2.0)
+        sc.box((cx, cy, (castor_r + seat_h) / 2.0), (0.012, 0.012, (seat_h - castor_r) / 2.0), frame, yaw)
+        rx, ry = local(x, y, yaw, 0.0, side * half_w)
+        sc.box((rx, ry, seat_h), (0.25, 0.012, 0.012), frame, yaw)  # seat rail
+        px, py = local(x, y, yaw, -0.22, side * half_w)
+        top = seat_h + rng.uniform(0.42, 0.52)
+        sc.box((px, py, (seat_h - 0.1 + top) / 2.0), (0.012, 0.012, (top - seat_h + 0.1) / 2.0), frame, yaw, -0.1)
+        hx, hy = local(x, y, yaw, -0.3, side * half_w)
+        sc.box((hx, hy, top), (0.07, 0.018, 0.018), (0.1, 0.1, 0.1, 1.0), yaw)
+        fx, fy = local(x, y, yaw, 0.4, side * (half_w * 0.5))
+        sc.box((fx, fy, 0.12), (0.07, half_w * 0.45, 0.01), frame, yaw)
+    sc.box((x, y, seat_h), (0.23, half_w, 0.02), cloth, yaw)
+    bx, by = local(x, y, yaw, -0.23, 0.0)
+    sc.box((bx, by, seat_h + 0.24), (0.015, half_w, 0.2), cloth, yaw, -0.1)
+    armrest_h = 0.0
+    if rng.random() < 0.6:
+        armrest_h = seat_h + rng.uniform(0.18, 0.25)
+        for side in (1.0, -1.0):
+            ax, ay = local(x, y, yaw, -0.02, side * (half_w + 0.01))
+            sc.box((ax, ay, armrest_h), (0.17, 0.025, 0.02), cloth, yaw)
+    return seat_h, 0.13, armrest_h
+
+
+def person_wheelchair_rider(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A person seated in a manual wheelchair of random build (:func:`wheelchair`), leaning back a little."""
+    seat_h, foot_z, armrest_h = wheelchair(sc, x, y, yaw)
+    seated_figure(sc, x, y, yaw, seat_h=seat_h + 0.02, foot_z=foot_z, hip_fx=-0.12,
+                  lean=sc.rng.uniform(0.0, 0.25), armrest_h=armrest_h or None)
+
+
+def clear_empty_wheelchair(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A wheelchair with nobody in it (furniture: the robot goes round it)."""
+    wheelchair(sc, x, y, yaw)
+
+
+def person_seated(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A person on a chair (four legs and a back), an office chair (castor star, column, back) or a high
+    stool (no back, feet on a ring or on the floor)."""
+    rng = sc.rng
+    kind = int(rng.integers(3))
+    seat_c, frame = furniture_color(rng), jitter(rng, pick(rng, (*METAL, *FURNITURE)))
+    if kind == 0:  # chair
+        h, half = rng.uniform(0.42, 0.5), rng.uniform(0.2, 0.25)
+        sc.box((x, y, h - 0.02), (half, half, 0.02), seat_c, yaw)
+        legs4(sc, x, y, yaw, dx=half - 0.03, dy=half - 0.03, height=h - 0.04, half=0.018, color=frame)
+        bx, by = local(x, y, yaw, -half, 0.0)
+        sc.box((bx, by, h + 0.25), (0.02, half, 0.25), seat_c, yaw, -0.1)
+        seated_figure(sc, x, y, yaw, seat_h=h, hip_fx=-0.1, lean=rng.uniform(0.0, 0.2))
+    elif kind == 1:  # office chair
+        h = rng.uniform(0.45, 0.55)
+        for k in range(5):
+            a = yaw + 2.0 * math.pi * k / 5.0
+            sc.box((x + 0.15 * math.cos(a), y + 0.15 * math.sin(a), 0.08), (0.15, 0.02, 0.015), frame, a)
+            sc.sphere((x + 0.3 * math.cos(a), y + 0.3 * math.sin(a), 0.03), 0.03, (0.1, 0.1, 0.1, 1.0))
+        sc.cylinder((x, y, (0.08 + h) / 2.0), 0.03, h - 0.08, frame)
+        sc.box((x, y, h - 0.04), (0.24, 0.24, 0.04), seat_c, yaw)
+        bx, by = local(x, y, yaw, -0.25, 0.0)
+        sc.box((bx, by, h + 0.32), (0.03, 0.22, 0.25), seat_c, yaw, -0.15)
+        armrest = h + 0.22 if rng.random() < 0.6 else None
+        if armrest is not None:
+            for side in (1.0, -1.0):
+                ax, ay = local(x, y, yaw, 0.0, side * 0.25)
+                sc.box((ax, ay, armrest), (0.12, 0.025, 0.02), (0.1, 0.1, 0.1, 1.0), yaw)
+        seated_figure(sc, x, y, yaw, seat_h=h, hip_fx=-0.12, lean=rng.uniform(0.0, 0.3), armrest_h=armrest)
+    else:  # high stool
+        h, r = rng.uniform(0.6, 0.78), rng.uniform(0.16, 0.2)
+        round_or_square_top(sc, x, y, yaw, z=h - 0.03, radius=r, thickness=0.06, color=seat_c, round_chance=0.7)
+        for k in range(4):
+            a = yaw + math.pi / 4.0 + math.pi * k / 2.0
+            sc.cylinder((x + 0.85 * r * math.cos(a), y + 0.85 * r * math.sin(a), (h - 0.06) / 2.0), 0.014, h - 0.06,
+                        frame)
+        foot_z = 0.25 if rng.random() < 0.5 else 0.0
+        if foot_z:
+            sc.box((x, y, foot_z - 0.01), (0.9 * r, 0.9 * r, 0.01), frame, yaw)
+        seated_figure(sc, x, y, yaw, seat_h=h, foot_z=foot_z, hip_fx=-0.05, lean=rng.uniform(-0.1, 0.1))
+
+
+def person_frame_walker(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A walker with a walking frame ahead (four legs and side rails; a rollator: front wheels, a seat, a bag)."""
+    rng = sc.rng
+    s = person_walker(sc, x, y, yaw)
+    metal = jitter(rng, pick(rng, FRAMES))
+    h, half_w, depth = rng.uniform(0.8, 0.92) * s, rng.uniform(0.26, 0.32), rng.uniform(0.35, 0.5)
+    front = 0.3 + depth
+    rollator = rng.random() < 0.4
+    for fx in (0.3, front):
+        for side in (1.0, -1.0):
+            lx, ly = local(x, y, yaw, fx, side * half_w)
+            sc.capsule((lx, ly, h / 2.0), 0.013, h, metal, yaw=yaw)
+            if rollator:
+                sc.cylinder((lx, ly, 0.1), 0.1, 0.03, (0.08, 0.08, 0.08, 1.0), yaw=yaw, roll=math.pi / 2.0)
+    for side in (1.0, -1.0):
+        rx, ry = local(x, y, yaw, (0.3 + front) / 2.0, side * half_w)
+        sc.capsule((rx, ry, h), 0.015, depth, metal, yaw=yaw, pitch=math.pi / 2.0)
+    fx, fy = local(x, y, yaw, front, 0.0)
+    sc.capsule((fx, fy, h * 0.8), 0.013, 2.0 * half_w, metal, yaw=yaw, roll=math.pi / 2.0)
+    if rollator:
+        cx, cy = local(x, y, yaw, (0.3 + front) / 2.0, 0.0)
+        sc.box((cx, cy, h * 0.6), (depth / 2.0, half_w, 0.015), jitter(rng, pick(rng, UPHOLSTERY)), yaw)
+        bx, by = local(x, y, yaw, front + 0.05, 0.0)
+        sc.box((bx, by, h * 0.7), (0.05, half_w * 0.7, 0.1), jitter(rng, pick(rng, UPHOLSTERY)), yaw)
+    for side in (1.0, -1.0):  # forearms to the grips
+        ax, ay = local(x, y, yaw, 0.15, side * 0.2 * s)
+        sc.capsule((ax, ay, h + 0.05), 0.04 * s, 0.2, jitter(rng, pick(rng, SKIN), 0.03), yaw=yaw, pitch=1.3)
+
+
+def person_trolley_pusher(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A walker pushing something on wheels ahead: a service trolley, an empty wheelchair or a linen trolley
+    (a frame with a bag); the hands on its back."""
+    rng = sc.rng
+    s = person_walker(sc, x, y, yaw)
+    kind = int(rng.integers(3))
+    ahead = rng.uniform(0.6, 0.8)  # [m] from the walker's centre to the pushed thing's centre
+    tx, ty = local(x, y, yaw, ahead, 0.0)
+    if kind == 0:
+        clear_cart(sc, tx, ty, yaw)
+        grip_z = 0.95
+    elif kind == 1:
+        wheelchair(sc, tx, ty, yaw)
+        grip_z = 0.95
+    else:
+        frame = jitter(rng, pick(rng, METAL))
+        bag = jitter(rng, pick(rng, ((0.9, 0.9, 0.88), (0.3, 0.45, 0.7), (0.75, 0.3, 0.3), (0.4, 0.6, 0.4))))
+        grip_z = rng.uniform(0.85, 1.0)
+        for fx in (-0.25, 0.25):
+            for side in (1.0, -1.0):
+                px, py = local(tx, ty, yaw, fx, side * 0.25)
+                sc.cylinder((px, py, grip_z / 2.0 + 0.03), 0.012, grip_z - 0.06, frame)
+                sc.sphere((px, py, 0.03), 0.03, (0.1, 0.1, 0.1, 1.0))
+        sc.box((tx, ty, grip_z * 0.55), (0.22, 0.22, grip_z * 0.35), bag, yaw)
+    for side in (1.0, -1.0):
+        ax, ay = local(x, y, yaw, 0.2, side * 0.18 * s)
+        sc.capsule((ax, ay, grip_z), 0.04 * s, 0.25, jitter(rng, pick(rng, SKIN), 0.03), yaw=yaw, pitch=math.pi / 2.0)
+
+
+def clear_castor_pole(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A pole on a castor star (drip pole, coat stand or monitor stand): random height, four or five feet,
+    something at the top (hooks, a cross bar, a monitor, a basket) or nothing."""
+    rng = sc.rng
+    h = rng.uniform(1.0, 2.1)
+    metal = jitter(rng, pick(rng, FRAMES))
+    r_pole = rng.uniform(0.012, 0.03)
+    sc.cylinder((x, y, h / 2.0), r_pole, h, metal)
+    feet, reach = int(rng.integers(4, 6)), rng.uniform(0.2, 0.32)
+    for k in range(feet):
+        a = yaw + 2.0 * math.pi * k / feet
+        sc.box((x + reach / 2.0 * math.cos(a), y + reach / 2.0 * math.sin(a), 0.07), (reach / 2.0, 0.016, 0.014),
+               metal, a)
+        sc.sphere((x + reach * math.cos(a), y + reach * math.sin(a), 0.03), 0.03, (0.1, 0.1, 0.1, 1.0))
+    top = int(rng.integers(4))
+    if top == 0:  # hooks
+        for k in range(4):
+            a = yaw + math.pi * k / 2.0
+            sc.capsule((x + 0.06 * math.cos(a), y + 0.06 * math.sin(a), h - 0.05), 0.008, 0.1, metal, yaw=a,
+                       pitch=0.8)
+    elif top == 1:  # cross bar, maybe with a bag
+        sc.box((x, y, h), (0.01, rng.uniform(0.1, 0.2), 0.01), metal, yaw)
+        if rng.random() < 0.5:
+            bx, by = local(x, y, yaw, 0.0, 0.1)
+            sc.box((bx, by, h - 0.15), (0.02, 0.06, 0.1), (0.85, 0.9, 0.95, 1.0), yaw)
+    elif top == 2:  # a monitor
+        sc.box((x, y, h), (0.03, rng.uniform(0.18, 0.3), rng.uniform(0.12, 0.2)), (0.08, 0.08, 0.1, 1.0), yaw)
+    if rng.random() < 0.4:  # a basket or a pump half-way up
+        sc.box((x, y, rng.uniform(0.6, 1.0)), (0.08, 0.1, 0.07), jitter(rng, pick(rng, (*METAL, *FURNITURE))), yaw)
+
+
+def clear_tall_appliance(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A tall appliance or cupboard 1.3-2.1 m: a block with one to three doors (horizontal gaps), handles on
+    one side, maybe a display and a grille; white, steel, black, cream or a colour."""
+    rng = sc.rng
+    w, d, h = rng.uniform(0.5, 1.0), rng.uniform(0.5, 0.8), rng.uniform(1.3, 2.1)
+    body = jitter(rng, pick(rng, ((0.95, 0.95, 0.95), (0.75, 0.76, 0.78), (0.12, 0.12, 0.13), (0.9, 0.87, 0.78),
+                                  (0.6, 0.15, 0.15), (0.2, 0.35, 0.6))), 0.04)
+    dark = jitter(rng, pick(rng, ((0.1, 0.1, 0.1), (0.3, 0.3, 0.32))), 0.02)
+    sc.box((x, y, h / 2.0), (d / 2.0, w / 2.0, h / 2.0), body, yaw)
+    fx, fy = local(x, y, yaw, -d / 2.0 - 0.003, 0.0)
+    edges = sorted(rng.uniform(0.2, 0.85, int(rng.integers(0, 3))) * h)
+    for z in edges:
+        sc.box((fx, fy, z), (0.003, w / 2.0, 0.005), dark, yaw)
+    side = 1.0 if rng.random() < 0.5 else -1.0
+    handle = jitter(rng, pick(rng, METAL))
+    for lo, hi in zip([0.0, *edges], [*edges, h]):
+        hx, hy = local(x, y, yaw, -d / 2.0 - 0.02, side * (w / 2.0 - 0.05))
+        length = min(0.4, (hi - lo) * 0.5)
+        sc.box((hx, hy, (lo + hi) / 2.0), (0.01, 0.01, length / 2.0), handle, yaw)
+    if rng.random() < 0.4:
+        dx, dy = local(x, y, yaw, -d / 2.0 - 0.004, -side * 0.1)
+        sc.box((dx, dy, h * 0.7), (0.004, 0.08, 0.05), (0.05, 0.1, 0.15, 1.0), yaw)
+    if rng.random() < 0.5:
+        sc.box((fx, fy, 0.05), (0.003, w / 2.0 - 0.02, 0.04), dark, yaw)
+
+
+def clear_locker(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A bank of two to four tall steel lockers: narrow doors, vents at the top, a lock on each door."""
+    rng = sc.rng
+    n, door_w = int(rng.integers(2, 5)), rng.uniform(0.3, 0.4)
+    d, h = rng.uniform(0.4, 0.55), rng.uniform(1.6, 1.95)
+    body = jitter(rng, pick(rng, ((0.6, 0.62, 0.65), (0.3, 0.4, 0.6), (0.85, 0.85, 0.82), (0.25, 0.45, 0.3),
+                                  (0.7, 0.3, 0.2))), 0.04)
+    w = n * door_w
+    sc.box((x, y, h / 2.0), (d / 2.0, w / 2.0, h / 2.0), body, yaw)
+    for k in range(n):
+        fy = -w / 2.0 + (k + 0.5) * door_w
+        if k:
+            gx, gy = local(x, y, yaw, -d / 2.0 - 0.003, fy - door_w / 2.0)
+            sc.box((gx, gy, h / 2.0), (0.003, 0.004, h / 2.0 - 0.03), (0.15, 0.15, 0.15, 1.0), yaw)
+        vx, vy = local(x, y, yaw, -d / 2.0 - 0.003, fy)
+        for z in (h - 0.12, h - 0.16, h - 0.2):
+            sc.box((vx, vy, z), (0.003, door_w * 0.3, 0.006), (0.15, 0.15, 0.15, 1.0), yaw)
+        lx, ly = local(x, y, yaw, -d / 2.0 - 0.01, fy + door_w * 0.35)
+        sc.box((lx, ly, h * 0.55), (0.01, 0.012, 0.03), jitter(rng, pick(rng, METAL)), yaw)
+
+
 def clear_empty(sc: Scene, x: float, y: float, yaw: float) -> None:
     """Nothing in front (only the background)."""
 
@@ -1505,6 +1763,14 @@ BUILDERS: Dict[str, Builder] = {
     "floor_lamp": clear_floor_lamp,
     "fridge": clear_fridge,
     "photocopier": clear_photocopier,
+    "seated_person": person_seated,
+    "wheelchair_rider": person_wheelchair_rider,
+    "frame_walker": person_frame_walker,
+    "trolley_pusher": person_trolley_pusher,
+    "castor_pole": clear_castor_pole,
+    "tall_appliance": clear_tall_appliance,
+    "locker": clear_locker,
+    "empty_wheelchair": clear_empty_wheelchair,
 }
 DISTANCES: Dict[str, Tuple[float, float]] = {  # [m] camera to target centre
     PERSON: (0.5, 2.2),
@@ -1597,7 +1863,8 @@ class Renderer:
 def models_for(split: str) -> Dict[str, Tuple[str, ...]]:
     """The models of each label used in a split: ``train``/``val``/``test`` (seen), ``unseen`` (held out),
     ``extra``/``val_extra`` (the seen ones and the training-only ones, :data:`TRAIN_ONLY`), ``extra2``/``val_extra2``
-    (:data:`PASSAGE`), ``extra3``/``val_extra3`` (:data:`PROCEDURAL`), ``unseen2`` (:data:`HELD_OUT_2`),
+    (:data:`PASSAGE`), ``extra3``/``val_extra3`` (:data:`PROCEDURAL`), ``extra4``/``val_extra4``
+    (:data:`ASSISTIVE`), ``unseen2`` (:data:`HELD_OUT_2`),
     ``unseen3`` (:data:`HELD_OUT_3`), ``unseen4`` (:data:`HELD_OUT_4`)."""
     if split == "unseen":
         return HELD_OUT
@@ -1611,6 +1878,8 @@ def models_for(split: str) -> Dict[str, Tuple[str, ...]]:
         return PASSAGE
     if split in ("extra3", "val_extra3"):
         return PROCEDURAL
+    if split in ("extra4", "val_extra4"):
+        return ASSISTIVE
     if split in EXTRA_SPLITS:
         return {label: TRAIN_MODELS[label] + TRAIN_ONLY[label] for label in TRAIN_MODELS}
     return TRAIN_MODELS

@@ -66,6 +66,7 @@ def test_split_ids_are_unique_so_every_split_has_its_own_scenes() -> None:
 
 def test_every_model_has_a_builder_and_every_builder_is_used() -> None:
     listed = (_all(scenes.TRAIN_MODELS) | _all(scenes.TRAIN_ONLY) | _all(scenes.PASSAGE) | _all(scenes.PROCEDURAL)
+              | _all(scenes.ASSISTIVE)
               | _all(scenes.HELD_OUT) | _all(scenes.HELD_OUT_2) | _all(scenes.HELD_OUT_3) | _all(scenes.HELD_OUT_4))
     assert listed == set(scenes.BUILDERS)
     assert set(scenes.SIDE_DISTRACTORS) <= _all(scenes.TRAIN_MODELS)
@@ -103,7 +104,7 @@ def _roi_of(model: str | None) -> np.ndarray:
     return roi_patch(rgb, Roi(), 64, 64).astype(np.int16)
 
 
-ADDED_MODELS = sorted((_all(scenes.TRAIN_ONLY) | _all(scenes.PASSAGE) | _all(scenes.PROCEDURAL)
+ADDED_MODELS = sorted((_all(scenes.TRAIN_ONLY) | _all(scenes.PASSAGE) | _all(scenes.PROCEDURAL) | _all(scenes.ASSISTIVE)
                        | _all(scenes.HELD_OUT_2) | _all(scenes.HELD_OUT_3) | _all(scenes.HELD_OUT_4))
                       - _all(scenes.TRAIN_MODELS))
 
