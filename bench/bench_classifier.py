@@ -8,9 +8,8 @@
    input measured in the same run (the reference). Also the YOLO decoder alone on a COCO-sized raw
    output (1, 84, 8400), for users who load their own detector (their network's time comes on top).
 2. Accuracy: ``--samples`` per label of freshly rendered scenes (a seed never used for training) with
-   the models seen in training and with each set of held-out models (``unseen`` to
-   ``unseen4``),
-   against the 95 % target.
+   the models seen in training and with each set of held-out models (``scenes.HELD_OUT_SETS``), against the
+   95 % target.
 Prints the figures, the ratios, and PASS/FAIL; the exit status is 1 on FAIL.
 """
 
@@ -36,7 +35,7 @@ from flex_nav.perception.yolo import decode  # noqa: E402
 from flex_nav_sim.readings import ImageReading  # noqa: E402
 from flex_nav_sim.simulation import SensorOptions, Simulation  # noqa: E402
 from flex_nav_sim.world import load_world  # noqa: E402
-from tools.perception.scenes import Renderer, plan  # noqa: E402
+from tools.perception.scenes import HELD_OUT_SETS, Renderer, plan  # noqa: E402
 
 TARGET_MS = 5.0  # [ms] per frame, one thread (issue 7)
 TARGET_ACCURACY = 0.95
@@ -121,7 +120,7 @@ def bench_speed(clf: ObstacleClassifier, frames: int) -> bool:
 
 def bench_accuracy(clf: ObstacleClassifier, samples: int) -> bool:
     ok = True
-    for split_id, split in enumerate(("test", "unseen", "unseen2", "unseen3", "unseen4")):
+    for split_id, split in enumerate(("test", *HELD_OUT_SETS)):
         rng = np.random.default_rng(np.random.SeedSequence([BENCH_SEED, split_id]))
         renderer = Renderer(rng)
         correct = {label: 0 for label in LABELS}
@@ -134,9 +133,7 @@ def bench_accuracy(clf: ObstacleClassifier, samples: int) -> bool:
             renderer.close()
         accuracy = sum(correct.values()) / (samples * len(LABELS))
         recalls = ", ".join(f"{label} {100 * n / samples:.1f} %" for label, n in correct.items())
-        what = {"test": "models seen in training", "unseen": "held-out models",
-                "unseen2": "the second set of held-out models", "unseen3": "the third set of held-out models",
-                "unseen4": "the fourth set of held-out models"}[split]
+        what = "models seen in training" if split == "test" else f"the held-out models of {split!r}"
         print(f"accuracy, {samples * len(LABELS)} fresh renders with {what}: {100 * accuracy:.2f} % "
               f"(recall {recalls}; {time.perf_counter() - t0:.0f} s) -> "
               f"{'PASS' if accuracy >= TARGET_ACCURACY else 'FAIL'} (target {100 * TARGET_ACCURACY:.0f} %)")

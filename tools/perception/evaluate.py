@@ -4,10 +4,9 @@
 
 Runs the model exactly as the node does (:class:`flex_nav.perception.classifier.ObstacleClassifier`,
 onnxruntime, one thread) on the stored ROI patches (and depth patches, for an RGB-D model) of the
-``val*`` splits (model selection), ``test`` (models seen in training, new scenes) and ``unseen``,
-``unseen2``, ``unseen3``, ``unseen4`` (four sets of people, objects and furniture held out of training), and prints
-per split the accuracy, per class precision and recall, the confusion matrix and the accuracy per scene
-model.
+``val*`` splits (model selection), ``test`` (models seen in training, new scenes) and ``unseen*`` (the
+sets of people, objects and furniture held out of training), and prints per split the accuracy, per
+class precision and recall, the confusion matrix and the accuracy per scene model.
 ``--write`` stores the figures in the model's YAML (``evaluation``).
 """
 
@@ -24,10 +23,11 @@ import yaml
 from flex_nav.perception.classifier import FORMAT, ObstacleClassifier, metadata_path_for
 from flex_nav.perception.preprocess import DepthScaling
 from flex_nav.perception.roi import Roi
+from tools.perception.render_dataset import SPLITS as RENDERED_SPLITS
 from tools.perception.render_dataset import stored_depth_metres
 
-SPLITS = ("val", "val_extra", "val_extra2", "val_extra3", "val_extra4",
-          "test", "unseen", "unseen2", "unseen3", "unseen4")
+SPLITS = (*(s for s in RENDERED_SPLITS if s.startswith("val")), "test",  # selection, seen, held out
+          *(s for s in RENDERED_SPLITS if s.startswith("unseen")))
 BATCH = 256
 
 

@@ -1502,6 +1502,17 @@ def wheelchair(sc: Scene, x: float, y: float, yaw: float) -> Tuple[float, float,
     return seat_h, 0.13, armrest_h
 
 
+def castor_star(sc: Scene, x: float, y: float, yaw: float, *, feet: int, reach: float, arm_z: float,
+                arm_half: Tuple[float, float], color: Rgba) -> None:
+    """A star base: ``feet`` arms ``reach`` [m] long from (x, y) at height ``arm_z`` [m] (half width and
+    height ``arm_half`` [m]), a castor at the end of each."""
+    for k in range(feet):
+        a = yaw + 2.0 * math.pi * k / feet
+        sc.box((x + reach / 2.0 * math.cos(a), y + reach / 2.0 * math.sin(a), arm_z), (reach / 2.0, *arm_half), color,
+               a)
+        sc.sphere((x + reach * math.cos(a), y + reach * math.sin(a), 0.03), 0.03, (0.1, 0.1, 0.1, 1.0))
+
+
 def person_wheelchair_rider(sc: Scene, x: float, y: float, yaw: float) -> None:
     """A person seated in a manual wheelchair of random build (:func:`wheelchair`), leaning back a little."""
     seat_h, foot_z, armrest_h = wheelchair(sc, x, y, yaw)
@@ -1529,10 +1540,7 @@ def person_seated(sc: Scene, x: float, y: float, yaw: float) -> None:
         seated_figure(sc, x, y, yaw, seat_h=h, hip_fx=-0.1, lean=rng.uniform(0.0, 0.2))
     elif kind == 1:  # office chair
         h = rng.uniform(0.45, 0.55)
-        for k in range(5):
-            a = yaw + 2.0 * math.pi * k / 5.0
-            sc.box((x + 0.15 * math.cos(a), y + 0.15 * math.sin(a), 0.08), (0.15, 0.02, 0.015), frame, a)
-            sc.sphere((x + 0.3 * math.cos(a), y + 0.3 * math.sin(a), 0.03), 0.03, (0.1, 0.1, 0.1, 1.0))
+        castor_star(sc, x, y, yaw, feet=5, reach=0.3, arm_z=0.08, arm_half=(0.02, 0.015), color=frame)
         sc.cylinder((x, y, (0.08 + h) / 2.0), 0.03, h - 0.08, frame)
         sc.box((x, y, h - 0.04), (0.24, 0.24, 0.04), seat_c, yaw)
         bx, by = local(x, y, yaw, -0.25, 0.0)
@@ -1623,11 +1631,7 @@ def clear_castor_pole(sc: Scene, x: float, y: float, yaw: float) -> None:
     r_pole = rng.uniform(0.012, 0.03)
     sc.cylinder((x, y, h / 2.0), r_pole, h, metal)
     feet, reach = int(rng.integers(4, 6)), rng.uniform(0.2, 0.32)
-    for k in range(feet):
-        a = yaw + 2.0 * math.pi * k / feet
-        sc.box((x + reach / 2.0 * math.cos(a), y + reach / 2.0 * math.sin(a), 0.07), (reach / 2.0, 0.016, 0.014),
-               metal, a)
-        sc.sphere((x + reach * math.cos(a), y + reach * math.sin(a), 0.03), 0.03, (0.1, 0.1, 0.1, 1.0))
+    castor_star(sc, x, y, yaw, feet=feet, reach=reach, arm_z=0.07, arm_half=(0.016, 0.014), color=metal)
     top = int(rng.integers(4))
     if top == 0:  # hooks
         for k in range(4):
@@ -1860,26 +1864,25 @@ class Renderer:
         return np.ascontiguousarray(image[:, :, :3]), metric
 
 
+HELD_OUT_SETS: Dict[str, Dict[str, Tuple[str, ...]]] = {  # held-out split: its models, in the order defined
+    "unseen": HELD_OUT, "unseen2": HELD_OUT_2, "unseen3": HELD_OUT_3, "unseen4": HELD_OUT_4,
+}
+OWN_MODELS: Dict[str, Dict[str, Tuple[str, ...]]] = {  # splits with models of their own (the others: models_for)
+    **HELD_OUT_SETS,
+    "extra2": PASSAGE, "val_extra2": PASSAGE,
+    "extra3": PROCEDURAL, "val_extra3": PROCEDURAL,
+    "extra4": ASSISTIVE, "val_extra4": ASSISTIVE,
+}
+
+
 def models_for(split: str) -> Dict[str, Tuple[str, ...]]:
     """The models of each label used in a split: ``train``/``val``/``test`` (seen), ``unseen`` (held out),
     ``extra``/``val_extra`` (the seen ones and the training-only ones, :data:`TRAIN_ONLY`), ``extra2``/``val_extra2``
     (:data:`PASSAGE`), ``extra3``/``val_extra3`` (:data:`PROCEDURAL`), ``extra4``/``val_extra4``
     (:data:`ASSISTIVE`), ``unseen2`` (:data:`HELD_OUT_2`),
     ``unseen3`` (:data:`HELD_OUT_3`), ``unseen4`` (:data:`HELD_OUT_4`)."""
-    if split == "unseen":
-        return HELD_OUT
-    if split == "unseen2":
-        return HELD_OUT_2
-    if split == "unseen3":
-        return HELD_OUT_3
-    if split == "unseen4":
-        return HELD_OUT_4
-    if split in ("extra2", "val_extra2"):
-        return PASSAGE
-    if split in ("extra3", "val_extra3"):
-        return PROCEDURAL
-    if split in ("extra4", "val_extra4"):
-        return ASSISTIVE
+    if split in OWN_MODELS:
+        return OWN_MODELS[split]
     if split in EXTRA_SPLITS:
         return {label: TRAIN_MODELS[label] + TRAIN_ONLY[label] for label in TRAIN_MODELS}
     return TRAIN_MODELS

@@ -27,10 +27,10 @@ def _all(models: dict[str, tuple[str, ...]]) -> set[str]:
     return {m for ms in models.values() for m in ms}
 
 
-@pytest.mark.parametrize(("held_out_split", "held_out_models"), [("unseen", scenes.HELD_OUT),
-                                                                    ("unseen2", scenes.HELD_OUT_2),
-                                                                    ("unseen3", scenes.HELD_OUT_3),
-                                                                    ("unseen4", scenes.HELD_OUT_4)])
+TRAINING_TABLES = (scenes.TRAIN_MODELS, scenes.TRAIN_ONLY, scenes.PASSAGE, scenes.PROCEDURAL, scenes.ASSISTIVE)
+
+
+@pytest.mark.parametrize(("held_out_split", "held_out_models"), list(scenes.HELD_OUT_SETS.items()))
 def test_held_out_models_never_reach_another_split(held_out_split: str,
                                                    held_out_models: dict[str, tuple[str, ...]]) -> None:
     held_out = _all(held_out_models)
@@ -65,9 +65,7 @@ def test_split_ids_are_unique_so_every_split_has_its_own_scenes() -> None:
 
 
 def test_every_model_has_a_builder_and_every_builder_is_used() -> None:
-    listed = (_all(scenes.TRAIN_MODELS) | _all(scenes.TRAIN_ONLY) | _all(scenes.PASSAGE) | _all(scenes.PROCEDURAL)
-              | _all(scenes.ASSISTIVE)
-              | _all(scenes.HELD_OUT) | _all(scenes.HELD_OUT_2) | _all(scenes.HELD_OUT_3) | _all(scenes.HELD_OUT_4))
+    listed = set().union(*(_all(t) for t in (*TRAINING_TABLES, *scenes.HELD_OUT_SETS.values())))
     assert listed == set(scenes.BUILDERS)
     assert set(scenes.SIDE_DISTRACTORS) <= _all(scenes.TRAIN_MODELS)
 
@@ -104,9 +102,8 @@ def _roi_of(model: str | None) -> np.ndarray:
     return roi_patch(rgb, Roi(), 64, 64).astype(np.int16)
 
 
-ADDED_MODELS = sorted((_all(scenes.TRAIN_ONLY) | _all(scenes.PASSAGE) | _all(scenes.PROCEDURAL) | _all(scenes.ASSISTIVE)
-                       | _all(scenes.HELD_OUT_2) | _all(scenes.HELD_OUT_3) | _all(scenes.HELD_OUT_4))
-                      - _all(scenes.TRAIN_MODELS))
+ADDED_MODELS = sorted(set().union(*(_all(t) for t in (*TRAINING_TABLES[1:], *scenes.HELD_OUT_SETS.values())))
+                      - _all(scenes.TRAIN_MODELS) - _all(scenes.HELD_OUT))
 
 
 @pytest.mark.parametrize("model", ADDED_MODELS)
