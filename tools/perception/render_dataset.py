@@ -45,6 +45,7 @@ SPLITS: Dict[str, Tuple[int, int]] = {  # split: (id in the seed, samples per la
     "extra4": (13, 1200), "val_extra4": (14, 100),  # seated people, poles on castors, tall blocks (scenes.ASSISTIVE)
     "unseen5": (15, 300),  # a fifth held-out set (scenes.HELD_OUT_5)
     "unseen6": (16, 300),  # a sixth held-out set (scenes.HELD_OUT_6)
+    "extra5": (17, 1200), "val_extra5": (18, 100),  # people behind or on things, plants (scenes.ENCUMBERED)
 }
 CHUNK = 20  # samples per label in a chunk (one generator per chunk)
 SHEET_FRAMES = 24

@@ -27,7 +27,8 @@ def _all(models: dict[str, tuple[str, ...]]) -> set[str]:
     return {m for ms in models.values() for m in ms}
 
 
-TRAINING_TABLES = (scenes.TRAIN_MODELS, scenes.TRAIN_ONLY, scenes.PASSAGE, scenes.PROCEDURAL, scenes.ASSISTIVE)
+TRAINING_TABLES = (scenes.TRAIN_MODELS, scenes.TRAIN_ONLY, scenes.PASSAGE, scenes.PROCEDURAL, scenes.ASSISTIVE,
+                   scenes.ENCUMBERED)
 
 
 @pytest.mark.parametrize(("held_out_split", "held_out_models"), list(scenes.HELD_OUT_SETS.items()))
