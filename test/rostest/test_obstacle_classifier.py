@@ -8,6 +8,7 @@ import unittest
 
 import rospy
 import rostest
+from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import Image
 from std_srvs.srv import SetBool
 
@@ -19,10 +20,10 @@ WAIT_S = 60.0  # [s] the sim and two classifiers start on a shared 2-core machin
 
 
 class Latest:
-    def __init__(self, topic):
+    def __init__(self, topic, msg_type=ObstacleClass):
         self.msgs = []
         self.lock = threading.Lock()
-        self.sub = rospy.Subscriber(topic, ObstacleClass, self._on)
+        self.sub = rospy.Subscriber(topic, msg_type, self._on)
 
     def _on(self, msg):
         with self.lock:
@@ -88,7 +89,11 @@ class TestObstacleClassifier(unittest.TestCase):
         self.assertTrue(0.5 < centre < 0.92, f"depth in the image centre {centre} m")
 
     def test_without_depth_images_nothing_is_classified_or_safe(self):
+        log = Latest("/rosout_agg", Log)
         Latest("/robot2/obstacle_class").wait_for(lambda m: m.votes >= 3)  # colour and depth frames are flowing
+        warning = log.wait_for(lambda m: m.name == "/robot2/classifier_without_depth" and m.level == Log.WARN
+                               and "no colour image has had a depth image" in m.msg)  # repeated every 5 s
+        self.assertIn("on /robot2/camera/depth/not_published within 0.1 s", warning.msg)
         without = Latest("/robot2/obstacle_class_without_depth")
         answer = call("/robot2/safe_to_push_without_depth", False)
         self.assertFalse(answer.success, answer.message)

@@ -127,6 +127,7 @@ class ObstacleClassifierNode:
         self._vote = MajorityVote(self.window)
         self._last_frame: Optional[float] = None  # [s] ROS time the latest classified image arrived
         self._last_start: Optional[float] = None  # [s] ROS time the latest classification started (rate limit)
+        self._first_colour: Optional[float] = None  # [s] ROS time the first colour image arrived
         self._fresh_frames = 0  # frames classified since the last reset
         self.publisher = rospy.Publisher("obstacle_class", ObstacleClass, queue_size=5)
         self.service = rospy.Service("safe_to_push", SetBool, self._on_safe_to_push)
@@ -146,20 +147,36 @@ class ObstacleClassifierNode:
     # -- images -------------------------------------------------------------------------------------
     def _on_image(self, msg: Image) -> None:
         now = rospy.get_time()
+        unpaired: Optional[Tuple[float, int]] = None  # ([s] since the last classification, frames dropped)
         with self._cond:
             if self._last_start is not None and now < self._last_start:
-                self._last_start = None  # time went backwards (a simulation restarted)
+                self._last_start = self._first_colour = None  # time went backwards (a simulation restarted)
                 self._pairing.clear()
             if (self.max_rate > 0.0 and self._last_start is not None
                     and now - self._last_start < 1.0 / self.max_rate):
                 return
             self._last_start = now
+            if self._first_colour is None:
+                self._first_colour = now
             if self.depth_subscriber is None:
                 pair: Optional[Tuple[float, Image, Optional[Image]]] = (0.0, msg, None)
             else:
                 pair = self._pairing.add_colour(msg.header.stamp.to_sec(), msg)
+                since = self._first_colour if self._last_frame is None else self._last_frame
+                if pair is None and now - since > self.max_image_age:
+                    unpaired = (now - since, self._pairing.dropped)
         if pair is not None:
             self._classify(pair[1], pair[2])
+        elif unpaired is not None:
+            self._warn_unpaired(*unpaired)
+
+    def _warn_unpaired(self, waited: float, dropped: int) -> None:
+        """Colour images come, but none has found its depth image for longer than ``~max_image_age``."""
+        topic = self.depth_subscriber.resolved_name if self.depth_subscriber is not None else "(none)"
+        rospy.logwarn_throttle(5.0, (
+            f"{rospy.get_name()}: no colour image has had a depth image on {topic} within {self.max_depth_lag:g} s "
+            f"of its stamp for {waited:.1f} s ({dropped} frame(s) found no partner): nothing is classified and "
+            "safe_to_push refuses; check the depth topic's remapping and that both images share a clock"))
 
     def _on_depth(self, msg: Image) -> None:
         with self._cond:
