@@ -30,6 +30,7 @@ from tools.perception.scene_base import (
     Rgba,
     Scene,
     Vec3,
+    arms_forward,
     box_color,
     clothing_colors,
     color_links,
@@ -744,10 +745,7 @@ def person_stroller_pusher(sc: Scene, x: float, y: float, yaw: float) -> None:
     if rng.random() < 0.7:  # the hood
         kx, ky = local(x, y, yaw, seat_fx - 0.1, 0.0)
         sc.cylinder((kx, ky, 0.72), 0.2, 2.0 * half_w - 0.04, cloth, yaw=yaw + math.pi / 2.0, roll=math.pi / 2.0)
-    for side in (1.0, -1.0):
-        ax, ay = local(x, y, yaw, 0.17, side * 0.18 * s)
-        sc.capsule((ax, ay, handle_z), 0.04 * s, 0.22, jitter(rng, pick(rng, SKIN), 0.03), yaw=yaw,
-                   pitch=math.pi / 2.0)
+    arms_forward(sc, x, y, yaw, fx=0.17, z=handle_z, scale=s, length=0.22)
 
 
 def movable_laundry_basket(sc: Scene, x: float, y: float, yaw: float) -> None:

@@ -176,6 +176,17 @@ def person_walker(sc: Scene, x: float, y: float, yaw: float, *, dress: bool = Fa
     return s
 
 
+def arms_forward(sc: Scene, x: float, y: float, yaw: float, *, fx: float, z: float, scale: float,
+                 length: float) -> None:
+    """Two bare forearms held forward at height ``z`` [m] (hands on a handle), ``fx`` [m] ahead of a figure of
+    ``scale`` at (x, y) facing ``yaw``, ``length`` [m] long."""
+    rng = sc.rng
+    for side in (1.0, -1.0):
+        ax, ay = local(x, y, yaw, fx, side * 0.18 * scale)
+        sc.capsule((ax, ay, z), 0.04 * scale, length, jitter(rng, pick(rng, SKIN), 0.03), yaw=yaw,
+                   pitch=math.pi / 2.0)
+
+
 @contextlib.contextmanager
 def quiet_output() -> Iterator[None]:
     """Silence file descriptors 1 and 2 (pybullet's C code prints its warnings there, around sys.stdout)."""

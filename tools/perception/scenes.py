@@ -51,6 +51,7 @@ from tools.perception.scene_base import (
     Sample,
     Scene,
     Vec3,
+    arms_forward,
     box_color,
     castor_star,
     clothing_colors,
@@ -707,9 +708,7 @@ def person_trolley_pusher(sc: Scene, x: float, y: float, yaw: float) -> None:
                 sc.cylinder((px, py, grip_z / 2.0 + 0.03), 0.012, grip_z - 0.06, frame)
                 sc.sphere((px, py, 0.03), 0.03, (0.1, 0.1, 0.1, 1.0))
         sc.box((tx, ty, grip_z * 0.55), (0.22, 0.22, grip_z * 0.35), bag, yaw)
-    for side in (1.0, -1.0):
-        ax, ay = local(x, y, yaw, 0.2, side * 0.18 * s)
-        sc.capsule((ax, ay, grip_z), 0.04 * s, 0.25, jitter(rng, pick(rng, SKIN), 0.03), yaw=yaw, pitch=math.pi / 2.0)
+    arms_forward(sc, x, y, yaw, fx=0.2, z=grip_z, scale=s, length=0.25)
 
 
 def clear_castor_pole(sc: Scene, x: float, y: float, yaw: float) -> None:
@@ -818,9 +817,7 @@ def person_block_pusher(sc: Scene, x: float, y: float, yaw: float) -> None:
     s = person_walker(sc, *local(x, y, yaw, -ahead / 2.0, 0.0), yaw)
     h = wheeled_block(sc, *local(x, y, yaw, ahead / 2.0, 0.0), yaw)
     grip_z = min(h + 0.05, 1.1)
-    for side in (1.0, -1.0):
-        ax, ay = local(x, y, yaw, 0.2 - ahead / 2.0, side * 0.18 * s)
-        sc.capsule((ax, ay, grip_z), 0.04 * s, 0.25, jitter(rng, pick(rng, SKIN), 0.03), yaw=yaw, pitch=math.pi / 2.0)
+    arms_forward(sc, x, y, yaw, fx=0.2 - ahead / 2.0, z=grip_z, scale=s, length=0.25)
 
 
 BEHIND_THINGS = ("marked_box", "bin", "suitcase", "tote", "sack", "light_box", "random_furniture", "stool")

@@ -147,7 +147,7 @@ class ObstacleClassifierNode:
     # -- images -------------------------------------------------------------------------------------
     def _on_image(self, msg: Image) -> None:
         now = rospy.get_time()
-        unpaired: Optional[Tuple[float, int]] = None  # ([s] since the last classification, frames dropped)
+        unpaired: Optional[Tuple[str, float, int]] = None  # (depth topic, [s] since the last classification, dropped)
         with self._cond:
             if self._last_start is not None and now < self._last_start:
                 self._last_start = self._first_colour = None  # time went backwards (a simulation restarted)
@@ -164,15 +164,14 @@ class ObstacleClassifierNode:
                 pair = self._pairing.add_colour(msg.header.stamp.to_sec(), msg)
                 since = self._first_colour if self._last_frame is None else self._last_frame
                 if pair is None and now - since > self.max_image_age:
-                    unpaired = (now - since, self._pairing.dropped)
+                    unpaired = (self.depth_subscriber.resolved_name, now - since, self._pairing.dropped)
         if pair is not None:
             self._classify(pair[1], pair[2])
         elif unpaired is not None:
             self._warn_unpaired(*unpaired)
 
-    def _warn_unpaired(self, waited: float, dropped: int) -> None:
+    def _warn_unpaired(self, topic: str, waited: float, dropped: int) -> None:
         """Colour images come, but none has found its depth image for longer than ``~max_image_age``."""
-        topic = self.depth_subscriber.resolved_name if self.depth_subscriber is not None else "(none)"
         rospy.logwarn_throttle(5.0, (
             f"{rospy.get_name()}: no colour image has had a depth image on {topic} within {self.max_depth_lag:g} s "
             f"of its stamp for {waited:.1f} s ({dropped} frame(s) found no partner): nothing is classified and "
