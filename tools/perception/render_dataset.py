@@ -46,6 +46,7 @@ SPLITS: Dict[str, Tuple[int, int]] = {  # split: (id in the seed, samples per la
     "unseen5": (15, 300),  # a fifth held-out set (held_out_scenes.HELD_OUT_5)
     "unseen6": (16, 300),  # a sixth held-out set (held_out_scenes.HELD_OUT_6)
     "extra5": (17, 1200), "val_extra5": (18, 100),  # people behind or on things, plants (scenes.ENCUMBERED)
+    "unseen7": (19, 300),  # a seventh held-out set (held_out_scenes.HELD_OUT_7)
 }
 CHUNK = 20  # samples per label in a chunk (one generator per chunk)
 SHEET_FRAMES = 24
