@@ -62,7 +62,8 @@ class TestSimLaunch(unittest.TestCase):
         self.assertEqual((image.width, image.height, image.encoding), (320, 240, "rgb8"))
         self.assertEqual(len(image.data), 320 * 240 * 3)
         self.assertEqual(image.header.frame_id, "robot1/camera_rgb_optical_frame")
-        self.assertAlmostEqual(info.K[2], 160.0)
+        self.assertAlmostEqual(info.K[2], 159.5)  # the middle of 320 pixels centred on 0 .. 319
+        self.assertAlmostEqual(info.K[5], 119.5)
         self.assertAlmostEqual(info.K[0], 160.0 / math.tan(math.radians(57.0) / 2.0), places=3)
         self.assertGreater(len(set(image.data[::97])), 5)  # not a blank image
 

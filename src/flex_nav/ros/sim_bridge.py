@@ -205,7 +205,9 @@ class RobotIO:
             self.info.height, self.info.width = cam.height, cam.width
             self.info.distortion_model = "plumb_bob"
             self.info.D = [0.0] * 5
-            f, cx, cy = cam.focal_px, cam.width / 2.0, cam.height / 2.0
+            # the renderer's optical axis passes through the middle of the image: (W - 1) / 2 with pixel centres
+            # at integer coordinates, as CameraInfo counts them
+            f, cx, cy = cam.focal_px, (cam.width - 1) / 2.0, (cam.height - 1) / 2.0
             self.info.K = [f, 0.0, cx, 0.0, f, cy, 0.0, 0.0, 1.0]
             self.info.R = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]
             self.info.P = [f, 0.0, cx, 0.0, 0.0, f, cy, 0.0, 0.0, 0.0, 1.0, 0.0]
