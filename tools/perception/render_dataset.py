@@ -47,6 +47,7 @@ SPLITS: Dict[str, Tuple[int, int]] = {  # split: (id in the seed, samples per la
     "unseen6": (16, 300),  # a sixth held-out set (held_out_scenes.HELD_OUT_6)
     "extra5": (17, 1200), "val_extra5": (18, 100),  # people behind or on things, plants (scenes.ENCUMBERED)
     "unseen7": (19, 300),  # a seventh held-out set (held_out_scenes.HELD_OUT_7)
+    "extra6": (20, 1200), "val_extra6": (21, 100),  # people down on the floor (scenes.ON_FLOOR)
 }
 CHUNK = 20  # samples per label in a chunk (one generator per chunk)
 SHEET_FRAMES = 24
