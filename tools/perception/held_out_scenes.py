@@ -37,6 +37,7 @@ from tools.perception.scene_base import (
     color_links,
     furniture_color,
     jitter,
+    limb,
     local,
     person_walker,
     pick,
@@ -1273,10 +1274,7 @@ def person_dog_walker(sc: Scene, x: float, y: float, yaw: float) -> None:
     tx, ty = local(dx, dy, yaw, -length / 2.0 - 0.1 * size, 0.0)
     sc.capsule((tx, ty, body_z + 0.08 * size), 0.015 * size, 0.2 * size, fur, yaw=yaw, pitch=-0.6)
     hand_x, hand_y = local(x, y, yaw, 0.1, side * 0.25 * s)
-    lead = math.hypot(hx - hand_x, hy - hand_y)
-    sc.capsule(((hand_x + hx) / 2.0, (hand_y + hy) / 2.0, (0.85 * s + body_z + 0.15 * size) / 2.0), 0.006, lead,
-               jitter(rng, (0.7, 0.1, 0.1)), yaw=math.atan2(hy - hand_y, hx - hand_x),
-               pitch=math.atan2(lead, 0.85 * s - body_z - 0.15 * size))
+    limb(sc, (hand_x, hand_y, 0.85 * s), (hx, hy, body_z + 0.15 * size), 0.006, jitter(rng, (0.7, 0.1, 0.1)))
 
 
 def person_bench_sleeper(sc: Scene, x: float, y: float, yaw: float) -> None:

@@ -125,6 +125,14 @@ def local(x: float, y: float, yaw: float, fx: float, fy: float) -> Tuple[float, 
     return x + c * fx - s * fy, y + s * fx + c * fy
 
 
+def limb(sc: Scene, a: Vec3, b: Vec3, radius: float, color: Rgba) -> None:
+    """A capsule whose axis runs from point ``a`` to point ``b`` [m]."""
+    dx, dy, dz = b[0] - a[0], b[1] - a[1], b[2] - a[2]
+    sc.capsule(((a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0, (a[2] + b[2]) / 2.0), radius,
+               max(math.sqrt(dx * dx + dy * dy + dz * dz), 1e-3), color, yaw=math.atan2(dy, dx),
+               pitch=math.atan2(math.hypot(dx, dy), dz))
+
+
 def person_walker(sc: Scene, x: float, y: float, yaw: float, *, dress: bool = False,
                   size: Tuple[float, float] = (0.9, 1.1)) -> float:
     """A figure of primitives: legs in a walking pose, shoes, torso, arms, head (``dress``: a skirt), scaled

@@ -60,6 +60,7 @@ from tools.perception.scene_base import (
     furniture_color,
     jitter,
     legs4,
+    limb,
     local,
     person_walker,
     pick,
@@ -943,14 +944,6 @@ def clear_plant(sc: Scene, x: float, y: float, yaw: float) -> None:
 # sitting cross-legged, with the knees up or the legs out and the hands behind; lying on the back, the side or
 # the front; squatting; crawling (adults and children). ``unseen7`` therefore chose this data.
 ON_FLOOR_POSES = ("cross_legged", "knees_up", "legs_out", "lying", "squatting", "crawling")
-
-
-def limb(sc: Scene, a: Vec3, b: Vec3, radius: float, color: Rgba) -> None:
-    """A capsule whose axis runs from point ``a`` to point ``b`` [m]."""
-    dx, dy, dz = b[0] - a[0], b[1] - a[1], b[2] - a[2]
-    sc.capsule(((a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0, (a[2] + b[2]) / 2.0), radius,
-               max(math.sqrt(dx * dx + dy * dy + dz * dz), 1e-3), color, yaw=math.atan2(dy, dx),
-               pitch=math.atan2(math.hypot(dx, dy), dz))
 
 
 class FloorFigure:
