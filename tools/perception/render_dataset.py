@@ -49,6 +49,7 @@ SPLITS: Dict[str, Tuple[int, int]] = {  # split: (id in the seed, samples per la
     "unseen7": (19, 300),  # a seventh held-out set (held_out_scenes.HELD_OUT_7)
     "extra6": (20, 1200), "val_extra6": (21, 100),  # people down on the floor (scenes.ON_FLOOR)
     "unseen8": (22, 300),  # an eighth held-out set (held_out_scenes.HELD_OUT_8)
+    "unseen9": (23, 300),  # a ninth held-out set (held_out_scenes.HELD_OUT_9)
 }
 CHUNK = 20  # samples per label in a chunk (one generator per chunk)
 SHEET_FRAMES = 24

@@ -1217,7 +1217,7 @@ def models_for(split: str) -> Dict[str, Tuple[str, ...]]:
     seen ones and the training-only ones, :data:`TRAIN_ONLY`), ``extra2``/``val_extra2`` (:data:`PASSAGE`),
     ``extra3``/``val_extra3`` (:data:`PROCEDURAL`), ``extra4``/``val_extra4`` (:data:`ASSISTIVE`),
     ``extra5``/``val_extra5`` (:data:`ENCUMBERED`), ``extra6``/``val_extra6`` (:data:`ON_FLOOR`),
-    ``unseen`` .. ``unseen8`` (the held-out sets,
+    ``unseen`` .. ``unseen9`` (the held-out sets,
     :data:`tools.perception.held_out_scenes.HELD_OUT_SETS`)."""
     if split in OWN_MODELS:
         return OWN_MODELS[split]
