@@ -35,6 +35,7 @@ from flex_nav_sim.profiles import CameraSpec, load_profile
 from flex_nav_sim.sensors import depth_from_buffer
 from flex_nav_sim.world import DEFAULT_COLORS
 from tools.perception.held_out_scenes import HELD_OUT_BUILDERS, HELD_OUT_SETS
+from tools.perception.procedural_scenes import clear_random_structure, movable_random_object, person_random_pose
 from tools.perception.scene_base import (
     CLOTHES,
     DATA,
@@ -84,7 +85,7 @@ TRAIN_ONLY: Dict[str, Tuple[str, ...]] = {  # extra training models, only in the
     CLEAR: ("stool", "ottoman", "sideboard", "cart", "radiator", "seat_row", "gurney", "desk", "corridor"),
 }
 EXTRA_SPLITS = ("extra", "val_extra", "extra2", "val_extra2", "extra3", "val_extra3", "extra4", "val_extra4",
-                "extra5", "val_extra5", "extra6", "val_extra6")
+                "extra5", "val_extra5", "extra6", "val_extra6", "extra7", "val_extra7")
 PASSAGE: Dict[str, Tuple[str, ...]] = {  # the ``extra2`` splits: boxes in passages against corridors and furniture
     PERSON: TRAIN_MODELS[PERSON],
     MOVABLE: ("passage_box", "passage_box", "box", "light_box"),
@@ -104,6 +105,11 @@ ON_FLOOR: Dict[str, Tuple[str, ...]] = {  # the ``extra6`` splits: people down o
     PERSON: ("on_floor", "on_floor", "on_floor", "seated_person", "behind_thing", "walker"),
     MOVABLE: ("box", "sack", "suitcase", "tote", "bin", "marked_box"),
     CLEAR: ("ottoman", "coffee_table", "stool", "random_furniture", "plant", "empty"),
+}
+SAMPLED: Dict[str, Tuple[str, ...]] = {  # the ``extra7`` splits: procedural poses, objects and structures
+    PERSON: ("random_pose", "random_pose", "random_pose", "random_pose", "walker", "on_floor"),
+    MOVABLE: ("random_object", "random_object", "random_object", "random_object", "marked_box", "sack"),
+    CLEAR: ("random_structure", "random_structure", "random_structure", "random_furniture", "plant", "empty"),
 }
 ENCUMBERED: Dict[str, Tuple[str, ...]] = {  # the ``extra5`` splits: people behind or on things, plants
     PERSON: ("block_pusher", "behind_thing", "behind_thing", "base_rider", "seated_person", "walker"),
@@ -1112,6 +1118,9 @@ BUILDERS: Dict[str, Builder] = {
     "empty_base": clear_empty_base,
     "plant": clear_plant,
     "on_floor": person_on_floor,
+    "random_pose": person_random_pose,
+    "random_object": movable_random_object,
+    "random_structure": clear_random_structure,
     **HELD_OUT_BUILDERS,
 }
 DISTANCES: Dict[str, Tuple[float, float]] = {  # [m] camera to target centre
@@ -1209,6 +1218,7 @@ OWN_MODELS: Dict[str, Dict[str, Tuple[str, ...]]] = {  # splits with models of t
     "extra4": ASSISTIVE, "val_extra4": ASSISTIVE,
     "extra5": ENCUMBERED, "val_extra5": ENCUMBERED,
     "extra6": ON_FLOOR, "val_extra6": ON_FLOOR,
+    "extra7": SAMPLED, "val_extra7": SAMPLED,
 }
 
 
@@ -1217,7 +1227,8 @@ def models_for(split: str) -> Dict[str, Tuple[str, ...]]:
     seen ones and the training-only ones, :data:`TRAIN_ONLY`), ``extra2``/``val_extra2`` (:data:`PASSAGE`),
     ``extra3``/``val_extra3`` (:data:`PROCEDURAL`), ``extra4``/``val_extra4`` (:data:`ASSISTIVE`),
     ``extra5``/``val_extra5`` (:data:`ENCUMBERED`), ``extra6``/``val_extra6`` (:data:`ON_FLOOR`),
-    ``unseen`` .. ``unseen9`` (the held-out sets,
+    ``extra7``/``val_extra7`` (:data:`SAMPLED`, :mod:`tools.perception.procedural_scenes`),
+    ``unseen`` .. ``unseen10`` (the held-out sets,
     :data:`tools.perception.held_out_scenes.HELD_OUT_SETS`)."""
     if split in OWN_MODELS:
         return OWN_MODELS[split]

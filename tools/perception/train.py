@@ -34,8 +34,9 @@ STD = (0.25, 0.25, 0.25)
 DEPTH_MEAN, DEPTH_STD = 0.5, 0.25  # on depth / DEPTH_RANGE
 INPUTS = ("rgbd", "rgb")
 DATASET_COMMAND = "python -m tools.perception.render_dataset --out build/dataset --seed {seed}"
-TRAIN_SPLITS = ("train", "extra", "extra2", "extra3", "extra4", "extra5", "extra6")
-VAL_SPLITS = ("val", "val_extra", "val_extra2", "val_extra3", "val_extra4", "val_extra5", "val_extra6")
+TRAIN_SPLITS = ("train", "extra", "extra2", "extra3", "extra4", "extra5", "extra6", "extra7")
+VAL_SPLITS = ("val", "val_extra", "val_extra2", "val_extra3", "val_extra4", "val_extra5", "val_extra6",
+              "val_extra7")
 TRAIN_COMMAND = "python -m tools.perception.train --data build/dataset --seed {seed} --epochs {epochs} --out {out}"
 
 
