@@ -1,4 +1,4 @@
-"""The held-out models of the classifier's dataset: six sets of people, pushable objects and furniture
+"""The held-out models of the classifier's dataset: ten sets of people, pushable objects and furniture
 (``HELD_OUT`` .. ``HELD_OUT_10``, the ``unseen`` .. ``unseen10`` splits), each defined, rendered and measured
 before the training data that followed it, and never used in a training or selection split
 (``test/unit/perception/test_dataset_tools.py``). Frozen: changing a builder here changes a stored held-out
