@@ -40,6 +40,7 @@ from tools.perception.scene_base import (
     box_color,
     furniture_color,
     jitter,
+    legs4,
     limb,
     local,
     pick,
@@ -253,10 +254,7 @@ def _support(sc: Scene, x: float, y: float, yaw: float, stance: str, *, seat_z: 
             sc.box((cx, cy, top / 2.0), (half[0], half[1], top / 2.0), colour, yaw)
         else:  # a top on legs
             sc.box((cx, cy, top - 0.02), (half[0], half[1], 0.02), colour, yaw)
-            for fx in (half[0] - 0.03, -half[0] + 0.03):
-                for fy in (half[1] - 0.03, -half[1] + 0.03):
-                    lx, ly = local(cx, cy, yaw, fx, fy)
-                    sc.box((lx, ly, top / 2.0), (0.02, 0.02, top / 2.0), colour, yaw)
+            legs4(sc, cx, cy, yaw, dx=half[0] - 0.03, dy=half[1] - 0.03, height=top, half=0.02, color=colour)
         return
     length = (span[1] - span[0]) + 0.2  # [m]
     cx, cy = local(x, y, yaw, (span[0] + span[1]) / 2.0, 0.0)
@@ -381,10 +379,7 @@ def _tall_body(sc: Scene, x: float, y: float, yaw: float, *, colour: Rgba, trim:
     else:
         sc.cylinder((x, y, z0 + (h - z0) / 2.0), min(w, d) / 2.0, h - z0, colour)
     if z0 > 0.0:
-        for fx in (d / 2.0 - 0.04, -d / 2.0 + 0.04):
-            for fy in (w / 2.0 - 0.04, -w / 2.0 + 0.04):
-                lx, ly = local(x, y, yaw, fx, fy)
-                sc.box((lx, ly, z0 / 2.0), (0.025, 0.025, z0 / 2.0), trim, yaw)
+        legs4(sc, x, y, yaw, dx=d / 2.0 - 0.04, dy=w / 2.0 - 0.04, height=z0, half=0.025, color=trim)
     for _ in range(int(rng.integers(0, 5))):  # doors, screens, grilles, labels on the front
         px, py = local(x, y, yaw, d / 2.0 + 0.005, rng.uniform(-0.3, 0.3) * w)
         sc.box((px, py, rng.uniform(z0 + 0.1, h - 0.05)), (0.005, rng.uniform(0.05, 0.45) * w,
@@ -433,15 +428,11 @@ def _rack(sc: Scene, x: float, y: float, yaw: float, *, colour: Rgba, trim: Rgba
     rng = sc.rng
     w, d, h = rng.uniform(0.5, 1.6), rng.uniform(0.3, 0.7), rng.uniform(0.8, 2.0)
     post = rng.uniform(0.012, 0.035)
-    for fx in (d / 2.0, -d / 2.0):
-        for fy in (w / 2.0, -w / 2.0):
-            px, py = local(x, y, yaw, fx, fy)
-            sc.box((px, py, h / 2.0), (post, post, h / 2.0), trim, yaw)
+    legs4(sc, x, y, yaw, dx=d / 2.0, dy=w / 2.0, height=h, half=post, color=trim)
     levels = int(rng.integers(1, 6))
     solid = rng.random() < 0.6
     for k in range(levels):
-        z = h * (k + 1) / levels - 0.02 if levels > 1 else h - 0.02
-        z = max(z, 0.1)
+        z = max(h * (k + 1) / levels - 0.02, 0.1)
         if solid:
             sc.box((x, y, z), (d / 2.0, w / 2.0, 0.015), colour, yaw)
         else:

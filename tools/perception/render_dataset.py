@@ -50,8 +50,8 @@ SPLITS: Dict[str, Tuple[int, int]] = {  # split: (id in the seed, samples per la
     "extra6": (20, 1200), "val_extra6": (21, 100),  # people down on the floor (scenes.ON_FLOOR)
     "unseen8": (22, 300),  # an eighth held-out set (held_out_scenes.HELD_OUT_8)
     "unseen9": (23, 300),  # a ninth held-out set (held_out_scenes.HELD_OUT_9)
-    "unseen10": (26, 300),  # a tenth held-out set (held_out_scenes.HELD_OUT_10)
     "extra7": (24, 1500), "val_extra7": (25, 100),  # procedural people, objects, structures (scenes.SAMPLED)
+    "unseen10": (26, 300),  # a tenth held-out set (held_out_scenes.HELD_OUT_10)
 }
 CHUNK = 20  # samples per label in a chunk (one generator per chunk)
 SHEET_FRAMES = 24
