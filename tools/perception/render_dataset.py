@@ -52,6 +52,7 @@ SPLITS: Dict[str, Tuple[int, int]] = {  # split: (id in the seed, samples per la
     "unseen9": (23, 300),  # a ninth held-out set (held_out_scenes.HELD_OUT_9)
     "extra7": (24, 1500), "val_extra7": (25, 100),  # procedural people, objects, structures (scenes.SAMPLED)
     "unseen10": (26, 300),  # a tenth held-out set (held_out_scenes.HELD_OUT_10)
+    "unseen11": (27, 300),  # an eleventh held-out set (held_out_scenes.HELD_OUT_11)
 }
 CHUNK = 20  # samples per label in a chunk (one generator per chunk)
 SHEET_FRAMES = 24

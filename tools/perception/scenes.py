@@ -1230,7 +1230,7 @@ def models_for(split: str) -> Dict[str, Tuple[str, ...]]:
     ``extra3``/``val_extra3`` (:data:`PROCEDURAL`), ``extra4``/``val_extra4`` (:data:`ASSISTIVE`),
     ``extra5``/``val_extra5`` (:data:`ENCUMBERED`), ``extra6``/``val_extra6`` (:data:`ON_FLOOR`),
     ``extra7``/``val_extra7`` (:data:`SAMPLED`, :mod:`tools.perception.procedural_scenes`),
-    ``unseen`` .. ``unseen10`` (the held-out sets,
+    ``unseen`` .. ``unseen11`` (the held-out sets,
     :data:`tools.perception.held_out_scenes.HELD_OUT_SETS`)."""
     if split in OWN_MODELS:
         return OWN_MODELS[split]
