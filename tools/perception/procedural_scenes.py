@@ -25,7 +25,7 @@ The three builders never name a held-out model and share no code with :mod:`tool
 from __future__ import annotations
 
 import math
-from typing import Callable, List, Tuple
+from typing import Callable, List, Sequence, Tuple
 
 import numpy as np
 
@@ -130,6 +130,12 @@ class _Pose:
                              for _ in range(2)]
             self.elbow = [u(0.0, 0.3) if front else u(0.0, 1.5) for _ in range(2)]
 
+    def reach_forward(self, rng: np.random.Generator) -> None:
+        """Both arms held forward at about hand-rail height (the hands on a handle)."""
+        grip = rng.uniform(0.9, 1.5)  # [rad] both upper arms forward ...
+        self.shoulder, self.abduct = [grip, grip], [rng.uniform(0.0, 0.25)] * 2
+        self.elbow = [rng.uniform(0.0, 0.6)] * 2  # ... the forearms a little more
+
 
 CONTACTS = {  # the points a stance rests on (the lowest of them is put on the floor or the support)
     "standing": ("ankle", "toe"), "walking": ("ankle", "toe"), "bending": ("ankle", "toe"),
@@ -139,11 +145,17 @@ CONTACTS = {  # the points a stance rests on (the lowest of them is put on the f
 }
 
 
-def person_random_pose(sc: Scene, x: float, y: float, yaw: float) -> None:
-    """A figure of random size, build and clothes in a random stance of :data:`STANCES` (see the module)."""
+def person_random_pose(sc: Scene, x: float, y: float, yaw: float, *, stances: Sequence[str] | None = None,
+                       reach: bool = False) -> List[Vec3]:
+    """A figure of random size, build and clothes in a random stance of ``stances`` (default :data:`STANCES`;
+    see the module); ``reach``: both arms held forward at about hand-rail height (the hands on a handle).
+    Returns the hands' positions [m]."""
     rng = sc.rng
-    stance = STANCES[int(rng.integers(len(STANCES)))]
+    choices = STANCES if stances is None else tuple(stances)
+    stance = choices[int(rng.integers(len(choices)))]
     pose = _Pose(rng, stance)
+    if reach:
+        pose.reach_forward(rng)
     s = rng.uniform(0.55, 0.75) if rng.random() < 0.2 else rng.uniform(0.85, 1.15)  # child or adult
     build = rng.uniform(0.8, 1.35)  # thin .. heavy
     thigh, shin = 0.45 * s * rng.uniform(0.92, 1.08), 0.43 * s * rng.uniform(0.92, 1.08)  # [m]
@@ -193,8 +205,10 @@ def person_random_pose(sc: Scene, x: float, y: float, yaw: float) -> None:
     sc.box(world(neck / 2.0), (depth / 2.0, width / 2.0, torso_h / 2.0 + 0.03), colours["shirt"], yaw, lean)
     sc.sphere(world(head), head_r, colours["skin"])
     sc.sphere(world(head + spine * head_r * 0.35), head_r * 0.95, colours["hat"])  # hair or a hat
-    _extras(sc, x, y, yaw, stance, world=world, neck=neck, lean=lean, hands=[world(w) for w, _ in hands],
-            size=(s, width, depth), shirt=colours["shirt"])
+    hand_points = [world(w) for w, _ in hands]
+    _extras(sc, x, y, yaw, stance, world=world, neck=neck, lean=lean, hands=hand_points, size=(s, width, depth),
+            shirt=colours["shirt"])
+    return hand_points
 
 
 def _extras(sc: Scene, x: float, y: float, yaw: float, stance: str, *, world: Callable[[Point], Vec3], neck: Point,
@@ -449,3 +463,155 @@ def _rack(sc: Scene, x: float, y: float, yaw: float, *, colour: Rgba, trim: Rgba
             for fy in (w / 2.0, -w / 2.0):
                 px, py = local(x, y, yaw, fx, fy)
                 sc.sphere((px, py, 0.03), 0.03, (0.1, 0.1, 0.1, 1.0))
+
+
+# -- the ``extra8`` additions: designed from the errors on the ninth and tenth held-out sets (a person pushing a
+# cart, a treadmill, a washing machine, an easel, an ironing board), written after ``unseen11`` was defined and
+# without any of its kinds (no stretcher, panel, scooter, sign, bin, step stool, medical cart, lectern, pillar).
+def person_pushing_thing(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A standing, walking or bending figure with both hands on the handle of a random wheeled thing ahead of it
+    (a cart, a trolley, a pram, a frame): a body of random shape and size between the figure and its front, on
+    wheels or feet, reached by a bar between the hands. The thing may hide the figure's legs from the front."""
+    rng = sc.rng
+    hands = person_random_pose(sc, x, y, yaw, stances=("standing", "walking", "bending"), reach=True)
+    (ax, ay, az), (bx, by, bz) = hands
+    grip = ((ax + bx) / 2.0, (ay + by) / 2.0, (az + bz) / 2.0)
+    colour, trim = _object_colour(rng), jitter(rng, pick(rng, METAL))
+    limb(sc, (ax, ay, az), (bx, by, bz), 0.015, trim)  # the handle bar
+    fwd = (grip[0] - x) * math.cos(yaw) + (grip[1] - y) * math.sin(yaw)  # [m] the handle ahead of the figure
+    length, width = rng.uniform(0.4, 1.1), rng.uniform(0.35, 0.7)
+    top = rng.uniform(0.3, max(0.35, grip[2] - 0.05))
+    bottom = rng.uniform(0.08, max(0.1, top - 0.15))
+    cx, cy = local(x, y, yaw, fwd + 0.05 + length / 2.0, 0.0)
+    if rng.random() < 0.6:  # a solid body (a bin, a box on a chassis, a pram)
+        sc.box((cx, cy, (top + bottom) / 2.0), (length / 2.0, width / 2.0, (top - bottom) / 2.0), colour, yaw)
+    else:  # an open frame with shelves
+        legs4(sc, cx, cy, yaw, dx=length / 2.0, dy=width / 2.0, height=top, half=0.012, color=trim)
+        for z in (bottom, top):
+            sc.box((cx, cy, z), (length / 2.0, width / 2.0, 0.012), colour, yaw)
+    for side in (1.0, -1.0):  # the handle's uprights down to the body
+        hx, hy = local(x, y, yaw, fwd, side * width * 0.4)
+        limb(sc, (hx, hy, grip[2]), (*local(x, y, yaw, fwd + 0.08, side * width * 0.4), top), 0.012, trim)
+    wheel = rng.uniform(0.04, min(0.15, bottom))
+    for fx in (0.1, length - 0.1):
+        for side in (1.0, -1.0):
+            wx, wy = local(x, y, yaw, fwd + 0.05 + fx, side * (width / 2.0 - 0.03))
+            sc.cylinder((wx, wy, wheel), wheel, 0.03, (0.1, 0.1, 0.1, 1.0), yaw=yaw + math.pi / 2.0,
+                        roll=math.pi / 2.0)
+
+
+def clear_random_machine(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A long low base (1-2 m, 0.08-0.45 m high) on the floor, feet or castors with one or two uprights at one
+    end rising to 0.9-1.6 m, joined by a bar, a console or handles, maybe a seat on the base: exercise machines,
+    hoists, floor machines."""
+    rng = sc.rng
+    colour, trim = _structure_colour(rng), _structure_colour(rng)
+    length, width, h = rng.uniform(1.0, 2.0), rng.uniform(0.45, 0.9), rng.uniform(0.08, 0.45)
+    z0 = (0.0, rng.uniform(0.04, 0.1))[int(rng.integers(2))]
+    sc.box((x, y, z0 + h / 2.0), (length / 2.0, width / 2.0, h / 2.0), colour, yaw)
+    if z0 > 0.0:
+        legs4(sc, x, y, yaw, dx=length / 2.0 - 0.05, dy=width / 2.0 - 0.05, height=z0, half=0.02, color=trim)
+    if rng.random() < 0.5:  # a belt, a pad or a rail along the top
+        sc.box((x, y, z0 + h + 0.01), (length / 2.0 - 0.05, width / 2.0 - 0.08, 0.01), _structure_colour(rng), yaw)
+    end = 1.0 if rng.random() < 0.5 else -1.0
+    rise = rng.uniform(0.9, 1.6)
+    posts = (1.0, -1.0) if rng.random() < 0.6 else (0.0,)
+    ux = end * (length / 2.0 - rng.uniform(0.05, 0.3))
+    lean = rng.uniform(-0.25, 0.25)
+    for side in posts:
+        foot = (*local(x, y, yaw, ux, side * (width / 2.0 - 0.03)), z0 + h)
+        head = (*local(x, y, yaw, ux + lean * rise, side * (width / 2.0 - 0.03)), rise)
+        limb(sc, foot, head, rng.uniform(0.015, 0.05), trim)
+    hx, hy = local(x, y, yaw, ux + lean * rise, 0.0)
+    kind = rng.random()
+    if kind < 0.4:  # a console
+        sc.box((hx, hy, rise + 0.05), (rng.uniform(0.05, 0.2), width / 2.0, rng.uniform(0.04, 0.15)), colour, yaw,
+               rng.uniform(-0.6, 0.6))
+    elif kind < 0.7:  # a bar across
+        sc.cylinder((hx, hy, rise), 0.02, width, trim, yaw=yaw, roll=math.pi / 2.0)
+    else:  # handles reaching back along the base
+        for side in posts if len(posts) == 2 else (1.0, -1.0):
+            limb(sc, (*local(x, y, yaw, ux + lean * rise, side * (width / 2.0 - 0.03)), rise),
+                 (*local(x, y, yaw, ux - end * rng.uniform(0.2, 0.5), side * (width / 2.0 - 0.03)), rise - 0.1),
+                 0.02, trim)
+    if rng.random() < 0.35:  # a seat on a post
+        sx_, sy_ = local(x, y, yaw, -end * length * 0.25, 0.0)
+        seat_z = z0 + h + rng.uniform(0.15, 0.5)
+        limb(sc, (sx_, sy_, z0 + h), (sx_, sy_, seat_z), 0.03, trim)
+        sc.box((sx_, sy_, seat_z + 0.04), (0.15, 0.13, 0.04), _structure_colour(rng), yaw)
+
+
+def clear_random_appliance(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """An appliance-sized body 0.85-1.3 m high and 0.5-0.9 m wide on the floor or feet, with random fronts: a
+    round window, a control strip, taps, grilles, a door line, maybe a thing on top."""
+    rng = sc.rng
+    colour = jitter(rng, pick(rng, ((0.95, 0.95, 0.95), (0.85, 0.85, 0.83), (0.7, 0.7, 0.72), (0.2, 0.2, 0.22),
+                                    (0.6, 0.62, 0.66)))) if rng.random() < 0.6 else _structure_colour(rng)
+    w, d, h = rng.uniform(0.5, 0.9), rng.uniform(0.45, 0.8), rng.uniform(0.85, 1.3)
+    z0 = (0.0, rng.uniform(0.02, 0.08))[int(rng.integers(2))]
+    sc.box((x, y, z0 + (h - z0) / 2.0), (d / 2.0, w / 2.0, (h - z0) / 2.0), colour, yaw)
+    if z0 > 0.0:
+        legs4(sc, x, y, yaw, dx=d / 2.0 - 0.04, dy=w / 2.0 - 0.04, height=z0, half=0.02, color=(0.1, 0.1, 0.1, 1.0))
+    fx, fy = local(x, y, yaw, d / 2.0 + 0.006, 0.0)
+    for _ in range(int(rng.integers(1, 4))):
+        detail = rng.random()
+        z = rng.uniform(z0 + 0.15, h - 0.1)
+        if detail < 0.3:  # a round window or a dial
+            r = rng.uniform(0.05, min(0.25, w / 2.0 - 0.05))
+            wx, wy = local(x, y, yaw, d / 2.0 + 0.01, rng.uniform(-0.2, 0.2) * w)
+            sc.cylinder((wx, wy, min(z, h - r - 0.02)), r, 0.02, random_color(rng, 0.05, 0.9),
+                        yaw=yaw + math.pi / 2.0, roll=math.pi / 2.0)
+        elif detail < 0.55:  # a control strip
+            sc.box((fx, fy, h - rng.uniform(0.04, 0.12)), (0.006, w / 2.0 - 0.02, rng.uniform(0.02, 0.06)),
+                   random_color(rng, 0.0, 1.0), yaw)
+        elif detail < 0.75:  # taps or knobs
+            for k in range(int(rng.integers(1, 4))):
+                kx, ky = local(x, y, yaw, d / 2.0 + 0.02, (k - 1) * 0.08)
+                sc.box((kx, ky, z), (0.02, 0.015, 0.02), random_color(rng, 0.0, 1.0), yaw)
+        else:  # a door line or a grille
+            sc.box((fx, fy, z), (0.004, w / 2.0 - rng.uniform(0.02, 0.1), rng.uniform(0.005, 0.2)),
+                   jitter(rng, pick(rng, METAL)), yaw)
+    if rng.random() < 0.3:  # a bottle or a box on top
+        if rng.random() < 0.5:
+            sc.cylinder((x, y, h + 0.18), rng.uniform(0.1, 0.15), 0.36, random_color(rng, 0.3, 0.95))
+        else:
+            half = rng.uniform(0.08, 0.25, 3)
+            sc.box((x, y, h + float(half[2])), (float(half[0]), float(half[1]), float(half[2])),
+                   random_color(rng, 0.05, 0.95), yaw + rng.uniform(-0.5, 0.5))
+
+
+def clear_legged_frame(sc: Scene, x: float, y: float, yaw: float) -> None:
+    """A board or a flat body held 0.8-1.6 m up on two to four thin legs, straight, splayed or crossed, the board
+    level or tilted up to 1.2 rad: high tables, stands, boards on trestles or tripods."""
+    rng = sc.rng
+    colour, trim = _structure_colour(rng), _structure_colour(rng)
+    top = rng.uniform(0.8, 1.6)
+    length, depth = rng.uniform(0.4, 1.4), rng.uniform(0.05, 0.5)
+    tilt = 0.0 if rng.random() < 0.4 else rng.uniform(0.2, 1.2)
+    thick = rng.uniform(0.015, 0.05)
+    along = yaw + (math.pi / 2.0 if rng.random() < 0.5 else 0.0)
+    board_h = depth * math.sin(tilt) + thick
+    sc.box((x, y, top + board_h / 2.0), (depth / 2.0, length / 2.0, thick / 2.0), colour, along, tilt)
+    if tilt > 0.0 and rng.random() < 0.5:  # a sheet, a picture or a lip on the board
+        px, py = local(x, y, along, math.cos(tilt) * 0.02, 0.0)
+        sc.box((px, py, top + board_h / 2.0 + 0.01), (depth * 0.4, length * 0.4, 0.004),
+               random_color(rng, 0.0, 1.0), along, tilt)
+    legs = int(rng.integers(2, 5))
+    radius = rng.uniform(0.01, 0.03)
+    style = rng.random()
+    for k in range(legs):
+        fy = (k / (legs - 1) - 0.5) * length * 0.8 if legs > 1 else 0.0
+        if style < 0.4:  # straight
+            foot = (*local(x, y, along, 0.0, fy), 0.0)
+            head = (*local(x, y, along, 0.0, fy), top)
+        elif style < 0.75:  # splayed front and back in turn
+            out = (1.0 if k % 2 == 0 else -1.0) * rng.uniform(0.15, 0.45)
+            foot = (*local(x, y, along, out, fy * 1.2), 0.0)
+            head = (*local(x, y, along, 0.0, fy * 0.7), top)
+        else:  # crossed along the board
+            foot = (*local(x, y, along, (1.0 if k % 2 == 0 else -1.0) * 0.1, fy), 0.0)
+            head = (*local(x, y, along, (1.0 if k % 2 == 0 else -1.0) * 0.1, -fy), top)
+        limb(sc, foot, head, radius, trim)
+    if rng.random() < 0.4:  # a rail between the legs
+        z = rng.uniform(0.1, top * 0.6)
+        sc.cylinder((x, y, z), 0.012, length * 0.7, trim, yaw=along + math.pi / 2.0, roll=math.pi / 2.0)

@@ -35,7 +35,15 @@ from flex_nav_sim.profiles import CameraSpec, load_profile
 from flex_nav_sim.sensors import depth_from_buffer
 from flex_nav_sim.world import DEFAULT_COLORS
 from tools.perception.held_out_scenes import HELD_OUT_BUILDERS, HELD_OUT_SETS
-from tools.perception.procedural_scenes import clear_random_structure, movable_random_object, person_random_pose
+from tools.perception.procedural_scenes import (
+    clear_legged_frame,
+    clear_random_appliance,
+    clear_random_machine,
+    clear_random_structure,
+    movable_random_object,
+    person_pushing_thing,
+    person_random_pose,
+)
 from tools.perception.scene_base import (
     CLOTHES,
     DATA,
@@ -112,6 +120,12 @@ SAMPLED: Dict[str, Tuple[str, ...]] = {  # the ``extra7`` splits: procedural pos
     PERSON: ("random_pose", "random_pose", "random_pose", "random_pose", "walker", "on_floor"),
     MOVABLE: ("random_object", "random_object", "random_object", "passage_box", "marked_box", "sack"),
     CLEAR: ("random_structure", "random_structure", "random_structure", "random_furniture", "corridor", "empty"),
+}
+SAMPLED2: Dict[str, Tuple[str, ...]] = {  # the ``extra8`` splits: more procedural draws, people pushing random
+    # wheeled things, machines, appliances and legged frames among the structures (tools.perception.procedural_scenes)
+    PERSON: ("random_pose", "random_pose", "random_pose", "pushing_thing", "pushing_thing", "walker"),
+    MOVABLE: ("random_object", "random_object", "random_object", "random_object", "passage_box", "box"),
+    CLEAR: ("random_machine", "random_appliance", "legged_frame", "random_structure", "random_furniture", "corridor"),
 }
 ENCUMBERED: Dict[str, Tuple[str, ...]] = {  # the ``extra5`` splits: people behind or on things, plants
     PERSON: ("block_pusher", "behind_thing", "behind_thing", "base_rider", "seated_person", "walker"),
@@ -1123,6 +1137,10 @@ BUILDERS: Dict[str, Builder] = {
     "random_pose": person_random_pose,
     "random_object": movable_random_object,
     "random_structure": clear_random_structure,
+    "pushing_thing": person_pushing_thing,
+    "random_machine": clear_random_machine,
+    "random_appliance": clear_random_appliance,
+    "legged_frame": clear_legged_frame,
     **HELD_OUT_BUILDERS,
 }
 DISTANCES: Dict[str, Tuple[float, float]] = {  # [m] camera to target centre
@@ -1221,6 +1239,7 @@ OWN_MODELS: Dict[str, Dict[str, Tuple[str, ...]]] = {  # splits with models of t
     "extra5": ENCUMBERED, "val_extra5": ENCUMBERED,
     "extra6": ON_FLOOR, "val_extra6": ON_FLOOR,
     "extra7": SAMPLED, "val_extra7": SAMPLED,
+    "extra8": SAMPLED2, "val_extra8": SAMPLED2,
 }
 
 
@@ -1229,7 +1248,8 @@ def models_for(split: str) -> Dict[str, Tuple[str, ...]]:
     seen ones and the training-only ones, :data:`TRAIN_ONLY`), ``extra2``/``val_extra2`` (:data:`PASSAGE`),
     ``extra3``/``val_extra3`` (:data:`PROCEDURAL`), ``extra4``/``val_extra4`` (:data:`ASSISTIVE`),
     ``extra5``/``val_extra5`` (:data:`ENCUMBERED`), ``extra6``/``val_extra6`` (:data:`ON_FLOOR`),
-    ``extra7``/``val_extra7`` (:data:`SAMPLED`, :mod:`tools.perception.procedural_scenes`),
+    ``extra7``/``val_extra7`` (:data:`SAMPLED`, :mod:`tools.perception.procedural_scenes`), ``extra8``/``val_extra8``
+    (:data:`SAMPLED2`),
     ``unseen`` .. ``unseen11`` (the held-out sets,
     :data:`tools.perception.held_out_scenes.HELD_OUT_SETS`)."""
     if split in OWN_MODELS:

@@ -28,7 +28,7 @@ def _all(models: dict[str, tuple[str, ...]]) -> set[str]:
 
 
 TRAINING_TABLES = (scenes.TRAIN_MODELS, scenes.TRAIN_ONLY, scenes.PASSAGE, scenes.PROCEDURAL, scenes.ASSISTIVE,
-                   scenes.ENCUMBERED, scenes.ON_FLOOR, scenes.SAMPLED)
+                   scenes.ENCUMBERED, scenes.ON_FLOOR, scenes.SAMPLED, scenes.SAMPLED2)
 
 
 @pytest.mark.parametrize(("held_out_split", "held_out_models"), list(scenes.HELD_OUT_SETS.items()))

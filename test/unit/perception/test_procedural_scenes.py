@@ -116,3 +116,34 @@ def test_random_structures_are_too_big_to_push() -> None:
         heights.append(high[2])
     assert min(heights) >= 0.8  # every structure stands at least 0.8 m high
     assert max(heights) > 1.6  # and some are taller than a person's shoulder
+
+
+def test_a_pusher_holds_a_handle_ahead_of_it_and_rests_on_the_floor() -> None:
+    for seed in range(30):
+        client = RecordingClient()
+        sc = Scene(client, np.random.default_rng(seed))
+        hands = procedural_scenes.person_random_pose(sc, 1.5, 0.0, 0.0, stances=("standing",), reach=True)
+        for hand in hands:  # facing +x from x = 1.5: the hands are ahead of the figure, between hip and head
+            assert hand[0] > 1.5 + 0.1 and 0.5 < hand[2] < 1.7, f"seed {seed}: hand at {hand}"
+        low, high = _build(procedural_scenes.person_pushing_thing, seed).extent()
+        # a bent-over child pushing a toy is ~0.7 m high
+        assert -0.06 <= low[2] <= 0.06 and 0.6 < high[2] < 2.3, f"seed {seed}: {low[2]:.3f}..{high[2]:.2f} m"
+
+
+def test_random_pose_draws_the_same_figure_as_before_when_not_told_otherwise() -> None:
+    """extra7 (the shipped model's data) must render as before: the new keywords draw nothing by default."""
+    for seed in range(5):
+        plain = _build(procedural_scenes.person_random_pose, seed)
+        told = _build(lambda sc, x, y, yaw: procedural_scenes.person_random_pose(
+            sc, x, y, yaw, stances=procedural_scenes.STANCES), seed)
+        assert [(b[1], b[2]) for b in plain.bodies] == [(b[1], b[2]) for b in told.bodies]
+
+
+@pytest.mark.parametrize("builder", [procedural_scenes.clear_random_machine, procedural_scenes.clear_random_appliance,
+                                     procedural_scenes.clear_legged_frame])
+def test_machines_appliances_and_frames_are_too_big_to_push(builder: Any) -> None:
+    for seed in range(40):
+        low, high = _build(builder, seed).extent()
+        assert low[2] >= -0.05, f"seed {seed}: lowest point {low[2]:.3f} m"
+        assert high[2] >= 0.8, f"{builder.__name__} seed {seed}: {high[2]:.2f} m high"
+        assert high[2] < 2.3
