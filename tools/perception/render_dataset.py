@@ -54,6 +54,7 @@ SPLITS: Dict[str, Tuple[int, int]] = {  # split: (id in the seed, samples per la
     "unseen10": (26, 300),  # a tenth held-out set (held_out_scenes.HELD_OUT_10)
     "unseen11": (27, 300),  # an eleventh held-out set (held_out_scenes.HELD_OUT_11)
     "extra8": (28, 1500), "val_extra8": (29, 100),  # more procedural draws, pushers, machines (scenes.SAMPLED2)
+    "unseen12": (30, 300),  # a twelfth held-out set (held_out_scenes.HELD_OUT_12)
 }
 CHUNK = 20  # samples per label in a chunk (one generator per chunk)
 SHEET_FRAMES = 24

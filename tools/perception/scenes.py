@@ -1250,7 +1250,7 @@ def models_for(split: str) -> Dict[str, Tuple[str, ...]]:
     ``extra5``/``val_extra5`` (:data:`ENCUMBERED`), ``extra6``/``val_extra6`` (:data:`ON_FLOOR`),
     ``extra7``/``val_extra7`` (:data:`SAMPLED`, :mod:`tools.perception.procedural_scenes`), ``extra8``/``val_extra8``
     (:data:`SAMPLED2`),
-    ``unseen`` .. ``unseen11`` (the held-out sets,
+    ``unseen`` .. ``unseen12`` (the held-out sets,
     :data:`tools.perception.held_out_scenes.HELD_OUT_SETS`)."""
     if split in OWN_MODELS:
         return OWN_MODELS[split]
