@@ -1,6 +1,6 @@
-"""Procedural models for the classifier's ``extra7`` training splits: a person in a pose drawn from a continuous
-space, a pushable object composed of random primitives, and a non-pushable structure composed of random
-primitives.
+"""Procedural models for the classifier's ``extra7`` and ``extra8`` training splits: a person in a pose drawn from
+a continuous space, a pushable object composed of random primitives, and a non-pushable structure composed of
+random primitives (``extra8`` adds people pushing random wheeled things, machines, appliances and legged frames).
 
 Why: eight held-out sets in a row showed that every hand-written family of people and objects helps the held-out
 sets that resemble it and no other (every new set held a shape with no family in training). These builders do

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import multiprocessing
 import sys
 import time
 from concurrent.futures import ProcessPoolExecutor
@@ -134,6 +135,11 @@ def main(argv: List[str]) -> int:
     parser.add_argument("--splits", nargs="+", default=list(SPLITS), choices=list(SPLITS),
                         help="render only these splits (each split's content does not depend on the others)")
     args = parser.parse_args(argv)
+    # The scene code is imported here, before the workers fork from this process (a pool per split, "fork" context):
+    # a worker that imported it itself would render with whatever the files hold when its split starts, and an edit
+    # during a run would change some splits and not others.
+    from tools.perception import scenes  # noqa: F401
+
     args.out.mkdir(parents=True, exist_ok=True)
     summary: Dict[str, object] = {}
     started = time.monotonic()
@@ -147,7 +153,7 @@ def main(argv: List[str]) -> int:
                   for i in range((total + CHUNK - 1) // CHUNK)]
         t0 = time.monotonic()
         if args.workers > 1:
-            with ProcessPoolExecutor(max_workers=args.workers) as pool:
+            with ProcessPoolExecutor(max_workers=args.workers, mp_context=multiprocessing.get_context("fork")) as pool:
                 parts = list(pool.map(render_chunk, chunks))
         else:
             parts = [render_chunk(c) for c in chunks]
