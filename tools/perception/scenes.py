@@ -30,6 +30,7 @@ from typing import Any, Dict, List, Sequence, Tuple
 import numpy as np
 import pybullet
 
+from flex_nav.exceptions import ConfigError
 from flex_nav.perception.labels import CLEAR, MOVABLE, PERSON
 from flex_nav_sim.profiles import CameraSpec, load_profile
 from flex_nav_sim.sensors import depth_from_buffer
@@ -1088,7 +1089,7 @@ def clear_empty(sc: Scene, x: float, y: float, yaw: float) -> None:
     """Nothing in front (only the background)."""
 
 
-BUILDERS: Dict[str, Builder] = {
+TRAINING_BUILDERS: Dict[str, Builder] = {  # the models of the training and selection splits, by name
     "capsule": person_capsule,
     "walker": person_walker,
     "mjcf_humanoid": person_mjcf,
@@ -1141,8 +1142,11 @@ BUILDERS: Dict[str, Builder] = {
     "random_machine": clear_random_machine,
     "random_appliance": clear_random_appliance,
     "legged_frame": clear_legged_frame,
-    **HELD_OUT_BUILDERS,
 }
+_SHARED_NAMES = sorted(set(TRAINING_BUILDERS) & set(HELD_OUT_BUILDERS))
+if _SHARED_NAMES:  # in BUILDERS a held-out builder would silently replace the training one
+    raise ConfigError(f"held-out model names {_SHARED_NAMES} already name training models; rename the held-out ones")
+BUILDERS: Dict[str, Builder] = {**TRAINING_BUILDERS, **HELD_OUT_BUILDERS}
 DISTANCES: Dict[str, Tuple[float, float]] = {  # [m] camera to target centre
     PERSON: (0.5, 2.2),
     MOVABLE: (0.55, 1.8),

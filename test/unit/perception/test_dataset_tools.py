@@ -4,6 +4,7 @@ model shows up in the region of interest, and how training concatenates splits. 
 from __future__ import annotations
 
 import functools
+import importlib
 import math
 import sys
 from pathlib import Path
@@ -16,11 +17,12 @@ from unit.perception.onnx_builder import mean_colour_classifier
 if str(REPO_ROOT) not in sys.path:  # ``tools`` is imported as a package from the repository root
     sys.path.insert(0, str(REPO_ROOT))
 
+from flex_nav.exceptions import ConfigError
 from flex_nav.perception.labels import LABELS
 from flex_nav.perception.onnx_model import make_session
 from flex_nav.perception.preprocess import roi_patch
 from flex_nav.perception.roi import Roi
-from tools.perception import ensemble, render_dataset, scenes, train
+from tools.perception import ensemble, held_out_scenes, render_dataset, scenes, train
 
 
 def _all(models: dict[str, tuple[str, ...]]) -> set[str]:
@@ -69,6 +71,19 @@ def test_every_model_has_a_builder_and_every_builder_is_used() -> None:
     listed = set().union(*(_all(t) for t in (*TRAINING_TABLES, *scenes.HELD_OUT_SETS.values())))
     assert listed == set(scenes.BUILDERS)
     assert set(scenes.SIDE_DISTRACTORS) <= _all(scenes.TRAIN_MODELS)
+
+
+def test_a_held_out_model_named_like_a_training_model_stops_the_import(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A held-out 'pillar' once replaced the seen one in BUILDERS for two minutes of a render; it must not load."""
+    clash = {**held_out_scenes.HELD_OUT_BUILDERS, "pillar": held_out_scenes.clear_structural_pillar}
+    monkeypatch.setattr(held_out_scenes, "HELD_OUT_BUILDERS", clash)
+    try:
+        with pytest.raises(ConfigError, match=r"\['pillar'\]"):
+            importlib.reload(scenes)
+    finally:
+        monkeypatch.undo()
+        importlib.reload(scenes)
+    assert scenes.BUILDERS["pillar"] is scenes.clear_pillar
 
 
 def test_plan_cycles_the_models_of_the_extra_split_evenly() -> None:
