@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
+import signal
 import subprocess
 from dataclasses import dataclass
 from pathlib import Path
@@ -36,20 +38,39 @@ def system_env() -> dict[str, str]:
     return env
 
 
+STOP_GRACE_S = 20.0  # [s] an interrupted run's time to stop what it started (SIGTERM) before its group is killed
+
+
 def run_command_bounded(
     argv: list[str], env: dict[str, str], timeout_s: float, cwd: Path = REPO_ROOT
 ) -> RostestOutcome:
-    """Run ``argv`` in its own process group; on timeout kill the whole group and fail with its output."""
+    """Run ``argv`` in its own process group; on timeout kill the whole group and fail with its output. Interrupted
+    in between (Ctrl-C, pytest-timeout), it sends the command SIGTERM (runs stop what they started on it), kills
+    the group if that does not end it within ``STOP_GRACE_S``, and re-raises: nothing is left running."""
     with subprocess.Popen(
         argv, env=env, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, start_new_session=True
     ) as proc:
         try:
             output, _ = proc.communicate(timeout=timeout_s)
         except subprocess.TimeoutExpired:
-            os.killpg(proc.pid, 9)
+            os.killpg(proc.pid, signal.SIGKILL)
             output, _ = proc.communicate(timeout=5.0)
             pytest.fail(f"{' '.join(argv)} did not finish within {timeout_s} s; output:\n{output[-4000:]}")
+        except BaseException:
+            _stop_group(proc)
+            raise
     return RostestOutcome(proc.returncode, output)
+
+
+def _stop_group(proc: subprocess.Popen[str]) -> None:
+    with contextlib.suppress(ProcessLookupError):
+        os.killpg(proc.pid, signal.SIGTERM)
+    try:
+        proc.communicate(timeout=STOP_GRACE_S)  # reads on: a run blocked writing to a full pipe could not stop
+    except subprocess.TimeoutExpired:
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(proc.pid, signal.SIGKILL)
+        proc.communicate(timeout=5.0)
 
 
 ROSTEST_DEFAULT_TIME_LIMIT_S = 60.0  # [s] rostest's own limit of a <test> without time-limit
