@@ -1801,7 +1801,6 @@ def person_stretcher_patient(sc: Scene, x: float, y: float, yaw: float) -> None:
     if far < least:
         x, y = x * least / far, y * least / far
     frame = jitter(rng, pick(rng, METAL))
-    along = yaw + math.pi / 2.0  # the trolley's long axis
     sc.box((x, y, h - 0.05), (0.3, length / 2.0, 0.03), frame, yaw)
     sc.box((x, y, 0.2), (0.25, length / 2.0 - 0.15, 0.04), frame, yaw)  # the base
     for fy in (length / 2.0 - 0.25, -length / 2.0 + 0.25):
@@ -1817,20 +1816,19 @@ def person_stretcher_patient(sc: Scene, x: float, y: float, yaw: float) -> None:
     blanket = jitter(rng, pick(rng, ((0.95, 0.95, 0.93), (0.55, 0.7, 0.85), (0.7, 0.85, 0.75), (0.9, 0.8, 0.6))))
     skin = jitter(rng, pick(rng, SKIN), 0.03)
     head_end = 1.0 if rng.random() < 0.5 else -1.0
-    top = h
     legs_c = local(x, y, yaw, 0.0, -head_end * 0.35 * s)
-    sc.box((*legs_c, top + 0.09), (0.24 * s, 0.5 * s, 0.09), blanket, yaw)  # legs under the blanket
+    sc.box((*legs_c, h + 0.09), (0.24 * s, 0.5 * s, 0.09), blanket, yaw)  # legs under the blanket
     fx, fy = local(x, y, yaw, 0.0, -head_end * 0.82 * s)
-    sc.box((fx, fy, top + 0.16), (0.16 * s, 0.06, 0.08), blanket, yaw)  # the feet lift it at the end
+    sc.box((fx, fy, h + 0.16), (0.16 * s, 0.06, 0.08), blanket, yaw)  # the feet lift it at the end
     back = rng.uniform(0.6, 1.2) if raised else 0.0  # [rad] back rest from flat
     torso = 0.6 * s
     dy_c, dz_c = math.cos(back) * torso / 2.0, math.sin(back) * torso / 2.0
     bx, by = local(x, y, yaw, 0.0, head_end * (0.15 * s + dy_c))
-    sc.box((bx, by, top + 0.1 + dz_c), (0.22 * s, torso / 2.0, 0.11 * s), blanket if rng.random() < 0.5 else
-           jitter(rng, (0.6, 0.75, 0.85)), along - math.pi / 2.0, -head_end * back)
+    sc.box((bx, by, h + 0.1 + dz_c), (0.22 * s, torso / 2.0, 0.11 * s), blanket if rng.random() < 0.5 else
+           jitter(rng, (0.6, 0.75, 0.85)), yaw, -head_end * back)
     reach = 0.15 * s + math.cos(back) * (torso + 0.14 * s)
     hx, hy = local(x, y, yaw, 0.0, head_end * reach)
-    sc.sphere((hx, hy, top + 0.12 + math.sin(back) * (torso + 0.14 * s)), 0.1 * s, skin)
+    sc.sphere((hx, hy, h + 0.12 + math.sin(back) * (torso + 0.14 * s)), 0.1 * s, skin)
 
 
 def person_panel_carrier(sc: Scene, x: float, y: float, yaw: float) -> None:

@@ -530,7 +530,7 @@ def clear_random_machine(sc: Scene, x: float, y: float, yaw: float) -> None:
     elif kind < 0.7:  # a bar across
         sc.cylinder((hx, hy, rise), 0.02, width, trim, yaw=yaw, roll=math.pi / 2.0)
     else:  # handles reaching back along the base
-        for side in posts if len(posts) == 2 else (1.0, -1.0):
+        for side in (1.0, -1.0):
             limb(sc, (*local(x, y, yaw, ux + lean * rise, side * (width / 2.0 - 0.03)), rise),
                  (*local(x, y, yaw, ux - end * rng.uniform(0.2, 0.5), side * (width / 2.0 - 0.03)), rise - 0.1),
                  0.02, trim)
@@ -600,7 +600,7 @@ def clear_legged_frame(sc: Scene, x: float, y: float, yaw: float) -> None:
     radius = rng.uniform(0.01, 0.03)
     style = rng.random()
     for k in range(legs):
-        fy = (k / (legs - 1) - 0.5) * length * 0.8 if legs > 1 else 0.0
+        fy = (k / (legs - 1) - 0.5) * length * 0.8  # legs >= 2
         if style < 0.4:  # straight
             foot = (*local(x, y, along, 0.0, fy), 0.0)
             head = (*local(x, y, along, 0.0, fy), top)
