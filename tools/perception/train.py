@@ -40,7 +40,8 @@ DATASET_COMMAND = "python -m tools.perception.render_dataset --out build/dataset
 TRAIN_SPLITS = ("train", "extra", "extra2", "extra3", "extra4", "extra5", "extra6", "extra7")
 VAL_SPLITS = ("val", "val_extra", "val_extra2", "val_extra3", "val_extra4", "val_extra5", "val_extra6",
               "val_extra7")
-TRAIN_COMMAND = "python -m tools.perception.train --data build/dataset --seed {seed} --epochs {epochs} --out {out}"
+TRAIN_COMMAND = "python -m tools.perception.train"
+ALWAYS_RECORDED = ("data", "seed", "epochs", "out")  # in the recorded command even at their defaults
 
 
 WIDTHS = (16, 32, 64, 96, 128)  # output channels of the conv blocks
@@ -146,7 +147,7 @@ def dataset_seed(data: Path, default: int) -> int:
     return int(json.loads(summary.read_text()).get("seed", default)) if summary.exists() else default
 
 
-def main(argv: List[str]) -> int:  # noqa: PLR0915 - one linear training script
+def argument_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--data", type=Path, default=Path("build/dataset"))
     parser.add_argument("--out", type=Path, default=Path("models/obstacle_classifier.onnx"))
@@ -159,7 +160,24 @@ def main(argv: List[str]) -> int:  # noqa: PLR0915 - one linear training script
     parser.add_argument("--val-splits", nargs="+", default=list(VAL_SPLITS), help="model selection only")
     parser.add_argument("--widths", type=int, nargs="+", default=list(WIDTHS), help="conv block channels")
     parser.add_argument("--input", choices=INPUTS, default="rgbd", help="colour and depth, or colour only")
-    args = parser.parse_args(argv)
+    return parser
+
+
+def training_command(args: argparse.Namespace) -> str:
+    """The command line that trains this model again: ``--data --seed --epochs --out`` and every option that
+    differs from its default (splits, widths, learning rate, ...), in the parser's order."""
+    defaults = vars(argument_parser().parse_args([]))
+    parts = [TRAIN_COMMAND]
+    for name, default in defaults.items():
+        value = getattr(args, name)
+        if name in ALWAYS_RECORDED or value != default:
+            words = value if isinstance(value, list) else [value]
+            parts.append(" ".join(["--" + name.replace("_", "-"), *(str(word) for word in words)]))
+    return " ".join(parts)
+
+
+def main(argv: List[str]) -> int:  # noqa: PLR0915 - one linear training script
+    args = argument_parser().parse_args(argv)
     depth = args.input == "rgbd"
 
     import torch
@@ -232,8 +250,7 @@ def main(argv: List[str]) -> int:  # noqa: PLR0915 - one linear training script
           f"wrote {args.out} ({args.out.stat().st_size / 1024:.0f} KiB)")
     training = {
         "dataset_command": DATASET_COMMAND.format(seed=dataset_seed(args.data, args.seed)),
-        "command": TRAIN_COMMAND.format(seed=args.seed, epochs=args.epochs, out=args.out)
-        + ("" if depth else " --input rgb"),
+        "command": training_command(args),
         "seed": args.seed,
         "epochs": args.epochs,
         "best_epoch": best["epoch"],

@@ -128,6 +128,20 @@ def test_every_added_model_is_visible_in_the_roi(model: str) -> None:
     assert changed.mean() > 0.03, f"{model} changes only {100 * changed.mean():.1f} % of the ROI"
 
 
+@pytest.mark.parametrize("argv", [
+    ["--seed", "11", "--epochs", "24", "--out", "build/v/seed11.onnx"],
+    ["--seed", "9", "--input", "rgb", "--lr", "0.001", "--widths", "8", "16",
+     "--train-splits", "train", "extra2", "extra2", "--val-splits", "val"],
+])
+def test_the_recorded_training_command_trains_the_same_model_again(argv: list[str]) -> None:
+    args = train.argument_parser().parse_args(argv)
+    command = train.training_command(args)
+    assert command.startswith(train.TRAIN_COMMAND + " ")
+    again = train.argument_parser().parse_args(command[len(train.TRAIN_COMMAND):].split())
+    assert vars(again) == vars(args)
+    assert ("--input" in command) == ("--input" in argv)  # options at their defaults are left out
+
+
 def test_load_splits_concatenates_and_checks_the_classes(tmp_path: Path) -> None:
     for name, n, classes in (("a", 3, LABELS), ("b", 2, LABELS), ("c", 1, ("x", "y"))):
         np.savez(tmp_path / f"{name}.npz", patches=np.full((n, 4, 4, 3), 51 * n, np.uint8),
