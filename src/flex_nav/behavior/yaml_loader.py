@@ -42,7 +42,7 @@ import math
 import os
 import re
 from pathlib import Path
-from typing import Any, Dict, List, Mapping, NoReturn, Optional, Sequence, Tuple, Type, Union
+from typing import Any, Dict, FrozenSet, List, Mapping, NoReturn, Optional, Sequence, Tuple, Type, Union
 
 import yaml
 from yaml.nodes import MappingNode, Node, ScalarNode, SequenceNode
@@ -133,11 +133,30 @@ def load_behavior(
     BehaviorLoadError (``file:line: ...``) for anything wrong in the files, ConfigError for a bad
     name or parameter override.
     """
+    loader = _Loader(_dirs(search_path))
+    return loader.load_top(_behavior_file(source, search_path), dict(parameters or {}))
+
+
+def declared_parameter_names(
+    source: Union[str, Path], search_path: Optional[Sequence[Union[str, Path]]] = None
+) -> FrozenSet[str]:
+    """The names under a behavior's ``parameters:`` (file path or behavior name; the file is read, nothing is
+    built, so this is cheap and has no side effects). ConfigError for a bad name, BehaviorLoadError for a file
+    that is not YAML."""
+    path = _behavior_file(source, search_path)
+    try:
+        document = yaml.safe_load(path.read_text())
+    except (OSError, yaml.YAMLError) as err:
+        raise BehaviorLoadError(str(err), file=str(path)) from err
+    declared = document.get("parameters") if isinstance(document, dict) else None
+    return frozenset(str(name) for name in declared) if isinstance(declared, dict) else frozenset()
+
+
+def _behavior_file(source: Union[str, Path], search_path: Optional[Sequence[Union[str, Path]]]) -> Path:
     path = Path(source)
     if not (path.suffix in (".yaml", ".yml") or path.is_file()):
         path = find_behavior(str(source), search_path)
-    loader = _Loader(_dirs(search_path))
-    return loader.load_top(path, dict(parameters or {}))
+    return path
 
 
 def load_behavior_text(

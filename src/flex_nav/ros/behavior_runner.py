@@ -12,6 +12,8 @@
 - ``~inputs`` (dict, {}): values for the behavior's input keys
 - ``~behavior_path`` (list of dirs, [<package>/behaviors]): where behavior names are looked up
 - ``~exit_when_done`` (bool, false): shut the node down when the behavior ends (exit 0 only if it FINISHED)
+- ``~robot_profile`` (str, ""): the robot's profile (kobuki, create2, turtlebot4; flex_nav_robot.launch sets it);
+  every YAML behavior started here that declares a ``profile`` parameter gets it, unless the start sets one
 
 Commands arrive on ``~command`` (BehaviorCommand); every command is answered on ``~command_feedback``.
 What the behavior does is published by :class:`~flex_nav.ros.operator_interface.OperatorPublisher`.
@@ -27,7 +29,7 @@ import concurrent.futures
 import importlib
 import threading
 from pathlib import Path
-from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Callable, Dict, FrozenSet, List, Optional, Sequence, Tuple
 
 import rospy
 import yaml
@@ -58,6 +60,14 @@ def load_behavior_file(name_or_path: str, parameters: Dict[str, Any], search_pat
     from flex_nav.behavior.yaml_loader import load_behavior  # noqa: PLC0415 - keeps the node's import light
 
     return load_behavior(name_or_path, parameters=parameters, search_path=list(search_path))
+
+
+def with_robot_profile(parameters: Dict[str, Any], declared: FrozenSet[str], robot_profile: str) -> Dict[str, Any]:
+    """``parameters`` plus ``profile: robot_profile`` when the behavior declares ``profile``, a robot profile is
+    known and the parameters do not set one (an explicit override wins)."""
+    if not robot_profile or "profile" in parameters or "profile" not in declared:
+        return dict(parameters)
+    return {**parameters, "profile": robot_profile}
 
 
 def flexbe_behavior_class(spec: str) -> type:
@@ -97,8 +107,9 @@ class BehaviorRunner:
     COMMANDS = ("start", "stop", "autonomy", "approve", "force", "pause", "resume", "preempt", "lock", "unlock")
 
     def __init__(self, search_path: Sequence[Path], supervised: bool = True, loader: Loader = load_behavior_file,
-                 on_done: Optional[Callable[[BehaviorResult], None]] = None) -> None:
+                 on_done: Optional[Callable[[BehaviorResult], None]] = None, robot_profile: str = "") -> None:
         self.search_path = list(search_path)
+        self.robot_profile = robot_profile
         self.supervised = supervised
         self.loader = loader
         self.on_done = on_done
@@ -127,7 +138,8 @@ class BehaviorRunner:
                     behavior = build_behavior(flexbe_behavior_class(name_or_path[len(PYTHON_PREFIX):]),
                                               parameters=dict(parameters or {}), context=context)
                 else:
-                    behavior = self.loader(name_or_path, dict(parameters or {}), self.search_path)
+                    behavior = self.loader(name_or_path, self._yaml_parameters(name_or_path, parameters or {}),
+                                           self.search_path)
                 context.name = behavior.name
                 executor = BehaviorExecutor(
                     behavior, inputs=dict(inputs or {}), context=context, should_stop=rospy.is_shutdown
@@ -142,6 +154,14 @@ class BehaviorRunner:
             )
             self._thread.start()
         return f"started behavior {behavior.name!r} at autonomy {level.name}"
+
+    def _yaml_parameters(self, name_or_path: str, parameters: Dict[str, Any]) -> Dict[str, Any]:
+        if not self.robot_profile:
+            return dict(parameters)
+        from flex_nav.behavior.yaml_loader import declared_parameter_names  # noqa: PLC0415 - as the loader
+
+        return with_robot_profile(parameters, declared_parameter_names(name_or_path, self.search_path),
+                                  self.robot_profile)
 
     def _run(self, executor: BehaviorExecutor, proxies: RosProxies) -> None:
         try:

@@ -290,8 +290,7 @@ def start_system(stack: contextlib.ExitStack, args: argparse.Namespace, runs: Li
     for run in runs:
         processes.append(ManagedProcess(
             ["roslaunch", "flex_nav", "flex_nav_robot.launch", f"robot:={run.name}", f"profile:={run.profile}",
-             "twist_relay:=true", f"autonomy:={args.autonomy}", f"behavior:={args.behavior}",
-             f"behavior_parameters:={behavior_parameters(args.behavior, run.profile)}"],
+             "twist_relay:=true", f"autonomy:={args.autonomy}", f"behavior:={args.behavior}"],
             env=env, log_path=logs / f"{run.name}.log"))
     for proc in processes:
         stack.callback(proc.stop)
@@ -332,14 +331,6 @@ def wait_until_ready(monitor: DemoMonitor, processes: List[ManagedProcess], time
             return f"not ready after {timeout_s:.0f} s"
         time.sleep(0.2)
     return None
-
-
-def behavior_parameters(behavior: str, profile: str) -> str:
-    """The behavior parameter overrides (YAML) for a robot: its profile, for behaviors that take one."""
-    from flex_nav.behavior.yaml_loader import load_behavior  # noqa: PLC0415
-
-    declared = load_behavior(behavior).parameters
-    return f"{{profile: {profile}}}" if "profile" in declared else "{}"
 
 
 def write_picture(out: Path, map_yaml: Path, runs: List[RobotRun], title: str) -> Path:
