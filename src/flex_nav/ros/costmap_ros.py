@@ -4,9 +4,12 @@ Parameters (private, under ``~<name>/``; units in brackets):
 
 - ``global_frame`` (str), ``robot_base_frame`` (str): default to the node's ``~global_frame`` ("map") and
   ``~robot_base_frame`` ("base_footprint"), so one pair of node parameters sets the frames of all its parts
-- ``rolling_window`` (bool, false), ``width``/``height`` [m] (rolling window size, 4.0), ``resolution`` [m/cell]
-  (0.05; a static costmap takes the map's)
-- ``static_map`` (bool, true): static layer from ``map_topic`` (str, "map", latched OccupancyGrid)
+- ``rolling_window`` (bool; the default is the owning node's: false for get_path's ``global_costmap``, true for
+  the controllers' ``local_costmap`` and the follow servers'), ``width``/``height`` [m] (rolling window size,
+  4.0), ``resolution`` [m/cell] (0.05; a static costmap takes the map's)
+- ``static_map`` (bool; default: the owning node's, else not ``rolling_window`` — true for get_path and the
+  follow servers, false for the controllers): static layer from ``map_topic`` (str, "map", latched
+  OccupancyGrid)
 - ``scan_topic`` (str, "scan"; "" for none), ``obstacle_range`` [m] (2.5), ``raytrace_range`` [m] (3.0)
 - ``bumper_topic`` (str, "bumper_hits"; geometry_msgs/PointStamped contact points; "" for none) and
   ``bumper_memory`` [s] (60.0): contacts stay lethal this long, through lidar clearing and clear_costmap
