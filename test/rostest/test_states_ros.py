@@ -11,13 +11,14 @@ import threading
 import time
 import unittest
 
+import rospy
 import rostest
 from actionlib_msgs.msg import GoalStatus
 from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import Odometry, Path
 
 from flex_nav.behavior import BehaviorExecutor, BehaviorStatus, LogLevel, StateMachine
-from flex_nav.msg import ClearCostmapAction, FollowPathAction
+from flex_nav.msg import ClearCostmapAction, ClearCostmapActionResult, FollowPathAction
 from flex_nav.ros.node import init_node
 from flex_nav.ros.proxies import RosProxies
 from flex_nav.ros.ros_clock import RosClock
@@ -125,10 +126,29 @@ class TestStatesRos(unittest.TestCase):
         for name in ("global_clear", "local_clear"):  # the state's 5 s bound includes connecting: connect first
             client = proxies.action_client(name, ClearCostmapAction)
             self.assertTrue(client.is_available(SERVER_WAIT_S), f"{name} did not come up within {SERVER_WAIT_S} s")
+        results, lock, subs = {}, threading.Lock(), []
+        for name in ("global_clear", "local_clear"):
+            def record(msg, name=name):
+                with lock:
+                    results[name] = msg
+            subs.append(rospy.Subscriber(f"{name}/result", ClearCostmapActionResult, record))
+        deadline = time.monotonic() + SERVER_WAIT_S
+        while any(sub.get_num_connections() == 0 for sub in subs) and time.monotonic() < deadline:
+            time.sleep(0.01)
         state = ClearCostmapsState(costmaps=["global_clear", "local_clear"], timeout_s=5.0)
         result, logs, proxies = run(state, proxies=proxies)
+        deadline = time.monotonic() + 5.0
+        while len(results) < 2 and time.monotonic() < deadline:
+            time.sleep(0.01)
         proxies.shutdown()
+        for sub in subs:
+            sub.unregister()
         self.assertEqual(result.outcome, "done", texts(logs))  # both answered within the state's timeout_s
+        with lock:
+            first, second = results["global_clear"], results["local_clear"]
+        # concurrent: each goal was sent (its goal_id stamp) before the other server (1 s per goal) answered
+        self.assertLess(first.status.goal_id.stamp, second.header.stamp, (first, second))
+        self.assertLess(second.status.goal_id.stamp, first.header.stamp, (first, second))
 
     def test_back_up_and_turn_closed_loop_on_odometry(self):
         proxies = RosProxies()

@@ -140,10 +140,22 @@ def test_undeclared_input_key():
 
 
 def test_input_key_provided_by_sibling_output_or_default_or_container_input():
+    seen = {}
+
+    def write_plan(ud, _n):
+        ud.plan = "p"
+
+    def read_all(ud, _n):
+        seen.update(plan=ud.plan, goal=ud.goal, tries=ud.tries)
+
     sm = machine(input_keys=["goal"], userdata={"tries": 0})
-    sm.add("A", state(output_keys=["plan"]), transitions={"done": "B", "failed": "failed"})
-    sm.add("B", state(input_keys=["plan", "goal", "tries"]), transitions={"done": "finished", "failed": "failed"})
-    sm.validate()
+    sm.add("A", state(output_keys=["plan"], action=write_plan), transitions={"done": "B", "failed": "failed"})
+    sm.add("B", state(input_keys=["plan", "goal", "tries"], action=read_all),
+           transitions={"done": "finished", "failed": "failed"})
+    sm.validate()  # accepted: each of B's keys has a source
+    result = executor(sm, inputs={"goal": "g"}).run(timeout_s=5.0)
+    assert result.outcome == "finished"
+    assert seen == {"plan": "p", "goal": "g", "tries": 0}
 
 
 def test_remapped_input_key_is_checked_under_the_container_name():

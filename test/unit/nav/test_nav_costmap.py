@@ -302,6 +302,7 @@ def test_rolling_window_with_static_map_samples_it():
     grid = _static_grid()
     cm = Costmap.rolling(1.0, 1.0, RES, static_map=grid, centre=(1.0, 1.0))
     rows, cols = np.nonzero(cm.costs == LETHAL)
+    assert len(rows) > 0, "the window over the map's wall must hold lethal cells"
     xs, ys = cm.geometry.cells_to_world(rows, cols)
     for x, y in zip(xs, ys):
         assert grid.occupancy[grid.world_to_cell(float(x), float(y))] == 100

@@ -130,15 +130,6 @@ def test_a_pusher_holds_a_handle_ahead_of_it_and_rests_on_the_floor() -> None:
         assert -0.06 <= low[2] <= 0.06 and 0.6 < high[2] < 2.3, f"seed {seed}: {low[2]:.3f}..{high[2]:.2f} m"
 
 
-def test_random_pose_draws_the_same_figure_as_before_when_not_told_otherwise() -> None:
-    """extra7 (the shipped model's data) must render as before: the new keywords draw nothing by default."""
-    for seed in range(5):
-        plain = _build(procedural_scenes.person_random_pose, seed)
-        told = _build(lambda sc, x, y, yaw: procedural_scenes.person_random_pose(
-            sc, x, y, yaw, stances=procedural_scenes.STANCES), seed)
-        assert [(b[1], b[2]) for b in plain.bodies] == [(b[1], b[2]) for b in told.bodies]
-
-
 @pytest.mark.parametrize("builder", [procedural_scenes.clear_random_machine, procedural_scenes.clear_random_appliance,
                                      procedural_scenes.clear_legged_frame])
 def test_machines_appliances_and_frames_are_too_big_to_push(builder: Any) -> None:

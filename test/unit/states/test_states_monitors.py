@@ -179,7 +179,10 @@ def test_stuck_monitor_pause_restarts_the_window():
     robot.publish()
     h.executor.resume()
     h.tick()
+    resumed_s = h.clock.now()
     h.run_for(1.5)  # 1.5 s after resume: not stuck yet although 13 s passed since entry
+    assert h.run(max_time_s=5.0).outcome == "stuck"  # and it still watches: stuck one window after resume
+    assert h.clock.now() - resumed_s == pytest.approx(2.0, abs=0.2)
 
 
 # --- SensorFreshness ----------------------------------------------------------------------------------------
