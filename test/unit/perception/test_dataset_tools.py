@@ -182,7 +182,6 @@ def test_depth_augmentation_loses_returns_as_real_cameras_do() -> None:
 
 
 def test_ensemble_averages_the_members_probabilities(tmp_path: Path) -> None:
-    pytest.importorskip("onnx")  # training-only dependency (requirements-train.txt): skipped in the runtime venv
     weights = (10.0 * np.eye(3), np.array([[0.0, 5.0, 0.0], [0.0, 0.0, 5.0], [5.0, 0.0, 0.0]]))
     members = [mean_colour_classifier(tmp_path / f"m{k}.onnx", w) for k, w in enumerate(weights)]
     out = tmp_path / "ensemble.onnx"
