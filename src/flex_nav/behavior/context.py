@@ -51,6 +51,7 @@ _PY_LEVELS = {
 # Why a leaf is not being executed (bit mask on State._hold_mask).
 HOLD_PAUSE = 1  # the operator paused the behavior
 HOLD_PRIORITY = 2  # a priority container outside this state is active
+HOLD_REQUEST = 4  # an outcome waits for the operator: everything holds still until none does
 
 _CURRENT: contextvars.ContextVar[Optional[BehaviorContext]] = contextvars.ContextVar(
     "flex_nav_behavior_context", default=None
@@ -101,6 +102,7 @@ class BehaviorContext:
         self._priority: List[Container] = []  # stack of active priority containers, innermost last
         self._held: List[State] = []  # leaves held by a priority container
         self._requests: Dict[str, State] = {}  # path -> state whose outcome waits for the operator
+        self._request_held: List[State] = []  # leaves held (HOLD_REQUEST) while an outcome waits
         self._lock_count = 0  # number of locked nodes (0: skip lock checks on the hot path)
         self._changed = False  # the active set changed during this tick
         self._root: Optional[State] = None
@@ -202,6 +204,23 @@ class BehaviorContext:
                 continue
             self._release_leaf(leaf, HOLD_PRIORITY, now)
         self._held = still
+
+    def _sync_request_hold(self, now: float) -> None:
+        """While any outcome waits for the operator, hold every active leaf (on_pause: motion states stop,
+        action states cancel their goals) — a monitor's outcome held for approval must not leave the
+        controller beside it driving, nor a motion state its last command. Released (on_resume) when no
+        outcome waits any more; leaves that were left meanwhile are simply dropped."""
+        if self._requests:
+            if self._root is not None:
+                for leaf in list(self._root._active_leaves()):
+                    if not leaf._hold_mask & HOLD_REQUEST:
+                        self._hold_leaf(leaf, HOLD_REQUEST)
+                        self._request_held.append(leaf)
+            return
+        held, self._request_held = self._request_held, []
+        for leaf in held:
+            if leaf._active:
+                self._release_leaf(leaf, HOLD_REQUEST, now)
 
     def _outside_priority(self, leaf: State) -> bool:
         return bool(self._priority) and self._priority[-1] not in leaf._ancestors

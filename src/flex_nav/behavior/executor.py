@@ -342,9 +342,12 @@ class BehaviorExecutor:
                 outcome = root._tick(now)
             if outcome is not None:
                 self._finish(outcome, now)
-            elif ctx._changed and ctx.hooks.active:
-                ctx._changed = False
-                ctx._emit_active(now, tuple(root._active_paths()))
+            else:
+                if ctx._requests or ctx._request_held:
+                    ctx._sync_request_hold(now)
+                if ctx._changed and ctx.hooks.active:
+                    ctx._changed = False
+                    ctx._emit_active(now, tuple(root._active_paths()))
         except Exception as err:
             self._fail(err, now)
 

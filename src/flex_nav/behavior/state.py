@@ -33,14 +33,18 @@ Lifecycle (who calls what, and when):
 - ``on_exit(userdata)``: once after each ``on_enter``, when the state is left: by its own outcome,
   a forced transition, a preemption, the end of its concurrency container, or a failure elsewhere.
   This is where a state stops what it started (cancel a goal, stop the robot).
-- ``on_pause()`` / ``on_resume(userdata)``: the operator paused the behavior, or a priority container
-  outside this state became active (and later left). Between them ``execute`` is not called.
+- ``on_pause()`` / ``on_resume(userdata)``: the operator paused the behavior, a priority container
+  outside this state became active (and later left), or an outcome anywhere in the behavior waits for the
+  operator (below). Between them ``execute`` is not called.
 - ``on_stop()``: once when the behavior ends (finished, preempted or failed), for every state.
 
 An outcome whose transition needs more autonomy than the behavior has is *requested*: the state
 stays active but is not executed again; it leaves (``on_exit``) when the operator approves or forces
-an outcome, or when the autonomy is raised. Parameters, keys and outcomes are documented in the
-class docstring (see :mod:`flex_nav.behavior.docstring`).
+an outcome, or when the autonomy is raised. While any outcome waits so (or for an unlock), every active
+state is paused (``on_pause``; the requesting one too), so the robot holds still — a bumper monitor's
+outcome waiting for approval does not leave the controller beside it driving — and the states resume
+(``on_resume``) when none waits. Parameters, keys and outcomes are documented in the class docstring (see
+:mod:`flex_nav.behavior.docstring`).
 
 Engine internals (names starting with ``_``) are shared with the containers in this package; a
 subclass must not touch them.

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 from unit.behavior.behavior_testlib import Journal, ScriptedState, executor, record_events, spin
 
-from flex_nav.behavior import Autonomy, BehaviorStatus, StateMachine
+from flex_nav.behavior import Autonomy, BehaviorStatus, ConcurrencyContainer, StateMachine
 from flex_nav.exceptions import BehaviorCommandError, ConfigError
 
 
@@ -48,7 +48,7 @@ def test_requested_state_is_not_executed_again_while_waiting():
     journal = Journal()
     ex = executor(two_states(journal, Autonomy.HIGH), autonomy=Autonomy.LOW)
     ex.run(timeout_s=30.0, stop_on_timeout=False)  # 30 s of clock time at 10 Hz
-    assert journal.of("A") == ["start", "enter", "execute"]
+    assert journal.of("A") == ["start", "enter", "execute", "pause"]  # held still while its outcome waits
     assert journal.of("B") == ["start"]
 
 
@@ -72,7 +72,7 @@ def test_approve_fires_the_requested_outcome_and_announces_it():
         Autonomy.HIGH,
         True,
     )
-    assert journal.of("A") == ["start", "enter", "execute", "exit", "stop"]
+    assert journal.of("A") == ["start", "enter", "execute", "pause", "exit", "stop"]
 
 
 def test_raising_autonomy_releases_waiting_outcomes():
@@ -261,3 +261,43 @@ def test_approving_a_finished_container_hands_outputs_up_forcing_another_outcome
     result = ex.run(timeout_s=1.0)
     assert message.result(timeout=0).startswith("forced" if command == "force_other" else "approved")
     assert (result.outcome, result.outputs) == (outcome, outputs)
+
+
+def _drive_and_monitor(journal, bump_level, conditions):
+    cc = ConcurrencyContainer(outcomes=["blocked", "arrived"], conditions=conditions)
+    cc.add("Drive", ScriptedState(journal, script=[None] * 40 + ["done"]))
+    cc.add("Bump", ScriptedState(journal, script=[None] * 5 + ["bumper"], outcomes=["bumper"]),
+           autonomy={"bumper": bump_level})
+    sm = StateMachine(outcomes=["finished", "failed"])
+    sm.add("Go", cc, transitions={"blocked": "failed", "arrived": "finished"})
+    return sm
+
+
+def test_a_monitor_outcome_waiting_for_the_operator_holds_its_siblings_still():
+    """The bumper monitor's outcome needs High at autonomy Low: the driving sibling is paused (its on_pause stops
+    the robot) the moment the request is raised and not executed until the operator decides."""
+    journal = Journal()
+    ex = executor(_drive_and_monitor(journal, Autonomy.HIGH, [("blocked", [("Bump", "bumper")]),
+                                                                ("arrived", [("Drive", "done")])]),
+                  autonomy=Autonomy.LOW)
+    ex.run(timeout_s=30.0, stop_on_timeout=False)
+    assert [r.path for r in ex.requested_outcomes()] == ["/Go/Bump"]
+    drive = journal.of("Drive")
+    assert drive[-1] == "pause" and drive.count("execute") == 6  # six ticks side by side, then held
+    assert journal.of("Bump")[-1] == "pause"
+    ex.approve("/Go/Bump")
+    assert ex.run(timeout_s=5.0).outcome == "failed"
+    assert journal.of("Drive")[-3:] == ["pause", "exit", "stop"]  # left without running again
+
+
+def test_siblings_resume_when_the_waiting_outcome_does_not_end_the_container():
+    journal = Journal()
+    ex = executor(_drive_and_monitor(journal, Autonomy.HIGH, [("blocked", [("Bump", "bumper"), ("Drive", "done")]),
+                                                                ("arrived", [("Drive", "done")])]),
+                  autonomy=Autonomy.LOW)
+    ex.run(timeout_s=30.0, stop_on_timeout=False)
+    assert journal.of("Drive")[-1] == "pause"
+    ex.approve("/Go/Bump")
+    assert ex.run(timeout_s=30.0).outcome == "failed"  # Bump and then Drive finished: "blocked"
+    drive = journal.of("Drive")
+    assert drive[drive.index("pause") + 1] == "resume" and drive.count("execute") == 41

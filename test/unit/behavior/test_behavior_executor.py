@@ -20,6 +20,7 @@ from flex_nav.behavior import (
     current_context,
 )
 from flex_nav.behavior.builtin_states import Wait
+from flex_nav.behavior.context import HOLD_REQUEST
 from flex_nav.exceptions import BehaviorCommandError, BehaviorRuntimeError, ConfigError, NotReadyError
 
 
@@ -113,7 +114,7 @@ def test_lock_holds_the_transition_leaving_a_container_until_unlock():
     ex.run(timeout_s=5.0, stop_on_timeout=False)
     # inside the locked container transitions go on; leaving it is held (Y stays active, not re-executed)
     assert journal.of("X") == ["start", "enter", "execute", "exit"]
-    assert journal.of("Y") == ["start", "enter", "execute"]
+    assert journal.of("Y") == ["start", "enter", "execute", "pause"]  # held still while the lock holds it
     assert [(r.path, r.outcome, r.reason) for r in ex.requested_outcomes()] == [("/Inner/Y", "done", "lock")]
     approval = ex.approve("/Inner/Y")
     ex.spin_once()
@@ -273,7 +274,9 @@ def test_two_behaviors_in_one_process_never_interfere():
     assert ex1.requested_outcomes() == []
     assert [r.path for r in ex2.requested_outcomes()] == ["/A"]
     assert ex1.context._priority and not ex2.context._priority  # only behavior 1 entered its priority container
-    assert ("A", "pause") not in j2.calls
+    # behavior 2's A is held by its own waiting outcome, never by behavior 1's priority container
+    a2 = ex2.context._requests["/A"]
+    assert a2._hold_mask == HOLD_REQUEST and j2.calls.count(("A", "pause")) == 1
     ex2.pause()
     ex2.spin_once()
     ex1.preempt()

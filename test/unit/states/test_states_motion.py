@@ -7,7 +7,7 @@ import math
 import pytest
 from unit.states.states_testlib import Harness, KinematicRobot, odometry, path, twists
 
-from flex_nav.behavior import BehaviorStatus, LogLevel
+from flex_nav.behavior import Autonomy, BehaviorStatus, LogLevel, StateMachine
 from flex_nav.exceptions import ConfigError
 from flex_nav_states.move_distance_state import MoveDistanceState
 from flex_nav_states.pure_pursuit_state import PurePursuitState
@@ -363,3 +363,26 @@ def test_closed_loop_limits_are_checked_at_construction():
     with pytest.raises(ConfigError, match=r"stall_angle_rad 2 rad cannot be made"):
         RotateAngleState(angle_rad=1.0, stall_angle_rad=2.0)
     assert MoveDistanceState(distance_m=-0.5, speed_mps=0.25)._timeout_s == pytest.approx(2.0 * 2.0 + 2.0)
+
+
+def test_a_motion_state_whose_outcome_waits_for_the_operator_stops_the_robot():
+    """A stalled move whose 'failed' needs approval: the last command must be a stop while the operator
+    decides, not the push it was sending when the stall was detected."""
+    sm = StateMachine(outcomes=["finished", "failed"])
+    sm.add("Move", MoveDistanceState(distance_m=1.0, speed_mps=0.2),
+           transitions={"done": "finished", "failed": "failed"}, autonomy={"failed": Autonomy.HIGH})
+    h = Harness(sm, autonomy=Autonomy.LOW)
+    robot = KinematicRobot(h)
+    robot.blocked = True
+    h.start()
+    for _ in range(200):  # 10 s at 20 Hz: the stall shows after about 1 s
+        h.tick()
+        h.advance(0.05)
+        if h.executor.requested_outcomes():
+            break
+    assert [(r.path, r.outcome) for r in h.executor.requested_outcomes()] == [("/Move", "failed")]
+    assert any(v > 0.0 for v, _ in twists(h))  # it did drive before the stall
+    assert last_twist(h) == (0.0, 0.0)
+    sent = len(twists(h))
+    h.run_for(2.0)  # waiting: nothing more is sent, the stop stands
+    assert len(twists(h)) == sent
