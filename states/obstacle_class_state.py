@@ -49,11 +49,6 @@ class ClassReader:
             return None
         return msg
 
-    def person_seen(self, state: State) -> bool:
-        """True when the newest fresh message says person, by the vote or by its latest frame alone."""
-        msg = self.latest(state)
-        return msg is not None and PERSON in (msg.label, msg.frame_label)
-
 
 class ObstacleClassState(State):
     """Reads the class of the region in front of the robot from the obstacle classifier.

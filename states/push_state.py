@@ -28,7 +28,8 @@ class PushState(MotionBase):
 
     Progress is the odometry displacement along the heading at the start. The class topic is read on
     every tick: a person (by the vote or the latest frame) stops the push at once with ``person``; no
-    fresh class at entry also gives ``person`` without moving (unknown is treated as a person).
+    fresh class, at entry or while pushing (the classifier or its camera went silent), also gives ``person``
+    (unknown is treated as a person).
     The robot stops (zero twist) on every exit.
 
     -- distance_m        float  [m] How far to push (> 0).
@@ -47,7 +48,7 @@ class PushState(MotionBase):
 
     <= done    Pushed the whole distance.
     <= failed  No progress (heavy object), too slow, or odometry missing; the reason is logged.
-    <= person  A person is in front (or no fresh class at entry): nothing or no more was pushed.
+    <= person  A person is in front (or no fresh class): nothing or no more was pushed.
     """
 
     def __init__(
@@ -109,13 +110,15 @@ class PushState(MotionBase):
         self._stall.restart_window(self.now_s())
 
     def execute(self, userdata: UserDataView) -> Optional[str]:
-        if not self._checked:
-            self._checked = True
-            if self._reader.latest(self) is None:
-                self.stop()
-                self.log_error(f"push refused: no fresh obstacle class on {self._reader.topic} (could be a person)")
-                return PERSON
-        if self._reader.person_seen(self):
+        msg = self._reader.latest(self)
+        if msg is None:  # the classifier or camera went silent: it could be a person now
+            self.stop()
+            what = f"push stopped at {self._progress_m:.2f} m" if self._checked else "push refused"
+            self.log_error(f"{what}: no fresh obstacle class on {self._reader.topic} "
+                           f"for {self._reader.max_age_s:g} s (could be a person)")
+            return PERSON
+        self._checked = True
+        if PERSON in (msg.label, msg.frame_label):
             self.stop()
             self.log_warn(f"push stopped: a person is in front of the robot (pushed {self._progress_m:.2f} m)")
             return PERSON

@@ -162,6 +162,15 @@ def test_push_stops_at_once_when_a_person_appears():
     assert robot.x == pytest.approx(0.2, abs=0.03)
 
 
+def test_push_stops_when_the_classifier_goes_silent_mid_push():
+    h, robot = push_harness(distance_m=1.0, speed_mps=0.2)
+    result = run(h.start(), Camera(h, lambda t: "movable" if t < 1.0 else None), 10.0)
+    assert result.outcome == "person"  # silence could hide a person
+    assert twists(h)[-1] == (0.0, 0.0)
+    assert robot.x < 0.2 + 0.2 * 1.0 + 0.03  # stopped within class_max_age_s (1 s) of the last class
+    assert any("push stopped at" in t and "no fresh obstacle class" in t for t in h.texts(LogLevel.ERROR))
+
+
 @pytest.mark.parametrize("params, field", [({"distance_m": 0.0}, "distance_m"), ({"distance_m": -0.3}, "distance_m"),
                                            ({"distance_m": 0.5, "speed_mps": 0.1, "stall_distance_m": 0.2},
                                             "stall_distance_m")])
