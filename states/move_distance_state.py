@@ -64,7 +64,8 @@ class MoveDistanceState(MotionBase):
         self._distance_m = validation.number(owner, "distance_m", distance_m, unit="[m]")
         if self._distance_m == 0.0:
             raise ConfigError(f"{owner}: distance_m must not be 0 [m]")
-        self._speed_mps = validation.number(owner, "speed_mps", speed_mps, positive=True, unit="[m/s]")
+        self._speed_mps = validation.number(owner, "speed_mps", speed_mps, positive=True,
+                                             maximum=validation.MAX_LINEAR_MPS, unit="[m/s]")
         self._tolerance_m = validation.number(owner, "tolerance_m", tolerance_m, positive=True, unit="[m]")
         self._timeout_s = closed_loop_timeout(owner, timeout_s, amount=self._distance_m, amount_name="distance_m",
                                               speed=self._speed_mps, speed_name="speed_mps")

@@ -76,7 +76,8 @@ class PushState(MotionBase):
             output_keys=["push_progress_m"],
         )
         self._distance_m = validation.number(owner, "distance_m", distance_m, positive=True, unit="[m]")
-        self._speed_mps = validation.number(owner, "speed_mps", speed_mps, positive=True, unit="[m/s]")
+        self._speed_mps = validation.number(owner, "speed_mps", speed_mps, positive=True,
+                                             maximum=validation.MAX_LINEAR_MPS, unit="[m/s]")
         margin = validation.number(owner, "margin_s", margin_s, minimum=0.0, unit="[s]")
         self._timeout_s = self._distance_m / self._speed_mps + margin
         self._stall = stall_watch(owner, stall_window_s, progress_name="stall_distance_m",

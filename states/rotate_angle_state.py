@@ -62,7 +62,7 @@ class RotateAngleState(MotionBase):
         if self._angle_rad == 0.0:
             raise ConfigError(f"{owner}: angle_rad must not be 0 [rad]")
         self._speed = validation.number(owner, "angular_speed_radps", angular_speed_radps, positive=True,
-                                        unit="[rad/s]")
+                                        maximum=validation.MAX_ANGULAR_RADPS, unit="[rad/s]")
         self._tolerance_rad = validation.number(owner, "tolerance_rad", tolerance_rad, positive=True, unit="[rad]")
         self._timeout_s = closed_loop_timeout(owner, timeout_s, amount=self._angle_rad, amount_name="angle_rad",
                                               speed=self._speed, speed_name="angular_speed_radps")

@@ -28,8 +28,10 @@ class TimedTwistState(MotionBase):
                  cmd_topic: str = "cmd_vel_stamped", frame_id: str = "base_footprint") -> None:
         super().__init__(["done"], cmd_topic=cmd_topic, frame_id=frame_id, odom_topic="", odom_timeout_s=1.0)
         owner = type(self).__name__
-        self._v = validation.number(owner, "linear_mps", linear_mps, unit="[m/s]")
-        self._w = validation.number(owner, "angular_radps", angular_radps, unit="[rad/s]")
+        self._v = validation.number(owner, "linear_mps", linear_mps, minimum=-validation.MAX_LINEAR_MPS,
+                                    maximum=validation.MAX_LINEAR_MPS, unit="[m/s]")
+        self._w = validation.number(owner, "angular_radps", angular_radps, minimum=-validation.MAX_ANGULAR_RADPS,
+                                    maximum=validation.MAX_ANGULAR_RADPS, unit="[rad/s]")
         self._duration_s = validation.number(owner, "duration_s", duration_s, positive=True, unit="[s]")
 
     def execute(self, userdata: UserDataView) -> Optional[str]:

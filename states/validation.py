@@ -11,6 +11,11 @@ from typing import Any, Collection, List, Optional
 
 from flex_nav.exceptions import ConfigError, choices_message
 
+# Sanity bounds of the motion states' speed parameters: far above what the supported bases drive (0.3-0.7 m/s,
+# 1.5-2 rad/s in config/), so a value beyond them is a unit mistake (cm/s, deg/s), refused at load time.
+MAX_LINEAR_MPS = 1.0  # [m/s]
+MAX_ANGULAR_RADPS = 3.2  # [rad/s]
+
 
 def number(
     owner: str,

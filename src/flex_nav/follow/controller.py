@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import enum
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Callable, List, Optional, Sequence, Tuple
 
 import numpy as np
@@ -150,7 +150,19 @@ class SafeFollower:
             decision = _stop(Outcome.ABORTED, f"internal error in the control step: {err!r}")
         if decision.outcome is not Outcome.RUNNING:
             self.stop()
-        return decision
+            return decision
+        return self._within_limits(decision)
+
+    def _within_limits(self, decision: Decision) -> Decision:
+        """The last guard: no command beyond the configured speeds — ``max_angular_vel`` [rad/s], and
+        ``desired_linear_vel`` or the yield rule's ``hurry_speed_mps`` [m/s], forwards or backwards."""
+        p = self.pursuit.params
+        v_max = max(p.desired_linear_vel, self.yielding.params.hurry_speed_mps if self.yielding else 0.0)
+        v = min(max(decision.v, -v_max), v_max)
+        w = min(max(decision.w, -p.max_angular_vel), p.max_angular_vel)
+        if v == decision.v and w == decision.w:
+            return decision
+        return replace(decision, v=v, w=w)
 
     def _tick(  # noqa: PLR0911 - one return per way a tick can end, read top to bottom
         self,

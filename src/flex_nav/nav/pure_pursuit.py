@@ -145,6 +145,11 @@ class PurePursuitParams:
                 f"pure pursuit max_lookahead_dist ({self.max_lookahead_dist}) must be >= min_lookahead_dist "
                 f"({self.min_lookahead_dist})"
             )
+        if self.rotate_to_heading_angular_vel > self.max_angular_vel:
+            raise ConfigError(
+                f"pure pursuit rotate_to_heading_angular_vel ({self.rotate_to_heading_angular_vel}) must be <= "
+                f"max_angular_vel ({self.max_angular_vel}) [rad/s]"
+            )
         if self.cost_scaling_gain > 1.0:
             raise ConfigError(f"pure pursuit cost_scaling_gain must be in [0, 1], got {self.cost_scaling_gain!r}")
 
@@ -382,8 +387,12 @@ class RegulatedPurePursuit:
         return min(v, p.desired_linear_vel)
 
     def _limited_rotation(self, w_target: float, w_now: float, dt: float) -> float:
-        limit = self.params.max_angular_accel * dt
-        return min(max(w_target, w_now - limit), w_now + limit)
+        """``w_target`` reached from the measured ``w_now`` at ``max_angular_accel``, never beyond
+        ``max_angular_vel`` (a spike in the measured rate must not raise the command)."""
+        p = self.params
+        limit = p.max_angular_accel * dt
+        w = min(max(w_target, w_now - limit), w_now + limit)
+        return min(max(w, -p.max_angular_vel), p.max_angular_vel)
 
 
 def _shortened(lookahead: float, geometry: Optional[CostmapGeometry]) -> Tuple[float, ...]:

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from flex_nav.exceptions import ConfigError, NotReadyError
-from flex_nav.follow.controller import Outcome, SafeFollower
+from flex_nav.follow.controller import Decision, Outcome, SafeFollower
 from flex_nav.nav.costmap_grid import LETHAL, CostmapGeometry
 from flex_nav.nav.pure_pursuit import PurePursuitParams
 
@@ -182,3 +182,13 @@ def test_bad_path_and_parameters_raise():
     with pytest.raises(ConfigError, match="sensor timeout"):
         SafeFollower(PARAMS, sensors=["odom"], sensor_timeout_s=0.0, collision_timeout_s=1.0,
                      nominal_period_s=0.05, start_s=0.0)
+
+
+def test_no_running_command_leaves_beyond_the_configured_speeds():
+    """The last guard of every step: max_angular_vel and desired_linear_vel (or a yield rule's hurry speed)."""
+    f = follower()
+    limited = f._within_limits(Decision(2.0, -9.0, Outcome.RUNNING, "too fast"))
+    assert (limited.v, limited.w, limited.outcome, limited.reason) == (0.5, -PARAMS.max_angular_vel,
+                                                                       Outcome.RUNNING, "too fast")
+    inside = Decision(-0.3, 0.4, Outcome.RUNNING)
+    assert f._within_limits(inside) is inside

@@ -49,6 +49,18 @@ def test_path_behind_rotates_in_place_towards_it():
     assert no_rotate.status is PursuitStatus.FOLLOWING
 
 
+def test_a_spike_in_the_measured_turn_rate_never_lifts_the_command_beyond_max_angular_vel():
+    ctl = controller(max_angular_vel=1.8)
+    cmd = ctl.step((1.0, 0.0, math.pi * 0.75), (0.0, 3.0), DT)  # odometry says 3 rad/s (a glitch)
+    assert cmd.status is PursuitStatus.ROTATING_TO_PATH
+    assert abs(cmd.w) <= 1.8  # the rate limit around the measured 3 rad/s alone would give 2.84
+
+
+def test_rotate_to_heading_faster_than_max_angular_vel_is_refused():
+    with pytest.raises(ConfigError, match=r"rotate_to_heading_angular_vel \(2.0\) must be <= max_angular_vel"):
+        PurePursuitParams(rotate_to_heading_angular_vel=2.0, max_angular_vel=1.5)
+
+
 def test_goal_rotation_then_reached():
     path = straight(yaw=1.0)
     ctl = controller(path, yaw_goal_tolerance=0.01)

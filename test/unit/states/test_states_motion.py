@@ -386,3 +386,14 @@ def test_a_motion_state_whose_outcome_waits_for_the_operator_stops_the_robot():
     sent = len(twists(h))
     h.run_for(2.0)  # waiting: nothing more is sent, the stop stands
     assert len(twists(h)) == sent
+
+
+@pytest.mark.parametrize(("cls", "params", "field"), [
+    (MoveDistanceState, {"distance_m": 1.0, "speed_mps": 20.0}, "speed_mps"),  # cm/s given as m/s
+    (RotateAngleState, {"angle_rad": 1.0, "angular_speed_radps": 90.0}, "angular_speed_radps"),  # deg/s
+    (TimedTwistState, {"linear_mps": -1.5}, "linear_mps"),
+    (TimedTwistState, {"angular_radps": 4.0}, "angular_radps"),
+])
+def test_speeds_beyond_any_supported_base_are_refused_at_load_time(cls, params, field):
+    with pytest.raises(ConfigError, match=rf"{field} must be (<=|>=) -?[0-9.]+ \["):
+        cls(**params)

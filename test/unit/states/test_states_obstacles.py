@@ -172,6 +172,7 @@ def test_push_stops_when_the_classifier_goes_silent_mid_push():
 
 
 @pytest.mark.parametrize("params, field", [({"distance_m": 0.0}, "distance_m"), ({"distance_m": -0.3}, "distance_m"),
+                                           ({"distance_m": 0.5, "speed_mps": 5.0}, "speed_mps"),
                                            ({"distance_m": 0.5, "speed_mps": 0.1, "stall_distance_m": 0.2},
                                             "stall_distance_m")])
 def test_push_rejects_bad_parameters(params, field):
