@@ -44,10 +44,11 @@ class CommandTimeout:
         self._last_command_s = None
 
     def due(self, now_s: float) -> bool:
-        """True exactly once per silence of at least ``timeout_s`` after a command."""
+        """True exactly once per silence of at least ``timeout_s`` after a command; also once when the clock
+        went back before the last command (a restarted simulation or a looped bag: its age is unknown)."""
         if self.timeout_s == 0.0 or self._last_command_s is None:
             return False
-        if now_s - self._last_command_s < self.timeout_s:
+        if 0.0 <= now_s - self._last_command_s < self.timeout_s:
             return False
         self._last_command_s = None
         return True
@@ -64,6 +65,12 @@ class CommandOrder:
 
     def __init__(self) -> None:
         self._newest_s = -math.inf  # [s] stamp of the newest forwarded command
+        self._newest_was_stop = False
+
+    def reset(self) -> None:
+        """The clock went back (a restarted simulation, a looped bag): stamps of the old timeline mean nothing
+        now, and keeping them would drop every new command, stops included."""
+        self._newest_s = -math.inf
         self._newest_was_stop = False
 
     def admit(self, stamp_s: float, moving: bool) -> bool:

@@ -2,11 +2,13 @@
 
 Flexible Navigation's controllers publish stamped commands (for logging); ordinary base drivers take a
 Twist. A non-finite command is never forwarded: it is logged and a zero Twist goes out instead (a broken
-controller stops the robot). Parameter ``~timeout`` [s] (0 = off, default 0.5): when no command arrived for
-this long after the last one, one zero Twist is published, so a crashed controller cannot leave the base
-driving on its last command. Controllers and behavior states publish to the same topic from different
-nodes, whose messages have no order between them: a command stamped before one already forwarded is
-dropped, and at equal stamps a stop wins (:class:`~flex_nav.follow.safety.CommandOrder`).
+controller stops the robot). Parameter ``~timeout`` [s] (0 = off, with a warning: then the base driver's own
+command timeout must stop the robot; default 0.5): when no command arrived for this long after the last one,
+one zero Twist is published, so a crashed controller cannot leave the base driving on its last command.
+Controllers and behavior states publish to the same topic from different nodes, whose messages have no order
+between them: a command stamped before one already forwarded is dropped, and at equal stamps a stop wins
+(:class:`~flex_nav.follow.safety.CommandOrder`). When ROS time moves backwards (a restarted simulation, a
+looped bag) a zero Twist goes out and the order starts afresh, so the new timeline's commands get through.
 """
 
 from __future__ import annotations
@@ -33,14 +35,32 @@ class TwistRelay:
         self.subscriber = rospy.Subscriber("cmd_vel_stamped", TwistStamped, self._on_command, queue_size=1,
                                            tcp_nodelay=True)
         self._timer = None
+        self._last_now_s = rospy.get_time()
         if timeout_s > 0.0:
             period_s = max(CHECK_PERIOD_MIN_S, timeout_s / 5.0)
-            self._timer = rospy.Timer(rospy.Duration(period_s), self._on_check)
+            self._timer = rospy.Timer(rospy.Duration(period_s), self._on_check, reset=True)  # survives time jumps
+        else:
+            rospy.logwarn("twist_relay: ~timeout 0: no zero Twist after the commands stop; the base driver's own "
+                          "command timeout must stop the robot")
+
+    def _clock_went_back(self) -> bool:
+        """True (once) when ROS time moved backwards since the last call; the order starts afresh then."""
+        now_s = rospy.get_time()
+        back = now_s < self._last_now_s
+        self._last_now_s = now_s
+        if back:
+            rospy.logwarn("twist_relay: ROS time moved backwards; publishing a zero Twist and forgetting the "
+                          "stamps of the old timeline")
+            self._order.reset()
+            self._timeout.stopped()
+            self.publisher.publish(Twist())
+        return back
 
     def _on_command(self, msg: TwistStamped) -> None:
         lin, ang = msg.twist.linear, msg.twist.angular
         problem = twist_problem((lin.x, lin.y, lin.z), (ang.x, ang.y, ang.z))
         with self._lock:
+            self._clock_went_back()
             if problem is not None:
                 rospy.logerr_throttle(1.0, f"twist_relay: {problem}; dropped, publishing a zero Twist instead")
                 self._timeout.stopped()
@@ -55,6 +75,8 @@ class TwistRelay:
 
     def _on_check(self, _event: rospy.timer.TimerEvent) -> None:
         with self._lock:
+            if self._clock_went_back():
+                return
             if self._timeout.due(rospy.get_time()):
                 rospy.logwarn(f"twist_relay: no command for {self._timeout.timeout_s:.2f} s; publishing a zero Twist")
                 self.publisher.publish(Twist())

@@ -90,3 +90,19 @@ def test_command_order_drops_a_command_older_than_one_forwarded_and_a_stop_wins_
     assert not order.admit(10.25, moving=False)  # an old stop is stale too
     assert order.admit(0.0, moving=True)  # unstamped: always forwarded, changes nothing
     assert not order.admit(10.29, moving=True)
+
+
+def test_timeout_fires_once_when_the_clock_goes_back_before_the_last_command():
+    timeout = CommandTimeout(0.5)
+    timeout.command(100.0)
+    assert timeout.due(20.0)  # a restarted simulation: the command's age is unknown, stop
+    assert not timeout.due(20.1)  # once
+
+
+def test_command_order_after_a_reset_admits_the_new_timeline():
+    order = CommandOrder()
+    assert order.admit(100.0, moving=True)
+    assert not order.admit(5.0, moving=False)  # the old timeline would drop even a stop
+    order.reset()
+    assert order.admit(5.0, moving=False) and order.admit(5.1, moving=True)
+    assert not order.admit(5.0, moving=True)  # ordered again within the new timeline
