@@ -185,12 +185,13 @@ class CostmapROS:
             rospy.logwarn_throttle(5.0, f"{self.name}: scan ignored: {err}")
             return
         with self.lock:
-            self.last_scan_time = msg.header.stamp
-            self.last_scan_received_s = rospy.get_time()
             if self.costmap is not None:
                 if self.rolling_window:
                     self.costmap.recentre(x, y)
                 self.costmap.add_scan(scan)
+            # only a scan that reached the obstacle layer counts as fresh: one add_scan rejected keeps aging
+            self.last_scan_time = msg.header.stamp
+            self.last_scan_received_s = rospy.get_time()
 
     def _on_bumper_hit(self, msg: PointStamped) -> None:
         try:
