@@ -11,7 +11,8 @@
   result code SUCCESS (a cancelled goal's default result also reads code 0); other codes map through
   ``code_outcomes``; a goal ended without a result maps by its status. The server's reason
   (``result.message``) is logged with the outcome. A ``timeout_s`` > 0 bounds the goal's run time
-  (cancelled, failure outcome);
+  (cancelled, failure outcome); a server that goes away during the goal (disconnected for
+  ``SERVER_LOST_S``) fails it too, so ``timeout_s`` 0 never means waiting for a dead server;
 - ``on_exit``: cancels the goal if it is still active (preemption, a monitor ending a concurrency, a
   forced transition), so no server keeps driving for a state that is gone;
 - ``on_pause``/``on_resume``: cancels the active goal (the robot must not drive on while the behavior is
@@ -32,6 +33,7 @@ from flex_nav_states import validation
 from flex_nav_states.proxy_types import ActionClientLike, proxies_of
 
 SEND_WAIT_S = 0.05  # [s] bound passed to send_goal once the server is known to be connected
+SERVER_LOST_S = 2.0  # [s] a server disconnected this long during a goal has gone (a node restart takes longer)
 
 GOAL_STATUS_NAMES = {
     getattr(GoalStatus, n): n
@@ -98,6 +100,7 @@ class ActionClientBase(State):
         self._done = False
         self._wait_start_s = 0.0  # [s] since when we wait for the server
         self._sent_s = 0.0  # [s] when the goal was sent
+        self._lost_since_s: Optional[float] = None  # [s] since when the server is disconnected during the goal
         self._paused_s = 0.0  # [s] goal run time spent paused (not counted against timeout_s)
         self._pause_start_s = 0.0
 
@@ -158,9 +161,9 @@ class ActionClientBase(State):
         if client.has_result():
             self._done = True
             return self.map_result(userdata, client.state(), client.result())
-        if self._timeout_s > 0.0 and now - self._sent_s - self._paused_s >= self._timeout_s:
-            self.log_error(f"{self._action_name}: no result within timeout_s {self._timeout_s:g} s; goal cancelled")
-            client.cancel()
+        problem = self._goal_problem(client, now)
+        if problem is not None:
+            self.log_error(problem)
             self._done = True
             return self._failure
         return None
@@ -184,6 +187,20 @@ class ActionClientBase(State):
             self._wait_start_s = now
 
     # --- internals -------------------------------------------------------------------------------
+    def _goal_problem(self, client: ActionClientLike, now: float) -> Optional[str]:
+        """Why the running goal has failed without a result (the server went away, timeout_s), else None."""
+        if client.is_available(0.0):
+            self._lost_since_s = None
+        elif self._lost_since_s is None:
+            self._lost_since_s = now
+        elif now - self._lost_since_s >= SERVER_LOST_S:
+            return (f"action server {self._action_name} ({self._spec.name}) went away during the goal "
+                    f"(disconnected for {SERVER_LOST_S:g} s)")
+        if self._timeout_s > 0.0 and now - self._sent_s - self._paused_s >= self._timeout_s:
+            client.cancel()
+            return f"{self._action_name}: no result within timeout_s {self._timeout_s:g} s; goal cancelled"
+        return None
+
     def _try_send(self, client: ActionClientLike, now: float) -> bool:
         if not client.is_available(0.0):
             return False
@@ -194,6 +211,7 @@ class ActionClientBase(State):
         self._sent = True
         self._sent_s = now
         self._paused_s = 0.0
+        self._lost_since_s = None
         what = self.describe_goal(self._goal)
         self.log_info(f"{self._action_name}: goal sent{': ' + what if what else ''}")
         return True

@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """rostest node: the per-behavior ROS proxies against a real master and scripted action servers."""
 
+import os
+import subprocess
 import sys
 import time
 import unittest
@@ -146,6 +148,27 @@ class TestProxies(unittest.TestCase):
             proxies.service_caller("no_such_service", Trigger).call(TriggerRequest(), timeout_s=0.5)
         self.assertLess(time.monotonic() - started, 10.0)
         proxies.shutdown()
+
+    def test_a_server_that_dies_during_a_goal_is_seen_gone(self):
+        """is_available(0) turns False when the server's node dies: the state base fails such a goal
+        instead of waiting for it forever."""
+        server = subprocess.Popen(["rosrun", "flex_nav", "mock_action_server", "__name:=doomed_follow",
+                                   "_action:=FollowPath", "_duration:=30.0"], env=dict(os.environ),
+                                  stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        proxies = RosProxies()
+        try:
+            client = proxies.action_client("doomed_follow", FollowPathAction)
+            self.assertTrue(client.is_available(WAIT_S), "doomed_follow did not come up")
+            client.send_goal(FollowPathGoal(), server_timeout_s=1.0)
+            self.assertTrue(wait_for(client.is_active))
+            self.assertTrue(client.is_available(0.0))
+            server.terminate()
+            server.wait(timeout=WAIT_S)
+            self.assertTrue(wait_for(lambda: not client.is_available(0.0)), "still 'available' after it died")
+        finally:
+            if server.poll() is None:
+                server.kill()
+            proxies.shutdown()
 
 
 if __name__ == "__main__":

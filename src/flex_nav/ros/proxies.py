@@ -25,6 +25,7 @@ MsgT = TypeVar("MsgT")
 
 DEFAULT_BUFFER_SIZE = 10  # messages kept by a buffered subscription
 PUBLISH_DRAIN_S = 1.0  # [s] bound on sending what is still queued (a final zero twist) before unregistering
+AVAILABILITY_POLL_S = 0.01  # [s] how often ActionClientProxy.is_available looks again while it may wait
 
 
 class Subscription(Generic[MsgT]):
@@ -140,8 +141,29 @@ class ActionClientProxy:
         self._active = False
 
     def is_available(self, timeout_s: float = 0.0) -> bool:
-        """True when the server is connected (waits at most ``timeout_s`` [s])."""
-        return bool(self._client.wait_for_server(rospy.Duration(max(timeout_s, 1e-3))))
+        """True when the server is connected; waits at most ``timeout_s`` [s] of wall time (0: just looks).
+
+        actionlib's own wait_for_server measures its bound in ROS time, so with a simulated clock that stalls
+        it never returns — and a state calls this on every tick. The test is the same: the server that sent
+        the last status message is connected to our goal and cancel topics and publishes our result and
+        feedback topics; when that node dies, its connections drop and this turns False."""
+        deadline = time.monotonic() + max(timeout_s, 0.0)
+        while not self._server_connected():
+            if time.monotonic() >= deadline or rospy.is_shutdown():
+                return False
+            time.sleep(AVAILABILITY_POLL_S)
+        return True
+
+    def _server_connected(self) -> bool:
+        client = self._client
+        status = client.last_status_msg
+        if status is None:
+            return False
+        server = status._connection_header["callerid"]
+        if not (client.pub_goal.impl.has_connection(server) and client.pub_cancel.impl.has_connection(server)):
+            return False
+        return all(any(c.callerid_pub == server for c in sub.impl.connections)
+                   for sub in (client.result_sub, client.feedback_sub))
 
     def wait_for_server(self, timeout_s: float) -> None:
         if not self.is_available(timeout_s):

@@ -18,7 +18,7 @@ from flex_nav.msg import (
     GetPathAction,
     GetPathResult,
 )
-from flex_nav_states.action_base import SEND_WAIT_S
+from flex_nav_states.action_base import SEND_WAIT_S, SERVER_LOST_S
 from flex_nav_states.clear_costmaps_state import ClearCostmapsState
 from flex_nav_states.follow_path_state import FollowPathState, FollowPlannerState
 from flex_nav_states.follow_topic_state import FollowTopicState
@@ -277,6 +277,30 @@ def test_follow_topic_server_missing_fails():
     assert h.start().run(max_time_s=5.0).outcome == "failed"
     assert any("pure_pursuit_topic" in t and "not available" in t for t in h.texts(LogLevel.ERROR))
 
+
+
+def test_a_server_that_goes_away_during_the_goal_fails_it_even_without_a_timeout():
+    h = Harness(FollowTopicState(timeout_s=0.0))  # no limit on the goal's run time
+    client = h.proxies.client("pure_pursuit_topic", FollowTopicAction)
+    h.start().run_for(1.0)
+    assert len(client.goals) == 1 and client.active_goal is not None
+    client.available_at_s = float("inf")  # the controller node died: its connections dropped
+    gone_s = h.clock.now()
+    result = h.run(max_time_s=10.0)
+    assert result.outcome == "failed"
+    assert h.clock.now() - gone_s == pytest.approx(SERVER_LOST_S, abs=0.2)
+    assert any("went away during the goal" in t for t in h.texts(LogLevel.ERROR)), h.log_text()
+
+
+def test_a_server_reconnecting_within_the_grace_keeps_the_goal():
+    h = Harness(FollowTopicState(timeout_s=0.0))
+    client = h.proxies.client("pure_pursuit_topic", FollowTopicAction)
+    h.start().run_for(1.0)
+    client.available_at_s = float("inf")
+    h.run_for(0.5 * SERVER_LOST_S)
+    client.available_at_s = h.clock.now()  # back (a dropped connection re-made)
+    h.run_for(2.0 * SERVER_LOST_S)  # still running: the lost time starts again from zero next time
+    assert len(client.goals) == 1
 
 # --- ClearCostmaps ------------------------------------------------------------------------------------------
 
