@@ -17,6 +17,7 @@ from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav_states.proxy_types import SubscriptionLike
 
 DESCRIBE_MAX_CHARS = 160  # longest description of a value in a log line
+FUTURE_STAMP_TOLERANCE_S = 0.5  # [s] a stamp further ahead of the clock than this is not trusted
 
 
 def stamp_s(msg: Any) -> float:
@@ -27,9 +28,11 @@ def stamp_s(msg: Any) -> float:
 
 
 def message_age_s(msg: Any, subscription: SubscriptionLike, now_s: float) -> float:
-    """[s] how old ``msg`` is: ``now_s`` minus its header stamp, or (unstamped) the subscription's arrival age."""
+    """[s] how old ``msg`` is: ``now_s`` minus its header stamp, or the subscription's arrival age when it is not
+    stamped or stamped more than ``FUTURE_STAMP_TOLERANCE_S`` ahead of the clock (a skewed clock on the sender
+    would otherwise keep a message "fresh" long after its source stopped)."""
     stamp = stamp_s(msg)
-    if stamp > 0.0:
+    if stamp > 0.0 and now_s - stamp >= -FUTURE_STAMP_TOLERANCE_S:
         return now_s - stamp
     return subscription.age_s()
 

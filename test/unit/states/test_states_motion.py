@@ -5,10 +5,13 @@ from __future__ import annotations
 import math
 
 import pytest
+from nav_msgs.msg import Odometry
+from unit.states.fake_proxies import FakeProxies
 from unit.states.states_testlib import Harness, KinematicRobot, odometry, path, twists
 
-from flex_nav.behavior import Autonomy, BehaviorStatus, LogLevel, StateMachine
+from flex_nav.behavior import Autonomy, BehaviorStatus, LogLevel, ManualClock, StateMachine
 from flex_nav.exceptions import ConfigError
+from flex_nav_states.messages import message_age_s
 from flex_nav_states.move_distance_state import MoveDistanceState
 from flex_nav_states.pure_pursuit_state import PurePursuitState
 from flex_nav_states.rotate_angle_state import RotateAngleState
@@ -397,3 +400,14 @@ def test_a_motion_state_whose_outcome_waits_for_the_operator_stops_the_robot():
 def test_speeds_beyond_any_supported_base_are_refused_at_load_time(cls, params, field):
     with pytest.raises(ConfigError, match=rf"{field} must be (<=|>=) -?[0-9.]+ \["):
         cls(**params)
+
+
+def test_a_message_stamped_ahead_of_the_clock_ages_by_its_arrival():
+    """A sender whose clock runs 10 s ahead: its last odometry must go stale when it stops, not 10 s later."""
+    clock = ManualClock(1000.0)
+    sub = FakeProxies(clock).subscription("odom", Odometry)
+    sub.inject(odometry(0.0, 0.0, 0.0, 0.0, 0.0, stamp_s=1010.0))
+    clock.advance(1.0)
+    assert message_age_s(sub.last(), sub, clock.now()) == pytest.approx(1.0)  # by arrival, not -9 s
+    sub.inject(odometry(0.0, 0.0, 0.0, 0.0, 0.0, stamp_s=1001.3))  # slightly ahead (within the tolerance): the stamp
+    assert message_age_s(sub.last(), sub, clock.now()) == pytest.approx(-0.3)
