@@ -105,6 +105,7 @@ class SafeFollower:
         self.nominal_period_s = nominal_period_s
         self._last_tick_s: Optional[float] = None
         self._blocked_since_s: Optional[float] = None
+        self._yielding_since_s: Optional[float] = None  # [s] giving way to people without a break since then
         self.blocked = BlockedPathWatch(blocked_distance_m, blocked_timeout_s)
         self.yielding = yielding  # give way to moving tracks (None: off)
         self._path: Optional[np.ndarray] = None
@@ -127,6 +128,7 @@ class SafeFollower:
         self.pursuit.clear()
         self._last_tick_s = None
         self._blocked_since_s = None
+        self._yielding_since_s = None
         self._path = None
         self.blocked.reset()
         if self.yielding is not None:
@@ -225,9 +227,16 @@ class SafeFollower:
             now_s, robot, (command.v, command.w), path=self._path, lengths=self._lengths,
             s_robot=s_robot, tracks=tracks, costs=costs, geometry=geometry, speed=speed)
         if not given_way.active:
+            self._yielding_since_s = None
             return None
         self.blocked.reset()  # a person crossing is waited for, not a blocked path
         self._blocked_since_s = None
+        if self._yielding_since_s is None:
+            self._yielding_since_s = now_s
+        patience_s = self.yielding.params.patience_s
+        if patience_s > 0.0 and now_s - self._yielding_since_s >= patience_s:
+            return _stop(Outcome.ABORTED, f"gave way to people for {now_s - self._yielding_since_s:.0f} s without a "
+                                          f"break (yielding/patience_s {patience_s:g} s)", command)
         if not (math.isfinite(given_way.v) and math.isfinite(given_way.w)):
             return _stop(Outcome.ABORTED, f"internal error: non-finite yield command ({given_way.v}, {given_way.w})",
                          command)

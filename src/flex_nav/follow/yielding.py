@@ -31,6 +31,10 @@ Each control tick (:meth:`YieldRule.decide`):
    [s] stay off the local costmap's obstacle cells (cells next to a moving track are its own marks and do
    not count). Without such a motion the robot waits.
 
+Giving way is bounded: :class:`~flex_nav.follow.controller.SafeFollower` aborts the goal after ``patience_s`` [s]
+(60) of giving way without a break, so a walker who never leaves the way (or a tracker artefact) cannot hold
+the robot forever; the behavior then decides (push_or_avoid: pause and replan, bounded tries).
+
 Pure: numpy, no ROS, no clock (times [s] are passed in); poses and tracks in the path's frame.
 """
 
@@ -77,6 +81,7 @@ class YieldParams:
     resume_after_s: float = 0.3  # [s] conflict-free time before the controller drives again
     escape_tolerance_m: float = 0.05  # [m] standing this far inside R still waits (no back-and-forth on noise)
     start_margin_m: float = 0.05  # [m] extra clearance the way must have to start again after yielding
+    patience_s: float = 60.0  # [s] giving way this long without a break aborts the goal (0: no limit)
 
     def __post_init__(self) -> None:
         positive = ("robot_radius_m", "speed_mps", "accel_mps2", "horizon_s", "time_step_s", "min_track_speed_mps",
@@ -87,7 +92,7 @@ class YieldParams:
                     or value <= 0.0:
                 raise ConfigError(f"yield parameter {name} must be a finite number > 0, got {value!r}")
         for name in ("hurry_speed_mps", "margin_m", "uncertainty_mps", "stop_buffer_m", "escape_turn_radps",
-                     "min_gain_m", "resume_after_s", "start_margin_m", "escape_tolerance_m"):
+                     "min_gain_m", "resume_after_s", "start_margin_m", "escape_tolerance_m", "patience_s"):
             value = getattr(self, name)
             if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value) \
                     or value < 0.0:

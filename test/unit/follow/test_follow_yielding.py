@@ -1,5 +1,6 @@
 """The yield rule: stop before a walking person's way, step out of it, never toward them; and SafeFollower with it."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -147,6 +148,21 @@ def test_safe_follower_gives_way_and_the_blocked_watch_stays_quiet():
         f.watchdog.saw("odom", now)
         d = f.tick(now, lambda: (2.52, 0.0, 0.0), (0.0, 0.0), lambda: (costs, geometry), lambda: crossing)
         assert d.outcome is Outcome.RUNNING and d.v == 0.0 and d.reason.startswith("yielding")
+
+
+def test_giving_way_without_a_break_is_bounded_by_the_patience():
+    """A walker who keeps crossing (a lingering track, a tracker artefact) must not hold the goal forever."""
+    f = follower(YieldRule(dataclasses.replace(PARAMS, patience_s=3.0)))
+    f.set_path(np.array([[0.0, 0.0, 0.0], [10.0, 0.0, 0.0]]))
+    crossing = [person(3.0, -1.5, 0.0, 0.8)]
+    for k in range(200):  # up to 10 s at the corridor's edge
+        now = 0.05 * (k + 1)
+        f.watchdog.saw("odom", now)
+        d = f.tick(now, lambda: (2.52, 0.0, 0.0), (0.0, 0.0), lambda: None, lambda: crossing)
+        if d.outcome is not Outcome.RUNNING:
+            break
+    assert d.outcome is Outcome.ABORTED and (d.v, d.w) == (0.0, 0.0)
+    assert "gave way to people for 3 s" in d.reason and now == pytest.approx(3.05, abs=0.06)
 
 
 def test_safe_follower_without_the_rule_ignores_tracks():
