@@ -365,6 +365,7 @@ class BehaviorExecutor:
             root._due = math.inf
             self._ctx._requests[root._path] = root
             self._ctx._emit_request(now, root._path, outcome, 0, "lock", True)
+            self._ctx._sync_request_hold(now)
             return
         root._leave()
         self._end(BehaviorStatus.FINISHED, outcome, "", None, now)

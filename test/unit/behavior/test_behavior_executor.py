@@ -142,6 +142,18 @@ def test_lock_of_a_leaf_and_unlock_errors():
     assert ex.run(timeout_s=2.0).status is BehaviorStatus.FINISHED
 
 
+def test_a_locked_single_state_root_holds_still_until_unlocked():
+    journal = Journal()
+    ex = executor(ScriptedState(journal))  # the root is the state itself: its outcome waits in the executor
+    ex.lock("/")
+    ex.run(timeout_s=2.0, stop_on_timeout=False)
+    assert [(r.path, r.reason) for r in ex.requested_outcomes()] == [("/", "lock")]
+    assert journal.of("behavior") == ["start", "enter", "execute", "pause"]  # stopped, not executed again
+    ex.unlock("/")
+    assert ex.run(timeout_s=2.0).status is BehaviorStatus.FINISHED
+    assert journal.of("behavior")[-2:] == ["exit", "stop"]
+
+
 def test_lock_then_autonomy_both_apply():
     journal = Journal()
     sm = StateMachine(outcomes=["finished", "failed"])
