@@ -157,14 +157,15 @@ class SafeFollower:
 
     def _within_limits(self, decision: Decision) -> Decision:
         """The last guard: no command beyond the configured speeds — ``max_angular_vel`` [rad/s], and
-        ``desired_linear_vel`` or the yield rule's ``hurry_speed_mps`` [m/s], forwards or backwards."""
+        ``desired_linear_vel`` or the yield rule's ``hurry_speed_mps`` [m/s], forwards or backwards. Both are
+        scaled by the same factor, so the robot keeps the arc that was checked for collisions, only slower."""
         p = self.pursuit.params
         v_max = max(p.desired_linear_vel, self.yielding.params.hurry_speed_mps if self.yielding else 0.0)
-        v = min(max(decision.v, -v_max), v_max)
-        w = min(max(decision.w, -p.max_angular_vel), p.max_angular_vel)
-        if v == decision.v and w == decision.w:
+        scale = min(1.0, v_max / abs(decision.v) if decision.v else 1.0,
+                    p.max_angular_vel / abs(decision.w) if decision.w else 1.0)
+        if scale == 1.0:
             return decision
-        return replace(decision, v=v, w=w)
+        return replace(decision, v=decision.v * scale, w=decision.w * scale)
 
     def _tick(  # noqa: PLR0911 - one return per way a tick can end, read top to bottom
         self,

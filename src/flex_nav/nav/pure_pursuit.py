@@ -145,11 +145,6 @@ class PurePursuitParams:
                 f"pure pursuit max_lookahead_dist ({self.max_lookahead_dist}) must be >= min_lookahead_dist "
                 f"({self.min_lookahead_dist})"
             )
-        if self.rotate_to_heading_angular_vel > self.max_angular_vel:
-            raise ConfigError(
-                f"pure pursuit rotate_to_heading_angular_vel ({self.rotate_to_heading_angular_vel}) must be <= "
-                f"max_angular_vel ({self.max_angular_vel}) [rad/s]"
-            )
         if self.cost_scaling_gain > 1.0:
             raise ConfigError(f"pure pursuit cost_scaling_gain must be in [0, 1], got {self.cost_scaling_gain!r}")
 

@@ -188,7 +188,10 @@ def test_no_running_command_leaves_beyond_the_configured_speeds():
     """The last guard of every step: max_angular_vel and desired_linear_vel (or a yield rule's hurry speed)."""
     f = follower()
     limited = f._within_limits(Decision(2.0, -9.0, Outcome.RUNNING, "too fast"))
-    assert (limited.v, limited.w, limited.outcome, limited.reason) == (0.5, -PARAMS.max_angular_vel,
-                                                                       Outcome.RUNNING, "too fast")
+    assert limited.w == pytest.approx(-PARAMS.max_angular_vel)  # the binding limit here
+    assert limited.v / limited.w == pytest.approx(2.0 / -9.0)  # same arc, only slower
+    assert (limited.outcome, limited.reason) == (Outcome.RUNNING, "too fast")
+    fast = f._within_limits(Decision(-2.0, 0.1, Outcome.RUNNING))
+    assert (fast.v, fast.w) == pytest.approx((-0.5, 0.025))
     inside = Decision(-0.3, 0.4, Outcome.RUNNING)
     assert f._within_limits(inside) is inside

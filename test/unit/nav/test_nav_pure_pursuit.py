@@ -56,9 +56,14 @@ def test_a_spike_in_the_measured_turn_rate_never_lifts_the_command_beyond_max_an
     assert abs(cmd.w) <= 1.8  # the rate limit around the measured 3 rad/s alone would give 2.84
 
 
-def test_rotate_to_heading_faster_than_max_angular_vel_is_refused():
-    with pytest.raises(ConfigError, match=r"rotate_to_heading_angular_vel \(2.0\) must be <= max_angular_vel"):
-        PurePursuitParams(rotate_to_heading_angular_vel=2.0, max_angular_vel=1.5)
+def test_rotating_in_place_never_exceeds_max_angular_vel():
+    ctl = controller(max_angular_vel=1.0)  # lowered alone: rotate_to_heading_angular_vel keeps its 1.8 default
+    w = 0.0
+    for _ in range(40):
+        cmd = ctl.step((1.0, 0.0, math.pi * 0.75), (0.0, w), DT)
+        w = cmd.w
+        assert cmd.status is PursuitStatus.ROTATING_TO_PATH and abs(cmd.w) <= 1.0
+    assert w == pytest.approx(-1.0)
 
 
 def test_goal_rotation_then_reached():
