@@ -194,8 +194,9 @@ class ActionClientBase(State):
         elif self._lost_since_s is None:
             self._lost_since_s = now
         elif now - self._lost_since_s >= SERVER_LOST_S:
+            client.cancel()  # in case it was only cut off and comes back: it must not run the goal on
             return (f"action server {self._action_name} ({self._spec.name}) went away during the goal "
-                    f"(disconnected for {SERVER_LOST_S:g} s)")
+                    f"(disconnected for {SERVER_LOST_S:g} s; goal cancelled)")
         if self._timeout_s > 0.0 and now - self._sent_s - self._paused_s >= self._timeout_s:
             client.cancel()
             return f"{self._action_name}: no result within timeout_s {self._timeout_s:g} s; goal cancelled"

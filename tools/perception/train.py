@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import shlex
 import sys
 import time
 from pathlib import Path
@@ -172,7 +173,7 @@ def training_command(args: argparse.Namespace) -> str:
         value = getattr(args, name)
         if name in ALWAYS_RECORDED or value != default:
             words = value if isinstance(value, list) else [value]
-            parts.append(" ".join(["--" + name.replace("_", "-"), *(str(word) for word in words)]))
+            parts.append(" ".join(["--" + name.replace("_", "-"), *(shlex.quote(str(word)) for word in words)]))
     return " ".join(parts)
 
 

@@ -160,8 +160,11 @@ class BehaviorRunner:
             return dict(parameters)
         from flex_nav.behavior.yaml_loader import declared_parameter_names  # noqa: PLC0415 - as the loader
 
-        return with_robot_profile(parameters, declared_parameter_names(name_or_path, self.search_path),
-                                  self.robot_profile)
+        merged = with_robot_profile(parameters, declared_parameter_names(name_or_path, self.search_path),
+                                    self.robot_profile)
+        if merged != parameters:
+            rospy.loginfo(f"behavior {name_or_path!r}: profile {self.robot_profile!r} (the robot's, ~robot_profile)")
+        return merged
 
     def _run(self, executor: BehaviorExecutor, proxies: RosProxies) -> None:
         try:

@@ -8,7 +8,9 @@ one zero Twist is published, so a crashed controller cannot leave the base drivi
 Controllers and behavior states publish to the same topic from different nodes, whose messages have no order
 between them: a command stamped before one already forwarded is dropped, and at equal stamps a stop wins
 (:class:`~flex_nav.follow.safety.CommandOrder`). When ROS time moves backwards (a restarted simulation, a
-looped bag) a zero Twist goes out and the order starts afresh, so the new timeline's commands get through.
+looped bag) a zero Twist goes out and the order starts afresh, so the new timeline's commands get through; a
+command stamped more than 1 s ahead of this node's clock (the old timeline's, sent by a node that has not seen
+the jump yet) is dropped, so it cannot block them again.
 """
 
 from __future__ import annotations
@@ -22,6 +24,7 @@ from flex_nav.follow.safety import CommandOrder, CommandTimeout, twist_problem
 from flex_nav.ros.params import param_float, reject_unknown
 
 CHECK_PERIOD_MIN_S = 0.01  # [s] fastest timeout check
+FUTURE_STAMP_TOLERANCE_S = 1.0  # [s] commands stamped further ahead of this node's clock are not forwarded
 
 
 class TwistRelay:
@@ -67,7 +70,13 @@ class TwistRelay:
                 self.publisher.publish(Twist())
                 return
             moving = any(v != 0.0 for v in (lin.x, lin.y, lin.z, ang.x, ang.y, ang.z))
-            if not self._order.admit(msg.header.stamp.to_sec(), moving):
+            stamp_s = msg.header.stamp.to_sec()
+            if stamp_s > self._last_now_s + FUTURE_STAMP_TOLERANCE_S:  # an old timeline's, or a skewed clock
+                ahead_s = stamp_s - self._last_now_s
+                rospy.logwarn_throttle(1.0, f"twist_relay: dropped a command stamped {ahead_s:.1f} s ahead of this "
+                                            "node's clock (time moved backwards, or clocks differ)")
+                return
+            if not self._order.admit(stamp_s, moving):
                 rospy.logdebug("twist_relay: dropped a command stamped before one already forwarded")
                 return
             self._timeout.command(rospy.get_time())

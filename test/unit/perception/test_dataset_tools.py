@@ -6,6 +6,7 @@ from __future__ import annotations
 import functools
 import importlib
 import math
+import shlex
 import sys
 from pathlib import Path
 
@@ -129,7 +130,7 @@ def test_every_added_model_is_visible_in_the_roi(model: str) -> None:
 
 
 @pytest.mark.parametrize("argv", [
-    ["--seed", "11", "--epochs", "24", "--out", "build/v/seed11.onnx"],
+    ["--seed", "11", "--epochs", "24", "--out", "build/my models/seed11.onnx"],
     ["--seed", "9", "--input", "rgb", "--lr", "0.001", "--widths", "8", "16",
      "--train-splits", "train", "extra2", "extra2", "--val-splits", "val"],
 ])
@@ -137,7 +138,7 @@ def test_the_recorded_training_command_trains_the_same_model_again(argv: list[st
     args = train.argument_parser().parse_args(argv)
     command = train.training_command(args)
     assert command.startswith(train.TRAIN_COMMAND + " ")
-    again = train.argument_parser().parse_args(command[len(train.TRAIN_COMMAND):].split())
+    again = train.argument_parser().parse_args(shlex.split(command[len(train.TRAIN_COMMAND):]))
     assert vars(again) == vars(args)
     assert ("--input" in command) == ("--input" in argv)  # options at their defaults are left out
 
