@@ -4,9 +4,9 @@
     python -m tools.perception.render_dataset --out build/dataset --seed 7
     python -m tools.perception.train --data build/dataset --seed 7 --out models/obstacle_classifier.onnx
 
-Trains on :data:`TRAIN_SPLITS` (``train`` and ``extra`` .. ``extra7``: the training-only models of
-:data:`tools.perception.scenes.TRAIN_ONLY`, boxes in passages, randomised furniture, seated people, people behind
-or on things, people on the floor, procedural people, objects and structures; see
+Trains on :data:`TRAIN_SPLITS` (``train`` and ``extra`` .. ``extra8``: the training-only models of
+:data:`tools.perception.scenes.TRAIN_ONLY`, boxes in passages (twice), randomised furniture, seated people, people
+behind or on things, people on the floor, two rounds of procedural people, objects and structures; see
 :func:`tools.perception.scenes.models_for`) and selects on the ``val*``
 splits: never on ``test`` or the ``unseen*`` splits. ``--input rgbd`` (the default) adds the registered depth patch as a
 fourth channel (depth / ``DEPTH_RANGE``, with sensor-like noise, holes and a minimum range as
@@ -36,11 +36,10 @@ STD = (0.25, 0.25, 0.25)
 DEPTH_MEAN, DEPTH_STD = 0.5, 0.25  # on depth / DEPTH_RANGE
 INPUTS = ("rgbd", "rgb")
 DATASET_COMMAND = "python -m tools.perception.render_dataset --out build/dataset --seed {seed}"
-# the shipped model's recipe (its metadata's commands rely on these defaults); the pair trained with ``extra8`` as
-# well, not shipped (models/README.md), was given ``--train-splits ... extra8 --val-splits ... val_extra8``
-TRAIN_SPLITS = ("train", "extra", "extra2", "extra3", "extra4", "extra5", "extra6", "extra7")
+# the shipped model's recipe: ``extra2`` (boxes in passages, S4/S5's case) twice, so it weighs double
+TRAIN_SPLITS = ("train", "extra", "extra2", "extra2", "extra3", "extra4", "extra5", "extra6", "extra7", "extra8")
 VAL_SPLITS = ("val", "val_extra", "val_extra2", "val_extra3", "val_extra4", "val_extra5", "val_extra6",
-              "val_extra7")
+              "val_extra7", "val_extra8")
 TRAIN_COMMAND = "python -m tools.perception.train"
 ALWAYS_RECORDED = ("data", "seed", "epochs", "out")  # in the recorded command even at their defaults
 
