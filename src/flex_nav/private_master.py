@@ -6,9 +6,11 @@ Nothing here imports rospy; readiness is checked over the master's XML-RPC API w
 
 from __future__ import annotations
 
+import contextlib
 import http.client
 import os
 import shutil
+import signal
 import socket
 import tempfile
 import time
@@ -37,14 +39,20 @@ class _TimeoutTransport(xmlrpc.client.Transport):
         return connection
 
 
-def master_is_up(uri: str, timeout_s: float = MASTER_CALL_TIMEOUT_S) -> bool:
-    """True when a ROS master answers ``getPid`` at ``uri`` within ``timeout_s`` [s]."""
+def master_pid(uri: str, timeout_s: float = MASTER_CALL_TIMEOUT_S) -> int | None:
+    """The process id the ROS master at ``uri`` reports (``getPid``) within ``timeout_s`` [s], else None."""
     proxy = xmlrpc.client.ServerProxy(uri, transport=_TimeoutTransport(timeout_s))
     try:
         reply: Any = proxy.getPid("/flex_nav_probe")
     except (OSError, xmlrpc.client.Error):
-        return False
-    return isinstance(reply, list) and len(reply) == 3 and reply[0] == 1
+        return None
+    ok = isinstance(reply, list) and len(reply) == 3 and reply[0] == 1 and isinstance(reply[2], int)
+    return int(reply[2]) if ok else None
+
+
+def master_is_up(uri: str, timeout_s: float = MASTER_CALL_TIMEOUT_S) -> bool:
+    """True when a ROS master answers ``getPid`` at ``uri`` within ``timeout_s`` [s]."""
+    return master_pid(uri, timeout_s) is not None
 
 
 def free_port() -> int:
@@ -117,10 +125,25 @@ class PrivateMaster:
 
     def stop(self) -> None:
         if self.process is not None:
+            # roslaunch starts rosmaster in a session of its own: when roscore is too slow to stop it (a loaded
+            # machine) and gets SIGKILL, the master would outlive it, orphaned. Ask for its pid first.
+            orphan = master_pid(self.uri) if self.uri else None
             self.process.stop()
             self.process = None
+            if orphan is not None and self._is_our_master(orphan):  # not a reused pid
+                with contextlib.suppress(ProcessLookupError, PermissionError):
+                    os.kill(orphan, signal.SIGKILL)
         if self._own_home:
             shutil.rmtree(self.ros_home, ignore_errors=True)
+
+    def _is_our_master(self, pid: int) -> bool:
+        """True while process ``pid`` is a rosmaster serving this master's port."""
+        try:
+            args = Path(f"/proc/{pid}/cmdline").read_bytes().decode(errors="replace").split("\0")
+        except OSError:
+            return False
+        serves_port = any(a == "-p" and b == str(self.port) for a, b in zip(args, args[1:]))
+        return serves_port and any(Path(a).name == "rosmaster" for a in args[:2])
 
     def __enter__(self) -> PrivateMaster:
         return self.start()

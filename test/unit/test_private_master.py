@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import signal
 import subprocess
 import sys
 import time
@@ -11,7 +12,7 @@ from pathlib import Path
 import pytest
 
 from flex_nav.exceptions import NotReadyError
-from flex_nav.private_master import PrivateMaster, free_port, master_is_up
+from flex_nav.private_master import PrivateMaster, free_port, master_is_up, master_pid
 from flex_nav.process import ManagedProcess, wait_until
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
@@ -34,6 +35,23 @@ def test_two_masters_side_by_side(tmp_path: Path) -> None:
     with PrivateMaster(ros_home=tmp_path / "a") as first, PrivateMaster(ros_home=tmp_path / "b") as second:
         assert first.uri != second.uri
         assert master_is_up(first.uri) and master_is_up(second.uri)
+
+
+def test_a_master_orphaned_by_a_killed_roscore_is_stopped_too(tmp_path: Path) -> None:
+    """roslaunch runs rosmaster in a session of its own: a roscore killed before it could stop it (SIGKILL after
+    the grace period on a loaded machine) leaves the master running; stop() must end it as well."""
+    master = PrivateMaster(ros_home=tmp_path).start()
+    orphan = master_pid(master.uri)
+    try:
+        assert orphan is not None and orphan != master.process.pid
+        os.killpg(master.process.pid, signal.SIGKILL)  # roscore's group only: the master lives on
+        time.sleep(0.5)
+        assert master_is_up(master.uri), "the master should have outlived roscore (its own session)"
+        master.stop()
+        wait_until(lambda: not master_is_up(master.uri, timeout_s=0.2), 5.0, "the orphaned master to stop")
+    finally:
+        if orphan is not None and Path(f"/proc/{orphan}").exists():
+            os.kill(orphan, signal.SIGKILL)
 
 
 def test_master_is_up_false_quickly_for_closed_port() -> None:
