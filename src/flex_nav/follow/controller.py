@@ -108,6 +108,9 @@ class SafeFollower:
         self._yielding_since_s: Optional[float] = None  # [s] giving way to people without a break since then
         self.blocked = BlockedPathWatch(blocked_distance_m, blocked_timeout_s)
         self.yielding = yielding  # give way to moving tracks (None: off)
+        # the last guard's limits: max_angular_vel [rad/s]; desired_linear_vel or the hurry speed [m/s]
+        self._w_max = params.max_angular_vel
+        self._v_max = max(params.desired_linear_vel, yielding.params.hurry_speed_mps if yielding else 0.0)
         self._path: Optional[np.ndarray] = None
         self._lengths = np.zeros(1)
 
@@ -159,10 +162,8 @@ class SafeFollower:
         """The last guard: no command beyond the configured speeds — ``max_angular_vel`` [rad/s], and
         ``desired_linear_vel`` or the yield rule's ``hurry_speed_mps`` [m/s], forwards or backwards. Both are
         scaled by the same factor, so the robot keeps the arc that was checked for collisions, only slower."""
-        p = self.pursuit.params
-        v_max = max(p.desired_linear_vel, self.yielding.params.hurry_speed_mps if self.yielding else 0.0)
-        scale = min(1.0, v_max / abs(decision.v) if decision.v else 1.0,
-                    p.max_angular_vel / abs(decision.w) if decision.w else 1.0)
+        scale = min(1.0, self._v_max / abs(decision.v) if decision.v else 1.0,
+                    self._w_max / abs(decision.w) if decision.w else 1.0)
         if scale == 1.0:
             return decision
         return replace(decision, v=decision.v * scale, w=decision.w * scale)

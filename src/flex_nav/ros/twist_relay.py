@@ -79,13 +79,13 @@ class TwistRelay:
             if not self._order.admit(stamp_s, moving):
                 rospy.logdebug("twist_relay: dropped a command stamped before one already forwarded")
                 return
-            self._timeout.command(rospy.get_time())
+            self._timeout.command(self._last_now_s)  # read by _clock_went_back above
             self.publisher.publish(msg.twist)
 
     def _on_check(self, _event: rospy.timer.TimerEvent) -> None:
         with self._lock:
             if self._clock_went_back():
                 return
-            if self._timeout.due(rospy.get_time()):
+            if self._timeout.due(self._last_now_s):
                 rospy.logwarn(f"twist_relay: no command for {self._timeout.timeout_s:.2f} s; publishing a zero Twist")
                 self.publisher.publish(Twist())
