@@ -4,9 +4,13 @@ cancel, and the goal ends with the reason (controller_safety.test). This node pl
 odometry, tf and an empty scan, and can stop any of them or corrupt the odometry."""
 
 import math
+import os
+import signal
+import subprocess
 import sys
 import threading
 import unittest
+from pathlib import Path as FilePath
 
 import actionlib
 import rospy
@@ -37,6 +41,8 @@ RESULT_WAIT_S = 5.0  # [s] bound on each answer
 PERIOD_S = 0.05  # [s] the controllers' control period (20 Hz, controller_safety.test)
 SENSOR_TIMEOUT_S = 1.0  # [s] (controller_safety.test)
 TOPIC_TIMEOUT_S = 2.0  # [s] pp_topic waits this long for the first Path (controller_safety.test)
+CLIENT_TIMEOUT_S = 1.0  # [s] pp_path ends a goal whose client is gone this long (controller_safety.test)
+DOOMED_CLIENT = FilePath(__file__).resolve().parent / "doomed_client.py"
 
 
 def straight_path(frame="map", length=5.0, yaw=0.0):
@@ -185,6 +191,9 @@ class Results:
             rospy.sleep(0.01)
         return None
 
+    def has_goal(self, goal_id):
+        return any(msg.status.goal_id.id == goal_id for msg in list(self.msgs))
+
 
 class TestControllerSafety(unittest.TestCase):
     @classmethod
@@ -324,6 +333,41 @@ class TestControllerSafety(unittest.TestCase):
         self.assertIsNotNone(turning, "the new path (to the left) is not being followed")
         second.cancel()
         self.assertEqual(self.wait_terminal(second), GoalStatus.PREEMPTED)
+
+    # ------------------------------------------------------------------ the client's node dies
+    def test_goal_of_a_killed_client_stops(self):
+        live = self.start_driving()  # this node stays: its goal outlives the client timeout untouched
+        rospy.sleep(3 * CLIENT_TIMEOUT_S)
+        self.assertNotEqual(live.get_comm_state(), actionlib.CommState.DONE, live.get_goal_status_text())
+        live.cancel()
+        self.assertEqual(self.wait_terminal(live), GoalStatus.PREEMPTED)
+
+        mark = self.path_cmds.mark()
+        client = subprocess.Popen([sys.executable, str(DOOMED_CLIENT), "pp_path"], stdout=subprocess.PIPE,
+                                  text=True, env=dict(os.environ))
+        try:
+            self.assertIsNotNone(self.path_cmds.wait_for(moving, mark, WAIT_S), "the client's goal never drove")
+            goal_id = client.stdout.readline().strip()  # printed before the goal could drive
+            self.assertTrue(goal_id.startswith("/doomed_client-"), goal_id)
+            rospy.sleep(2 * CLIENT_TIMEOUT_S)  # the client alive: its goal runs on
+            self.assertFalse(self.path_results.has_goal(goal_id), "a live client's goal was ended")
+            mark = self.path_cmds.mark()
+            client.send_signal(signal.SIGKILL)
+        finally:
+            client.kill()
+            client.wait(RESULT_WAIT_S)
+            client.stdout.close()
+        ended = self.path_results.for_goal(goal_id, 3 * CLIENT_TIMEOUT_S + RESULT_WAIT_S)
+        self.assertIsNotNone(ended, "the goal of a killed client was never ended")
+        self.assertEqual(ended.status.status, GoalStatus.ABORTED)
+        self.assertEqual(ended.result.code, FollowPathResult.FAILURE)
+        self.assertIn("the client /doomed_client that sent this goal is gone", ended.result.message)
+        zero = self.path_cmds.wait_for(is_zero, mark)
+        self.assertIsNotNone(zero, "no zero twist published")
+        self.assertLessEqual(zero.header.stamp, ended.header.stamp)
+        rospy.sleep(4 * PERIOD_S)
+        after = self.path_cmds.since(self.path_cmds.msgs.index(zero))
+        self.assertFalse(any(moving(m) for m in after), "the robot moved after the stop")
 
     # ------------------------------------------------------------------ FollowTopic
     def send_topic(self, topic):

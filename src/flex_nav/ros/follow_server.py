@@ -11,7 +11,8 @@ point backs off along the path until it lies on the costmap on a passable cell.
 
 The goal succeeds within ``~goal_tolerance`` [m] of the path's end; it aborts with the reason on a bad
 path (empty, NaN, unknown frame), when no plan could be made for ``~failure_timeout`` [s] (blocked path,
-no robot pose, no map), and it is preempted by a cancel or replaced by a newer goal. Keep
+no robot pose, no map) or when the node that sent it is gone for ``~client_timeout`` [s] (2.0; 0: off), and it
+is preempted by a cancel or replaced by a newer goal. Keep
 ``lookahead_distance`` well above (controller speed / planner_frequency), or the controller reaches the
 end of a local plan before the next one arrives.
 
@@ -50,7 +51,7 @@ from flex_nav.ros.topic_path import TopicPath, TopicPaths
 SOURCES = ("path", "topic")
 PARAMETERS = (
     "global_frame", "robot_base_frame", "lookahead_distance", "planner_frequency", "goal_tolerance",
-    "failure_timeout", "topic_timeout", "transform_timeout", "local_costmap", "planner",
+    "failure_timeout", "topic_timeout", "transform_timeout", "local_costmap", "planner", "client_timeout",
 )
 
 
@@ -82,7 +83,8 @@ class FollowServer:
         self.plan_publisher = rospy.Publisher("~plan", Path, queue_size=1)
         self.costmap.serve_clear_costmap(self.name + "/clear_costmap")
         spec = action_type("FollowPath" if source == "path" else "FollowTopic")
-        self.server = GoalServer(self.name, spec, self._run, on_cancel=self._on_cancel)
+        self.server = GoalServer(self.name, spec, self._run, on_cancel=self._on_cancel,
+                                 client_timeout_s=param_float("~client_timeout", 2.0, 0.0, 600.0))
         self.server.start()
         rospy.loginfo(f"{self.name}: {spec.name}, lookahead {self.lookahead_distance:.2f} m, "
                       f"replanning at {1.0 / self.period_s:.1f} Hz in '{self.global_frame}'")

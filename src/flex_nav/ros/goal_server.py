@@ -14,11 +14,20 @@ Results go through :meth:`GoalServer.finish`, which ends the goal only while it 
 (checked under actionlib's locks, taken in actionlib's order), so a worker can never end a goal that has
 replaced its own. Any exception escaping ``run`` aborts the goal with the error as the reason after
 ``on_error(ticket, error)`` (e.g. publish a zero twist).
+
+With ``client_timeout_s`` > 0 a goal whose client has gone is ended too: the node that sent the goal (the
+``callerid`` of the goal message's connection) must stay subscribed to the server's status topic, which
+actionlib publishes at a few Hz, so a dead subscriber's connection is dropped within a few publications.
+Once that node has been seen connected, ``client_timeout_s`` [s] without it aborts the goal after
+``on_cancel(ticket, replaced=False)``, like a cancel nobody could send: a behavior runner that dies while a
+controller drives leaves the robot stopped. A goal whose sender was never seen connected (e.g. published
+by hand with ``rostopic pub``) is not watched.
 """
 
 from __future__ import annotations
 
 import threading
+import time
 import traceback
 from typing import Any, Callable, Optional
 
@@ -26,18 +35,24 @@ import actionlib
 import rospy
 
 from flex_nav.action_types import ActionType
+from flex_nav.exceptions import ConfigError
 
 RESULT_SUCCEEDED = "succeeded"
 RESULT_ABORTED = "aborted"
+CLIENT_CHECK_PERIOD_S = 0.1  # [s] how often the client of the running goal is looked for
 
 
 class GoalTicket:
-    """One accepted goal: the goal message, its sequence number, and whether it was cancelled or replaced."""
+    """One accepted goal: the goal message, its sequence number, the node that sent it ("" if unknown), and
+    whether it was cancelled or replaced."""
 
-    def __init__(self, goal: Any, number: int) -> None:
+    def __init__(self, goal: Any, number: int, sender: str = "") -> None:
         self.goal = goal
         self.number = number
+        self.sender = sender
         self.cancelled = threading.Event()
+        self.sender_seen = False  # the sender was once connected to the status topic
+        self.sender_missing_since: Optional[float] = None  # [s] monotonic
 
     def __repr__(self) -> str:
         return f"GoalTicket(#{self.number}{', cancelled' if self.cancelled.is_set() else ''})"
@@ -53,8 +68,13 @@ class GoalServer:
         run: Callable[[GoalTicket], None],
         on_cancel: Optional[Callable[[GoalTicket, bool], None]] = None,
         on_error: Optional[Callable[[GoalTicket, BaseException], None]] = None,
+        *,
+        client_timeout_s: float = 0.0,
     ) -> None:
+        if not client_timeout_s >= 0.0:
+            raise ConfigError(f"{name}: client timeout {client_timeout_s!r} s is not valid (valid: >= 0, 0 = off)")
         self.name = name
+        self.client_timeout_s = client_timeout_s
         self.spec = spec
         self._run = run
         self._on_cancel = on_cancel
@@ -69,10 +89,13 @@ class GoalServer:
         self.server.register_goal_callback(self._on_goal)
         self.server.register_preempt_callback(self._on_preempt)
         self._worker = threading.Thread(target=self._work, name=f"goals:{name}", daemon=True)
+        self._client_watch = threading.Thread(target=self._watch_clients, name=f"clients:{name}", daemon=True)
 
     def start(self) -> None:
         self._worker.start()
         self.server.start()
+        if self.client_timeout_s > 0.0:
+            self._client_watch.start()
 
     def shutdown(self) -> None:
         with self._cond:
@@ -119,13 +142,20 @@ class GoalServer:
             return
         with self._cond:
             self._count += 1
-            ticket = GoalTicket(goal, self._count)
+            ticket = GoalTicket(goal, self._count, self._sender_of_new_goal())
             self._current = ticket
             if self.server.is_preempt_requested():  # cancelled between arrival and acceptance
                 self._preempt(ticket, replaced=False)
                 return
             self._pending = ticket
             self._cond.notify_all()
+
+    def _sender_of_new_goal(self) -> str:
+        """The node that published the goal just accepted (rospy keeps each message's connection header)."""
+        tracker = getattr(self.server.current_goal, "status_tracker", None)
+        header = getattr(getattr(tracker, "goal", None), "_connection_header", None)
+        sender = header.get("callerid", "") if isinstance(header, dict) else ""
+        return sender if isinstance(sender, str) else ""
 
     def _on_preempt(self) -> None:
         ticket = self._current
@@ -134,18 +164,54 @@ class GoalServer:
         self._preempt(ticket, replaced=self.server.is_new_goal_available())
 
     def _preempt(self, ticket: GoalTicket, replaced: bool) -> None:
-        ticket.cancelled.set()
+        self._stop(ticket, replaced)
         reason = "replaced by a newer goal" if replaced else "preempted"
-        if self._on_cancel is not None:
-            try:
-                self._on_cancel(ticket, replaced)
-            except Exception as err:  # the goal must still end
-                rospy.logerr(f"{self.name}: error while stopping goal #{ticket.number}: {err}")
         code = "PREEMPT" if "PREEMPT" in self._codes else "FAILURE"
         if self.server.is_active():
             self.server.set_preempted(self.result(code, reason), reason)
         if self._current is ticket:
             self._current = None
+
+    def _stop(self, ticket: GoalTicket, replaced: bool) -> None:
+        """Mark ``ticket`` cancelled and call ``on_cancel`` (its errors logged: the goal must still end)."""
+        ticket.cancelled.set()
+        if self._on_cancel is not None:
+            try:
+                self._on_cancel(ticket, replaced)
+            except Exception as err:
+                rospy.logerr(f"{self.name}: error while stopping goal #{ticket.number}: {err}")
+
+    # ------------------------------------------------------------------ client watch thread
+    def _status_subscribers(self) -> set:
+        """Caller ids of the nodes connected to the status topic."""
+        impl = getattr(self.server.action_server.status_pub, "impl", None)
+        return {info[1] for info in impl.get_stats_info()} if impl is not None else set()
+
+    def _watch_clients(self) -> None:
+        while not self._stopping and not rospy.is_shutdown():
+            time.sleep(CLIENT_CHECK_PERIOD_S)
+            ticket = self._current
+            if ticket is None or not ticket.sender or ticket.cancelled.is_set():
+                continue
+            now = time.monotonic()
+            if ticket.sender in self._status_subscribers():
+                ticket.sender_seen, ticket.sender_missing_since = True, None
+            elif ticket.sender_seen and ticket.sender_missing_since is None:
+                ticket.sender_missing_since = now
+            elif ticket.sender_missing_since is not None and now - ticket.sender_missing_since >= self.client_timeout_s:
+                self._abandon(ticket)
+
+    def _abandon(self, ticket: GoalTicket) -> None:
+        """Stop and abort ``ticket``'s goal: the node that sent it is gone."""
+        reason = (f"the client {ticket.sender} that sent this goal is gone "
+                  f"(not connected for {self.client_timeout_s:.1f} s)")
+        with self.server.action_server.lock, self.server.lock:  # actionlib's own order
+            if ticket is not self._current or ticket.cancelled.is_set() or not self.server.is_active():
+                return
+            self._stop(ticket, replaced=False)
+            self.server.set_aborted(self.result("FAILURE", reason), reason)
+            self._current = None
+        rospy.logerr(f"{self.name}: goal #{ticket.number} aborted, robot stopped: {reason}")
 
     # ------------------------------------------------------------------ worker thread
     def _work(self) -> None:

@@ -14,17 +14,18 @@ default, see :mod:`flex_nav.ros.costmap_ros`) feeds pure pursuit's obstacle regu
 
 Safety (see :class:`flex_nav.follow.controller.SafeFollower`): empty path, path in an unknown frame, bad
 pose, stale ``odom`` or scan (``~sensor_timeout`` [s]), an obstacle ahead for ``~collision_timeout`` [s],
-any exception in the control loop -> zero twist and the goal aborted with the reason. A cancel publishes a
+any exception in the control loop, the node that sent the goal gone for ``~client_timeout`` [s] (2.0; 0: off;
+see :mod:`flex_nav.ros.goal_server`) -> zero twist and the goal aborted with the reason. A cancel publishes a
 zero twist from the cancel callback itself (before it returns), and no later command of that goal can
 follow it; a newer goal replacing the current one also starts from a zero twist.
 
 Parameters (private): ``global_frame`` ("map"), ``robot_base_frame`` ("base_footprint"),
 ``controller_frequency`` [Hz] (20), ``sensor_timeout`` [s] (0.5), ``collision_timeout`` [s] (2.0),
-``transform_timeout`` [s] (0.2), ``topic_timeout`` [s] (2.0, FollowTopic: wait for the first Path),
-``feedback_frequency`` [Hz] (5), ``blocked_distance`` [m] (0: off; an obstacle on the path this far ahead
-aborts the goal with a reason starting ``blocked``), ``blocked_timeout`` [s] (0.5), ``yield_to_people`` (false;
-true: track moving obstacles in the scan and give way to them, ``yielding/*`` and ``people_tracker/*``, see
-:mod:`flex_nav.ros.moving_obstacles_ros`), ``pure_pursuit/*``
+``client_timeout`` [s] (2.0), ``transform_timeout`` [s] (0.2), ``topic_timeout`` [s] (2.0, FollowTopic: wait
+for the first Path), ``feedback_frequency`` [Hz] (5), ``blocked_distance`` [m] (0: off; an obstacle on the
+path this far ahead aborts the goal with a reason starting ``blocked``), ``blocked_timeout`` [s] (0.5),
+``yield_to_people`` (false; true: track moving obstacles in the scan and give way to them, ``yielding/*`` and
+``people_tracker/*``, see :mod:`flex_nav.ros.moving_obstacles_ros`), ``pure_pursuit/*``
 (:class:`flex_nav.nav.pure_pursuit.PurePursuitParams`
 by name; unknown names are rejected).
 """
@@ -61,7 +62,7 @@ SOURCES = ("path", "topic")
 PARAMETERS = (
     "global_frame", "robot_base_frame", "controller_frequency", "sensor_timeout", "collision_timeout",
     "transform_timeout", "topic_timeout", "feedback_frequency", "local_costmap", "pure_pursuit",
-    "blocked_distance", "blocked_timeout", "yield_to_people", "yielding", "people_tracker",
+    "blocked_distance", "blocked_timeout", "yield_to_people", "yielding", "people_tracker", "client_timeout",
 )
 
 
@@ -132,7 +133,8 @@ class PurePursuitController:
         self.odom_subscriber = rospy.Subscriber("odom", Odometry, self._on_odom, queue_size=1, tcp_nodelay=True)
         self.costmap.serve_clear_costmap(self.name + "/clear_costmap")
         spec = action_type("FollowPath" if source == "path" else "FollowTopic")
-        self.server = GoalServer(self.name, spec, self._run, on_cancel=self._on_cancel, on_error=self._on_error)
+        self.server = GoalServer(self.name, spec, self._run, on_cancel=self._on_cancel, on_error=self._on_error,
+                                 client_timeout_s=param_float("~client_timeout", 2.0, 0.0, 600.0))
         self.server.start()
         rospy.loginfo(f"{self.name}: pure pursuit on {spec.name} goals at {frequency:.1f} Hz in '{self.global_frame}'")
 
