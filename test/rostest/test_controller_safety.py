@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """rostest node: the pure pursuit controllers stop the robot (zero twist) on every failure path and on
-cancel, and the goal ends with the reason (controller_safety.test). This node plays the robot: it publishes
-odometry, tf and an empty scan, and can stop any of them or corrupt the odometry."""
+cancel, and the goal ends with the reason (controller_safety.test). This node plays the robot and its
+localizer: it publishes odometry, tf (map -> odom -> base_footprint) and an empty scan, and can stop any of
+them or corrupt the odometry."""
 
 import math
 import os
@@ -71,13 +72,9 @@ class FakeRobot:
         self.odom_frame = "odom"
         self.odom_pub = rospy.Publisher("odom", Odometry, queue_size=1)
         self.scan_pub = rospy.Publisher("scan", LaserScan, queue_size=1)
+        self.localizer_on = threading.Event()  # map -> odom, as a localizer publishes it (with the odometry)
+        self.localizer_on.set()
         self.tf = tf2_ros.TransformBroadcaster()
-        static = TransformStamped()
-        static.header.stamp = rospy.Time.now()
-        static.header.frame_id, static.child_frame_id = "map", "odom"
-        static.transform.rotation.w = 1.0
-        self.static_tf = tf2_ros.StaticTransformBroadcaster()
-        self.static_tf.sendTransform(static)
         self.thread = threading.Thread(target=self.loop, daemon=True)
         self.thread.start()
 
@@ -88,7 +85,14 @@ class FakeRobot:
             tf.header.stamp = stamp
             tf.header.frame_id, tf.child_frame_id = "odom", "base_footprint"
             tf.transform.rotation.w = 1.0
-            self.tf.sendTransform(tf)
+            transforms = [tf]
+            if self.localizer_on.is_set():
+                localized = TransformStamped()
+                localized.header.stamp = stamp
+                localized.header.frame_id, localized.child_frame_id = "map", "odom"
+                localized.transform.rotation.w = 1.0
+                transforms.append(localized)
+            self.tf.sendTransform(transforms)
             if self.odom_on.is_set():
                 odom = Odometry()
                 odom.header.stamp = stamp
@@ -113,12 +117,13 @@ class FakeRobot:
     def healthy(self):
         """Undo what a test broke; True if something was broken."""
         broken = (self.odom_frame != "odom" or self.bad_velocity or not self.odom_on.is_set()
-                  or not self.scan_on.is_set() or self.obstacle_ahead)
+                  or not self.scan_on.is_set() or self.obstacle_ahead or not self.localizer_on.is_set())
         self.odom_frame = "odom"
         self.bad_velocity = False
         self.obstacle_ahead = False
         self.odom_on.set()
         self.scan_on.set()
+        self.localizer_on.set()
         return broken
 
     def wait_heard_by(self, subscribers, timeout_s):
@@ -205,6 +210,10 @@ class TestControllerSafety(unittest.TestCase):
         cls.topic_results = Results("pp_topic/result", FollowTopicActionResult)
         cls.path_client = actionlib.ActionClient("pp_path", FollowPathAction)
         cls.topic_client = actionlib.ActionClient("pp_topic", FollowTopicAction)
+        cls.blind_cmds = Commands("pp_blind/cmd")
+        cls.blind_results = Results("pp_blind/result", FollowPathActionResult)
+        cls.blind_client = actionlib.ActionClient("pp_blind", FollowPathAction)
+        assert cls.blind_client.wait_for_server(rospy.Duration(WAIT_S)), "pp_blind did not come up"
         assert cls.path_client.wait_for_server(rospy.Duration(WAIT_S)), "pp_path did not come up"
         assert cls.topic_client.wait_for_server(rospy.Duration(WAIT_S)), "pp_topic did not come up"
         # a goal sent before a controller has odometry is rightly aborted ("no odometry received yet")
@@ -292,6 +301,15 @@ class TestControllerSafety(unittest.TestCase):
         mark = self.path_cmds.mark()
         self.robot.odom_frame = "lost_odom"
         self.assert_aborted_and_stopped(handle, self.path_results, self.path_cmds, mark, "robot pose unknown")
+
+    def test_localization_stopped(self):
+        mark = self.blind_cmds.mark()
+        handle = self.blind_client.send_goal(FollowPathGoal(path=straight_path()))
+        self.assertIsNotNone(self.blind_cmds.wait_for(moving, mark), "the controller never drove")
+        mark = self.blind_cmds.mark()
+        self.robot.localizer_on.clear()  # odometry and odom -> base_footprint go on
+        self.assert_aborted_and_stopped(handle, self.blind_results, self.blind_cmds, mark,
+                                        "the newest transform 'odom' -> 'map' is")
 
     def test_non_finite_velocity(self):
         handle = self.start_driving()

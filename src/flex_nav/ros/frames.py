@@ -13,8 +13,14 @@ from flex_nav.follow.planar import heading_along, transform_poses
 from flex_nav.nav.pose_checks import pose_problem, yaw_of_quaternion
 
 
-def frame_pose(buffer: tf2_ros.Buffer, target_frame: str, source_frame: str, timeout_s: float) -> tuple:
-    """(x [m], y [m], yaw [rad]) of ``source_frame`` in ``target_frame`` (newest transform)."""
+def frame_pose(
+    buffer: tf2_ros.Buffer, target_frame: str, source_frame: str, timeout_s: float, max_age_s: float = 0.0,
+) -> tuple:
+    """(x [m], y [m], yaw [rad]) of ``source_frame`` in ``target_frame`` (newest transform).
+
+    With ``max_age_s`` > 0 a transform older than that [s] is a NotReadyError: a localization that has
+    stopped publishing (map -> odom) is not taken for one that holds still. A chain of static transforms
+    only (stamp 0, e.g. a robot on odometry alone) has no age."""
     if not source_frame:
         raise ConfigError(f"frame_id is empty (expected '{target_frame}' or a frame tf can transform into it)")
     if source_frame.lstrip("/") == target_frame.lstrip("/"):
@@ -25,6 +31,11 @@ def frame_pose(buffer: tf2_ros.Buffer, target_frame: str, source_frame: str, tim
     except (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.ExtrapolationException) as err:
         raise NotReadyError(f"frame '{source_frame}' cannot be transformed into '{target_frame}' "
                             f"within {timeout_s:.2f} s: {err}") from err
+    if max_age_s > 0.0 and not tf.header.stamp.is_zero():
+        age_s = (rospy.Time.now() - tf.header.stamp).to_sec()
+        if age_s > max_age_s:
+            raise NotReadyError(f"the newest transform '{source_frame}' -> '{target_frame}' is {age_s:.2f} s old "
+                                f"(more than {max_age_s:.2f} s): is the localization publishing it?")
     t, q = tf.transform.translation, tf.transform.rotation
     return (t.x, t.y, yaw_of_quaternion(q.x, q.y, q.z, q.w))
 

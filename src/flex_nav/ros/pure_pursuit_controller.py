@@ -13,20 +13,21 @@ carried into ``~global_frame`` by tf (``global_frame -> odom frame``); the path 
 default, see :mod:`flex_nav.ros.costmap_ros`) feeds pure pursuit's obstacle regulation and collision check.
 
 Safety (see :class:`flex_nav.follow.controller.SafeFollower`): empty path, path in an unknown frame, bad
-pose, stale ``odom`` or scan (``~sensor_timeout`` [s]), an obstacle ahead for ``~collision_timeout`` [s],
-any exception in the control loop, the node that sent the goal gone for ``~client_timeout`` [s] (2.0; 0: off;
-see :mod:`flex_nav.ros.goal_server`) -> zero twist and the goal aborted with the reason. A cancel publishes a
-zero twist from the cancel callback itself (before it returns), and no later command of that goal can
-follow it; a newer goal replacing the current one also starts from a zero twist.
+pose, stale ``odom`` or scan (``~sensor_timeout`` [s]), a global-frame transform older than
+``~localization_timeout`` [s] (1.0; 0: off; static transforms have no age), an obstacle ahead for
+``~collision_timeout`` [s], any exception in the control loop, the node that sent the goal gone for
+``~client_timeout`` [s] (2.0; 0: off; see :mod:`flex_nav.ros.goal_server`) -> zero twist and the goal aborted
+with the reason. A cancel publishes a zero twist from the cancel callback itself (before it returns), and no
+later command of that goal can follow it; a newer goal replacing the current one also starts from a zero twist.
 
 Parameters (private): ``global_frame`` ("map"), ``robot_base_frame`` ("base_footprint"),
 ``controller_frequency`` [Hz] (20), ``sensor_timeout`` [s] (0.5), ``collision_timeout`` [s] (2.0),
-``client_timeout`` [s] (2.0), ``transform_timeout`` [s] (0.2), ``topic_timeout`` [s] (2.0, FollowTopic: wait
-for the first Path), ``feedback_frequency`` [Hz] (5), ``blocked_distance`` [m] (0: off; an obstacle on the
-path this far ahead aborts the goal with a reason starting ``blocked``), ``blocked_timeout`` [s] (0.5),
-``yield_to_people`` (false; true: track moving obstacles in the scan and give way to them, ``yielding/*`` and
-``people_tracker/*``, see :mod:`flex_nav.ros.moving_obstacles_ros`), ``pure_pursuit/*``
-(:class:`flex_nav.nav.pure_pursuit.PurePursuitParams`
+``client_timeout`` [s] (2.0), ``localization_timeout`` [s] (1.0), ``transform_timeout`` [s] (0.2),
+``topic_timeout`` [s] (2.0, FollowTopic: wait for the first Path), ``feedback_frequency`` [Hz] (5),
+``blocked_distance`` [m] (0: off; an obstacle on the path this far ahead aborts the goal with a reason starting
+``blocked``), ``blocked_timeout`` [s] (0.5), ``yield_to_people`` (false; true: track moving obstacles in the
+scan and give way to them, ``yielding/*`` and ``people_tracker/*``, see
+:mod:`flex_nav.ros.moving_obstacles_ros`), ``pure_pursuit/*`` (:class:`flex_nav.nav.pure_pursuit.PurePursuitParams`
 by name; unknown names are rejected).
 """
 
@@ -63,6 +64,7 @@ PARAMETERS = (
     "global_frame", "robot_base_frame", "controller_frequency", "sensor_timeout", "collision_timeout",
     "transform_timeout", "topic_timeout", "feedback_frequency", "local_costmap", "pure_pursuit",
     "blocked_distance", "blocked_timeout", "yield_to_people", "yielding", "people_tracker", "client_timeout",
+    "localization_timeout",
 )
 
 
@@ -98,6 +100,7 @@ class PurePursuitController:
         frequency = param_float("~controller_frequency", 20.0, 0.5, 1000.0)
         self.period_s = 1.0 / frequency
         self.transform_timeout_s = param_float("~transform_timeout", 0.2, 0.0, 10.0)
+        self.localization_timeout_s = param_float("~localization_timeout", 1.0, 0.0, 600.0)
         self.topic_timeout_s = param_float("~topic_timeout", 2.0, 0.0, 600.0)
         self.feedback_period_s = 1.0 / param_float("~feedback_frequency", 5.0, 0.1, 1000.0)
         raw = rospy.get_param("~pure_pursuit", {})
@@ -155,7 +158,7 @@ class PurePursuitController:
         local = np.array([[p.x, p.y, yaw_of_quaternion(q.x, q.y, q.z, q.w)]])
         try:
             tx, ty, tyaw = frame_pose(self.tf_buffer, self.global_frame, odom.header.frame_id,
-                                      self.transform_timeout_s)
+                                      self.transform_timeout_s, self.localization_timeout_s)
         except (ConfigError, NotReadyError) as err:
             raise NotReadyError(f"robot pose unknown: odometry frame: {err}") from err
         x, y, yaw = transform_poses(local, tx, ty, tyaw)[0]

@@ -13,7 +13,7 @@ from nav_msgs.msg import OccupancyGrid, Path
 from flex_nav.exceptions import ConfigError, NotReadyError
 from flex_nav.nav.grid_map import GridMap
 from flex_nav.ros.conversions import grid_map_of, map_msg, occupancy_grid_msg, path_msg, path_points
-from flex_nav.ros.frames import goal_in_frame, path_in_frame
+from flex_nav.ros.frames import frame_pose, goal_in_frame, path_in_frame
 
 
 def test_numpy_occupancy_grid_serializes_like_genpy():
@@ -113,3 +113,25 @@ def test_path_in_frame_rejects_bad_paths():
     msg = path_msg(np.array([[0.0, 0.0], [1.0, 0.0]]), "nowhere", rospy.Time(0))
     with pytest.raises(NotReadyError, match="'nowhere'"):
         path_in_frame(buffer, msg, "map", 0.0)
+
+
+def test_frame_pose_refuses_an_old_transform_but_not_a_static_one(monkeypatch):
+    monkeypatch.setattr(rospy.Time, "now", staticmethod(lambda: rospy.Time(100, 0)))
+    static = buffer_with_odom(1.0, 2.0, 0.0)  # stamp 0 in the message: tf2 keeps static transforms ageless
+    assert frame_pose(static, "map", "odom", 0.0, max_age_s=1.0) == pytest.approx((1.0, 2.0, 0.0))
+    static_stamped = tf2_ros.Buffer(debug=False)
+    tf = TransformStamped()
+    tf.header.stamp = rospy.Time(3)  # sent long ago by a static broadcaster: still no age
+    tf.header.frame_id, tf.child_frame_id = "map", "odom"
+    tf.transform.rotation.w = 1.0
+    static_stamped.set_transform_static(tf, "test")
+    assert frame_pose(static_stamped, "map", "odom", 0.0, max_age_s=1.0) == pytest.approx((0.0, 0.0, 0.0))
+
+    localized = tf2_ros.Buffer(debug=False)
+    tf.header.stamp = rospy.Time(98, 500_000_000)  # the localizer's last map -> odom, 1.5 s ago
+    tf.transform.translation.x = 4.0
+    localized.set_transform(tf, "test")
+    with pytest.raises(NotReadyError, match=r"'odom' -> 'map' is 1\.50 s old \(more than 1\.00 s\)"):
+        frame_pose(localized, "map", "odom", 0.0, max_age_s=1.0)
+    assert frame_pose(localized, "map", "odom", 0.0, max_age_s=2.0)[0] == pytest.approx(4.0)
+    assert frame_pose(localized, "map", "odom", 0.0)[0] == pytest.approx(4.0)  # 0: no age check
