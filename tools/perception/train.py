@@ -35,6 +35,7 @@ MEAN = (0.5, 0.5, 0.5)
 STD = (0.25, 0.25, 0.25)
 DEPTH_MEAN, DEPTH_STD = 0.5, 0.25  # on depth / DEPTH_RANGE
 INPUTS = ("rgbd", "rgb")
+AUGMENTATIONS = ("basic", "strong")
 DATASET_COMMAND = "python -m tools.perception.render_dataset --out build/dataset --seed {seed}"
 # the shipped model's recipe: ``extra2`` (boxes in passages, S4/S5's case) twice, so it weighs double
 TRAIN_SPLITS = ("train", "extra", "extra2", "extra2", "extra3", "extra4", "extra5", "extra6", "extra7", "extra8")
@@ -64,9 +65,10 @@ def build_model(classes: int, widths: Sequence[int] = WIDTHS, channels: int = 4)
                          nn.Linear(widths[-1], classes))
 
 
-def augment(batch: Any, gen: Any) -> Any:
-    """Flips and shifts of up to 4 px (every channel), then :func:`augment_colour` on the first three
-    channels and :func:`augment_depth` on the fourth if there is one (on 0..1 images)."""
+def augment(batch: Any, gen: Any, strong: bool = False) -> Any:
+    """Flips and shifts of up to 4 px (every channel), with ``strong`` :func:`augment_zoom` and
+    :func:`augment_occlusion` too, then :func:`augment_colour` on the first three channels and
+    :func:`augment_depth` on the fourth if there is one (on 0..1 images)."""
     import torch
 
     n = batch.shape[0]
@@ -75,9 +77,49 @@ def augment(batch: Any, gen: Any) -> Any:
     padded = torch.nn.functional.pad(batch, (4, 4, 4, 4), mode="replicate")
     dx, dy = torch.randint(0, 9, (2,), generator=gen).tolist()
     batch = padded[:, :, dy : dy + batch.shape[2], dx : dx + batch.shape[3]]
+    if strong:
+        batch = augment_occlusion(augment_zoom(batch, gen), gen)
     if batch.shape[1] == 3:
         return augment_colour(batch, gen)
     return torch.cat([augment_colour(batch[:, :3], gen), augment_depth(batch[:, 3:], gen)], dim=1)
+
+
+def augment_zoom(batch: Any, gen: Any, max_zoom: float = 0.15) -> Any:
+    """Each image scaled about its centre by 1 +- ``max_zoom`` (bilinear colour, nearest depth, edges
+    replicated), as if the camera were nearer or farther: a depth channel (the fourth) is divided by the same
+    factor, except lost returns (1.0), so size and depth stay consistent."""
+    import torch
+    from torch.nn import functional
+
+    n = batch.shape[0]
+    zoom = 1.0 + max_zoom * (2.0 * torch.rand(n, generator=gen) - 1.0)
+    theta = torch.zeros(n, 2, 3)
+    theta[:, 0, 0] = theta[:, 1, 1] = 1.0 / zoom
+    grid = functional.affine_grid(theta, list(batch.shape), align_corners=False)
+    colour = functional.grid_sample(batch[:, :3], grid, mode="bilinear", padding_mode="border", align_corners=False)
+    if batch.shape[1] == 3:
+        return colour
+    depth = functional.grid_sample(batch[:, 3:], grid, mode="nearest", padding_mode="border", align_corners=False)
+    depth = torch.where(depth >= 0.999, depth, (depth / zoom[:, None, None, None]).clamp(0.0, 1.0))
+    return torch.cat([colour, depth], dim=1)
+
+
+def augment_occlusion(batch: Any, gen: Any, probability: float = 0.5) -> Any:
+    """In a ``probability`` share of the images, one rectangle of 6-22 px sides at a random place is painted
+    over with one random colour and, on a depth channel, one random depth: a thing partly in the way."""
+    import torch
+
+    n, channels, height, width = batch.shape
+    sides = torch.randint(6, 23, (n, 2), generator=gen)
+    corner_y = (torch.rand(n, generator=gen) * (height - sides[:, 0] + 1)).long()
+    corner_x = (torch.rand(n, generator=gen) * (width - sides[:, 1] + 1)).long()
+    rows, cols = torch.arange(height)[None, :], torch.arange(width)[None, :]
+    inside_y = (rows >= corner_y[:, None]) & (rows < (corner_y + sides[:, 0])[:, None])
+    inside_x = (cols >= corner_x[:, None]) & (cols < (corner_x + sides[:, 1])[:, None])
+    chosen = torch.rand(n, generator=gen) < probability
+    mask = (inside_y[:, :, None] & inside_x[:, None, :] & chosen[:, None, None])[:, None]
+    fill = torch.rand(n, channels, 1, 1, generator=gen)
+    return torch.where(mask, fill.expand_as(batch), batch)
 
 
 def augment_depth(depth: Any, gen: Any) -> Any:
@@ -160,6 +202,8 @@ def argument_parser() -> argparse.ArgumentParser:
     parser.add_argument("--val-splits", nargs="+", default=list(VAL_SPLITS), help="model selection only")
     parser.add_argument("--widths", type=int, nargs="+", default=list(WIDTHS), help="conv block channels")
     parser.add_argument("--input", choices=INPUTS, default="rgbd", help="colour and depth, or colour only")
+    parser.add_argument("--augment", choices=AUGMENTATIONS, default="basic",
+                        help="basic: flips, shifts, colour and depth noise; strong: also zoom and occluders")
     return parser
 
 
@@ -218,7 +262,7 @@ def main(argv: List[str]) -> int:  # noqa: PLR0915 - one linear training script
         total_loss = 0.0
         for i in range(0, len(order), args.batch):
             idx = order[i : i + args.batch]
-            images = (augment(train_images[idx], gen) - mean) / std
+            images = (augment(train_images[idx], gen, strong=args.augment == "strong") - mean) / std
             loss = loss_fn(model(images), train_labels[idx])
             optimiser.zero_grad()
             loss.backward()
@@ -259,6 +303,7 @@ def main(argv: List[str]) -> int:  # noqa: PLR0915 - one linear training script
         "val_splits": list(args.val_splits),
         "val_accuracy": round(best["accuracy"], 4),
         "widths": list(args.widths),
+        "augment": args.augment,
         "parameters": params,
         "seconds": round(seconds, 1),
         "threads": args.threads,

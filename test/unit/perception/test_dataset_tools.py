@@ -182,6 +182,33 @@ def test_depth_augmentation_loses_returns_as_real_cameras_do() -> None:
     assert float((middle >= 3.99).float().mean()) < 0.05  # scattered holes only
 
 
+def test_zoom_keeps_size_and_depth_consistent_and_occluders_paint_rectangles() -> None:
+    torch = pytest.importorskip("torch")  # training-only dependency: skipped in the runtime venv
+    gen = torch.Generator().manual_seed(0)
+    batch = torch.zeros((200, 4, 64, 64))
+    batch[:, 3] = 1.0  # nothing in range ...
+    batch[:, :3, 24:40, 24:40] = 0.8  # ... but a bright square 2 m away in the middle
+    batch[:, 3, 24:40, 24:40] = 2.0 / render_dataset.DEPTH_RANGE
+    zoomed = train.augment_zoom(batch, gen)
+    square = zoomed[:, 0] > 0.4
+    sides_px = square.float().sum((1, 2)).sqrt()
+    near_m = torch.where(zoomed[:, 3] < 0.999, zoomed[:, 3], torch.nan).nanmean((1, 2)) * render_dataset.DEPTH_RANGE
+    assert float(sides_px.min()) > 13.0 and float(sides_px.max()) < 19.0 and float(sides_px.std()) > 0.5
+    np.testing.assert_allclose((sides_px * near_m).numpy(), 32.0, rtol=0.1)  # bigger = nearer (pinhole)
+    assert bool((zoomed[:, 3, :12] == 1.0).all()) and bool((zoomed[:, 3, -12:] == 1.0).all())  # lost stays lost
+
+    occluded = train.augment_occlusion(batch, gen)
+    changed = (occluded != batch).any(1)
+    share = float(changed.flatten(1).any(1).float().mean())
+    assert 0.35 < share < 0.65
+    for image, mask in zip(occluded, changed):
+        if mask.any():
+            rows, cols = mask.any(1).nonzero().flatten(), mask.any(0).nonzero().flatten()
+            box = image[:, rows.min() : rows.max() + 1, cols.min() : cols.max() + 1]
+            assert box.shape[1] <= 22 and box.shape[2] <= 22
+            assert bool((box == box[:, :1, :1]).all())  # one colour and one depth
+
+
 def test_ensemble_averages_the_members_probabilities(tmp_path: Path) -> None:
     weights = (10.0 * np.eye(3), np.array([[0.0, 5.0, 0.0], [0.0, 0.0, 5.0], [5.0, 0.0, 0.0]]))
     members = [mean_colour_classifier(tmp_path / f"m{k}.onnx", w) for k, w in enumerate(weights)]
