@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Helper of test_controller_safety.py: a client node that sends one FollowPath goal (5 m straight ahead in
-``map``) to the action server named in argv[1], prints the goal's id and waits to be killed."""
+``map``) to the action server named in argv[1], prints the goal's id and waits to be killed. With argv[2]
+``quiet`` it sends nothing: it connects to the server, prints ``connected`` and waits (a restarted client)."""
 
 import sys
 
@@ -20,6 +21,10 @@ def main() -> int:
     if not client.wait_for_server(rospy.Duration(WAIT_S)):
         print("no server", flush=True)
         return 1
+    if sys.argv[2:] == ["quiet"]:
+        print("connected", flush=True)
+        rospy.sleep(600.0)  # until killed
+        return 0
     path = Path()
     path.header.frame_id = "map"
     for k in range(51):

@@ -60,7 +60,8 @@ def straight_path(frame="map", length=5.0, yaw=0.0):
 
 
 class FakeRobot:
-    """Odometry + tf (map -> odom static, odom -> base_footprint) + an empty 360-beam scan at 20 Hz."""
+    """Odometry + tf (map -> odom as a localizer publishes it, odom -> base_footprint) + an empty 360-beam scan,
+    all at 20 Hz."""
 
     def __init__(self):
         self.odom_on = threading.Event()
@@ -126,11 +127,12 @@ class FakeRobot:
         self.localizer_on.set()
         return broken
 
-    def wait_heard_by(self, subscribers, timeout_s):
-        """True once `subscribers` nodes are connected to both odometry and scan and have had a few of each."""
+    def wait_heard_by(self, odom_subscribers, scan_subscribers, timeout_s):
+        """True once that many nodes are connected to odometry and to the scan and have had a few of each."""
         deadline = rospy.get_time() + timeout_s
         while rospy.get_time() < deadline:
-            if min(self.odom_pub.get_num_connections(), self.scan_pub.get_num_connections()) >= subscribers:
+            if (self.odom_pub.get_num_connections() >= odom_subscribers
+                    and self.scan_pub.get_num_connections() >= scan_subscribers):
                 rospy.sleep(2 * SENSOR_TIMEOUT_S)  # several messages at 20 Hz over the new connections
                 return True
             rospy.sleep(0.05)
@@ -217,7 +219,7 @@ class TestControllerSafety(unittest.TestCase):
         assert cls.path_client.wait_for_server(rospy.Duration(WAIT_S)), "pp_path did not come up"
         assert cls.topic_client.wait_for_server(rospy.Duration(WAIT_S)), "pp_topic did not come up"
         # a goal sent before a controller has odometry is rightly aborted ("no odometry received yet")
-        assert cls.robot.wait_heard_by(2, WAIT_S), "the controllers did not subscribe to odom and scan"
+        assert cls.robot.wait_heard_by(3, 2, WAIT_S), "the controllers did not subscribe to odom and scan"
         cls.plan_pub = rospy.Publisher("test_plan", Path, queue_size=1, latch=True)
         cls.clear_clients = [ActionClientProxy(name + "/clear_costmap", ClearCostmapAction)
                              for name in ("pp_path", "pp_topic")]
@@ -309,7 +311,7 @@ class TestControllerSafety(unittest.TestCase):
         mark = self.blind_cmds.mark()
         self.robot.localizer_on.clear()  # odometry and odom -> base_footprint go on
         self.assert_aborted_and_stopped(handle, self.blind_results, self.blind_cmds, mark,
-                                        "the newest transform 'odom' -> 'map' is")
+                                        "the newest transform 'map' -> 'odom' is")
 
     def test_non_finite_velocity(self):
         handle = self.start_driving()
@@ -353,30 +355,28 @@ class TestControllerSafety(unittest.TestCase):
         self.assertEqual(self.wait_terminal(second), GoalStatus.PREEMPTED)
 
     # ------------------------------------------------------------------ the client's node dies
-    def test_goal_of_a_killed_client_stops(self):
-        live = self.start_driving()  # this node stays: its goal outlives the client timeout untouched
-        rospy.sleep(3 * CLIENT_TIMEOUT_S)
-        self.assertNotEqual(live.get_comm_state(), actionlib.CommState.DONE, live.get_goal_status_text())
-        live.cancel()
-        self.assertEqual(self.wait_terminal(live), GoalStatus.PREEMPTED)
+    def start_doomed_client(self, *args):
+        return subprocess.Popen([sys.executable, str(DOOMED_CLIENT), "pp_path", *args], stdout=subprocess.PIPE,
+                                text=True, env=dict(os.environ))
 
+    def end_process(self, proc):
+        proc.kill()
+        proc.wait(RESULT_WAIT_S)
+        proc.stdout.close()
+
+    def drive_for_doomed_client(self, client):
+        """The goal id of ``client``'s goal, once it drives and has outlived the client timeout untouched."""
         mark = self.path_cmds.mark()
-        client = subprocess.Popen([sys.executable, str(DOOMED_CLIENT), "pp_path"], stdout=subprocess.PIPE,
-                                  text=True, env=dict(os.environ))
-        try:
-            self.assertIsNotNone(self.path_cmds.wait_for(moving, mark, WAIT_S), "the client's goal never drove")
-            goal_id = client.stdout.readline().strip()  # printed before the goal could drive
-            self.assertTrue(goal_id.startswith("/doomed_client-"), goal_id)
-            rospy.sleep(2 * CLIENT_TIMEOUT_S)  # the client alive: its goal runs on
-            self.assertFalse(self.path_results.has_goal(goal_id), "a live client's goal was ended")
-            mark = self.path_cmds.mark()
-            client.send_signal(signal.SIGKILL)
-        finally:
-            client.kill()
-            client.wait(RESULT_WAIT_S)
-            client.stdout.close()
+        self.assertIsNotNone(self.path_cmds.wait_for(moving, mark, WAIT_S), "the client's goal never drove")
+        goal_id = client.stdout.readline().strip()  # printed before the goal could drive
+        self.assertTrue(goal_id.startswith("/doomed_client-"), goal_id)
+        rospy.sleep(2 * CLIENT_TIMEOUT_S)  # the client alive: its goal runs on
+        self.assertFalse(self.path_results.has_goal(goal_id), "a live client's goal was ended")
+        return goal_id
+
+    def assert_abandoned_and_stopped(self, goal_id, mark):
         ended = self.path_results.for_goal(goal_id, 3 * CLIENT_TIMEOUT_S + RESULT_WAIT_S)
-        self.assertIsNotNone(ended, "the goal of a killed client was never ended")
+        self.assertIsNotNone(ended, "the goal of a gone client was never ended")
         self.assertEqual(ended.status.status, GoalStatus.ABORTED)
         self.assertEqual(ended.result.code, FollowPathResult.FAILURE)
         self.assertIn("the client /doomed_client that sent this goal is gone", ended.result.message)
@@ -386,6 +386,38 @@ class TestControllerSafety(unittest.TestCase):
         rospy.sleep(4 * PERIOD_S)
         after = self.path_cmds.since(self.path_cmds.msgs.index(zero))
         self.assertFalse(any(moving(m) for m in after), "the robot moved after the stop")
+
+    def test_goal_of_a_killed_client_stops(self):
+        live = self.start_driving()  # this node stays: its goal outlives the client timeout untouched
+        rospy.sleep(3 * CLIENT_TIMEOUT_S)
+        self.assertNotEqual(live.get_comm_state(), actionlib.CommState.DONE, live.get_goal_status_text())
+        live.cancel()
+        self.assertEqual(self.wait_terminal(live), GoalStatus.PREEMPTED)
+
+        client = self.start_doomed_client()
+        try:
+            goal_id = self.drive_for_doomed_client(client)
+            mark = self.path_cmds.mark()
+            client.send_signal(signal.SIGKILL)
+        finally:
+            self.end_process(client)
+        self.assert_abandoned_and_stopped(goal_id, mark)
+
+    def test_goal_of_a_client_replaced_under_its_name_stops(self):
+        # a node started under a taken name makes the master shut the old one down (as a respawn would): the
+        # new node connects at once under the same caller id, but it does not know the old node's goal
+        client = self.start_doomed_client()
+        successor = None
+        try:
+            goal_id = self.drive_for_doomed_client(client)
+            mark = self.path_cmds.mark()
+            successor = self.start_doomed_client("quiet")
+            self.assertEqual(successor.stdout.readline().strip(), "connected")
+            self.assert_abandoned_and_stopped(goal_id, mark)
+        finally:
+            self.end_process(client)
+            if successor is not None:
+                self.end_process(successor)
 
     # ------------------------------------------------------------------ FollowTopic
     def send_topic(self, topic):

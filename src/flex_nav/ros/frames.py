@@ -34,7 +34,7 @@ def frame_pose(
     if max_age_s > 0.0 and not tf.header.stamp.is_zero():
         age_s = (rospy.Time.now() - tf.header.stamp).to_sec()
         if age_s > max_age_s:
-            raise NotReadyError(f"the newest transform '{source_frame}' -> '{target_frame}' is {age_s:.2f} s old "
+            raise NotReadyError(f"the newest transform '{target_frame}' -> '{source_frame}' is {age_s:.2f} s old "
                                 f"(more than {max_age_s:.2f} s): is the localization publishing it?")
     t, q = tf.transform.translation, tf.transform.rotation
     return (t.x, t.y, yaw_of_quaternion(q.x, q.y, q.z, q.w))

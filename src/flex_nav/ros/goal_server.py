@@ -17,11 +17,14 @@ replaced its own. Any exception escaping ``run`` aborts the goal with the error 
 
 With ``client_timeout_s`` > 0 a goal whose client has gone is ended too: the node that sent the goal (the
 ``callerid`` of the goal message's connection) must stay subscribed to the server's status topic, which
-actionlib publishes at a few Hz, so a dead subscriber's connection is dropped within a few publications.
-Once that node has been seen connected, ``client_timeout_s`` [s] without it aborts the goal after
+actionlib publishes at a few Hz, so the connection of a process that exited or was killed is dropped within a
+few publications. Once that node has been seen connected, ``client_timeout_s`` [s] (ROS time, as the
+controllers' other timeouts) without that same connection aborts the goal after
 ``on_cancel(ticket, replaced=False)``, like a cancel nobody could send: a behavior runner that dies while a
-controller drives leaves the robot stopped. A goal whose sender was never seen connected (e.g. published
-by hand with ``rostopic pub``) is not watched.
+controller drives leaves the robot stopped. A node restarted under the same name connects anew, and its
+predecessor's goal is ended too. Not detected: a client process that hangs, or whose host drops off the
+network (the TCP connection then stays open for minutes). A goal whose sender was never seen connected (e.g.
+published by hand with ``rostopic pub``) is not watched; the server logs that once.
 """
 
 from __future__ import annotations
@@ -51,8 +54,10 @@ class GoalTicket:
         self.number = number
         self.sender = sender
         self.cancelled = threading.Event()
-        self.sender_seen = False  # the sender was once connected to the status topic
-        self.sender_missing_since: Optional[float] = None  # [s] monotonic
+        self.sender_connection: Optional[int] = None  # id of the sender's status connection, once seen
+        self.sender_missing_since: Optional[float] = None  # [s] ROS time
+        self.unseen_since: Optional[float] = None  # [s] ROS time of the first check that did not see the sender
+        self.unseen_logged = False
 
     def __repr__(self) -> str:
         return f"GoalTicket(#{self.number}{', cancelled' if self.cancelled.is_set() else ''})"
@@ -182,29 +187,46 @@ class GoalServer:
                 rospy.logerr(f"{self.name}: error while stopping goal #{ticket.number}: {err}")
 
     # ------------------------------------------------------------------ client watch thread
-    def _status_subscribers(self) -> set:
-        """Caller ids of the nodes connected to the status topic."""
+    def _status_connections(self) -> list:
+        """(connection id, caller id) of every node connected to the status topic."""
         impl = getattr(self.server.action_server.status_pub, "impl", None)
-        return {info[1] for info in impl.get_stats_info()} if impl is not None else set()
+        return [(info[0], info[1]) for info in impl.get_stats_info()] if impl is not None else []
 
     def _watch_clients(self) -> None:
         while not self._stopping and not rospy.is_shutdown():
-            time.sleep(CLIENT_CHECK_PERIOD_S)
-            ticket = self._current
-            if ticket is None or not ticket.sender or ticket.cancelled.is_set():
-                continue
-            now = time.monotonic()
-            if ticket.sender in self._status_subscribers():
-                ticket.sender_seen, ticket.sender_missing_since = True, None
-            elif ticket.sender_seen and ticket.sender_missing_since is None:
-                ticket.sender_missing_since = now
-            elif ticket.sender_missing_since is not None and now - ticket.sender_missing_since >= self.client_timeout_s:
-                self._abandon(ticket)
+            time.sleep(CLIENT_CHECK_PERIOD_S)  # wall-clock polling; the timeout itself runs on ROS time
+            try:
+                self._check_client()
+            except Exception as err:  # the watch must go on
+                rospy.logerr(f"{self.name}: client watch error: {err}\n{traceback.format_exc()}")
+
+    def _check_client(self) -> None:
+        ticket = self._current
+        if ticket is None or not ticket.sender or ticket.cancelled.is_set():
+            return
+        now_s = rospy.get_time()
+        ids = [cid for cid, caller in self._status_connections() if caller == ticket.sender]
+        if ticket.sender_connection is None:
+            if ids:
+                ticket.sender_connection = ids[0]
+            elif ticket.unseen_since is None:
+                ticket.unseen_since = now_s
+            elif now_s - ticket.unseen_since >= self.client_timeout_s and not ticket.unseen_logged:
+                ticket.unseen_logged = True
+                rospy.logwarn(f"{self.name}: goal #{ticket.number} is not watched: its sender {ticket.sender} is "
+                              "not connected to the status topic (it is, once it connects)")
+            return
+        if ticket.sender_connection in ids:
+            ticket.sender_missing_since = None
+        elif ticket.sender_missing_since is None or now_s < ticket.sender_missing_since:  # (time went back)
+            ticket.sender_missing_since = now_s
+        elif now_s - ticket.sender_missing_since >= self.client_timeout_s:
+            self._abandon(ticket)
 
     def _abandon(self, ticket: GoalTicket) -> None:
         """Stop and abort ``ticket``'s goal: the node that sent it is gone."""
         reason = (f"the client {ticket.sender} that sent this goal is gone "
-                  f"(not connected for {self.client_timeout_s:.1f} s)")
+                  f"(its connection closed {self.client_timeout_s:.1f} s ago)")
         with self.server.action_server.lock, self.server.lock:  # actionlib's own order
             if ticket is not self._current or ticket.cancelled.is_set() or not self.server.is_active():
                 return

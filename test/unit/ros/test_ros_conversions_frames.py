@@ -131,7 +131,7 @@ def test_frame_pose_refuses_an_old_transform_but_not_a_static_one(monkeypatch):
     tf.header.stamp = rospy.Time(98, 500_000_000)  # the localizer's last map -> odom, 1.5 s ago
     tf.transform.translation.x = 4.0
     localized.set_transform(tf, "test")
-    with pytest.raises(NotReadyError, match=r"'odom' -> 'map' is 1\.50 s old \(more than 1\.00 s\)"):
+    with pytest.raises(NotReadyError, match=r"'map' -> 'odom' is 1\.50 s old \(more than 1\.00 s\)"):
         frame_pose(localized, "map", "odom", 0.0, max_age_s=1.0)
     assert frame_pose(localized, "map", "odom", 0.0, max_age_s=2.0)[0] == pytest.approx(4.0)
     assert frame_pose(localized, "map", "odom", 0.0)[0] == pytest.approx(4.0)  # 0: no age check
