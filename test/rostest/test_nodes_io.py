@@ -21,8 +21,10 @@ from nav_msgs.srv import GetMap
 from sensor_msgs.msg import LaserScan
 
 from flex_nav.msg import ClearCostmapAction, ClearCostmapGoal, ClearCostmapResult
+from flex_nav.nav.costmap_grid import FREE, LETHAL
 from flex_nav.nav.map_io import load_map
 from flex_nav.ros.conversions import grid_map_of
+from flex_nav.ros.costmap_ros import CostmapROS
 from flex_nav.ros.node import init_node
 from flex_nav.ros.proxies import ActionClientProxy
 
@@ -30,6 +32,7 @@ WAIT_S = 20.0  # [s] bound on anything appearing
 MAP_YAML = os.path.join(rospkg.RosPack().get_path("flex_nav"), "test", "data", "maps", "test_rooms.yaml")
 ROBOT = (1.0, 1.0)  # where the test puts io_base in the map
 OBSTACLE = (2.0, 1.0)  # free on the map; the fake scan sees something there
+LIDAR_X = 0.12  # [m] io_lidar ahead of io_base (more than two cells of the rolling window)
 
 
 class Latest:
@@ -88,7 +91,12 @@ class TestNodesIO(unittest.TestCase):
             tf.header.frame_id, tf.child_frame_id = "map", "io_base"
             tf.transform.translation.x, tf.transform.translation.y = ROBOT
             tf.transform.rotation.w = 1.0
-            cls.tf.sendTransform(tf)
+            lidar = TransformStamped()
+            lidar.header.stamp = tf.header.stamp
+            lidar.header.frame_id, lidar.child_frame_id = "io_base", "io_lidar"
+            lidar.transform.translation.x = LIDAR_X
+            lidar.transform.rotation.w = 1.0
+            cls.tf.sendTransform([tf, lidar])
             rospy.sleep(0.05)
 
     # ------------------------------------------------------------------ map_server / map_saver
@@ -227,6 +235,50 @@ class TestNodesIO(unittest.TestCase):
             marked = costmap.wait_for(lambda m: cell_value(m, ROBOT[0] + 0.2, ROBOT[1]) == 100, timeout_s=0.3,
                                       after=costmap.count())
         self.assertIsNotNone(marked, "the bumper hit was not marked")
+
+    def test_rolling_costmap_snapshot_matches_the_newest_scan(self):
+        """A controller reads its local costmap through snapshot(): right after a scan, with no timer update in
+        between, the obstacle must be in the copied costs where the geometry says (the window follows the base,
+        not the lidar)."""
+        ns = "~rolling_io/"
+        for key, value in (("rolling_window", True), ("static_map", False), ("scan_topic", "io_scan_rolling"),
+                           ("bumper_topic", ""), ("robot_base_frame", "io_base"), ("width", 3.0), ("height", 3.0),
+                           ("inflation_radius", 0.2), ("robot_radius", 0.1),
+                           ("update_frequency", 0.1), ("publish_frequency", 0.0)):  # the timer stays out of it
+            rospy.set_param(ns + key, value)
+        buffer = tf2_ros.Buffer()
+        listener = tf2_ros.TransformListener(buffer)
+        local = CostmapROS("rolling_io", buffer, rolling_default=True)
+        scans = rospy.Publisher("io_scan_rolling", LaserScan, queue_size=1)
+        try:
+            scan = LaserScan()
+            scan.header.frame_id = "io_lidar"
+            scan.angle_min, scan.angle_increment, scan.angle_max = -0.1, 0.01, 0.1
+            scan.range_min, scan.range_max = 0.05, 3.0
+            scan.ranges = [OBSTACLE[0] - ROBOT[0] - LIDAR_X] * 21  # the same point as the node's scan above
+            deadline = rospy.get_time() + WAIT_S
+            while local.last_scan_received_s is None and rospy.get_time() < deadline:
+                scan.header.stamp = rospy.Time.now() - rospy.Duration(0.1)
+                scans.publish(scan)
+                rospy.sleep(0.2)
+            self.assertIsNotNone(local.last_scan_received_s, "the rolling costmap took no scan")
+            snapshot = local.snapshot()
+            self.assertIsNotNone(snapshot)
+            costs, geometry = snapshot
+            half_cell = geometry.resolution / 2.0
+            centre_x = geometry.origin_x + geometry.width * geometry.resolution / 2.0
+            centre_y = geometry.origin_y + geometry.height * geometry.resolution / 2.0
+            self.assertLessEqual(abs(centre_x - ROBOT[0]), geometry.resolution + half_cell,
+                                 f"window centred at x={centre_x:.3f}, the base is at {ROBOT[0]}")
+            self.assertLessEqual(abs(centre_y - ROBOT[1]), geometry.resolution + half_cell)
+            row, col = geometry.world_to_cell(*OBSTACLE)  # the hit lies on a cell edge: it may mark either side
+            self.assertEqual(int(costs[row - 1:row + 2, col - 1:col + 2].max()), LETHAL,
+                             "the scanned obstacle is not in the snapshot's costs")
+            row, col = geometry.world_to_cell(OBSTACLE[0] - 0.5, OBSTACLE[1])
+            self.assertEqual(int(costs[row, col]), FREE, "free space between robot and obstacle is not free")
+        finally:
+            scans.unregister()
+            listener.unregister()
 
 
 if __name__ == "__main__":

@@ -126,9 +126,11 @@ class CostmapROS:
             self._subscribers.append(rospy.Subscriber(scan_topic, LaserScanMsg, self._on_scan, queue_size=1))
         if bumper_topic:
             self._subscribers.append(rospy.Subscriber(bumper_topic, PointStamped, self._on_bumper_hit, queue_size=10))
-        self._update_timer = rospy.Timer(rospy.Duration(1.0 / update_hz), self._on_update_timer)
+        # reset=True: a timer whose ROS time jumps back (a restarted simulator, a looped bag) goes on
+        self._update_timer = rospy.Timer(rospy.Duration(1.0 / update_hz), self._on_update_timer, reset=True)
         self._publish_timer = (
-            rospy.Timer(rospy.Duration(1.0 / publish_hz), lambda _e: self.publish()) if publish_hz > 0 else None
+            rospy.Timer(rospy.Duration(1.0 / publish_hz), self._on_publish_timer, reset=True)
+            if publish_hz > 0 else None
         )
         self._clear_server: Optional[actionlib.SimpleActionServer] = None
 
@@ -164,7 +166,7 @@ class CostmapROS:
             bumper_memory_s=self.bumper_memory_s,
         )
 
-    def _sensor_pose(self, frame_id: str, stamp: rospy.Time) -> tuple[float, float, float]:
+    def _frame_pose_at(self, frame_id: str, stamp: rospy.Time) -> tuple[float, float, float]:
         try:
             tf = self.tf_buffer.lookup_transform(self.global_frame, frame_id, stamp, rospy.Duration(0.1))
         except (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.ExtrapolationException) as err:
@@ -174,7 +176,10 @@ class CostmapROS:
 
     def _on_scan(self, msg: LaserScanMsg) -> None:
         try:
-            x, y, yaw = self._sensor_pose(msg.header.frame_id, msg.header.stamp)
+            x, y, yaw = self._frame_pose_at(msg.header.frame_id, msg.header.stamp)
+            # a rolling window follows the robot base (as the update timer does), not the sensor: centred on
+            # the lidar it would move a cell back and forth between a scan and the next timer tick
+            base = self._frame_pose_at(self.robot_base_frame, msg.header.stamp) if self.rolling_window else None
             scan = LaserScan(
                 ranges=np.asarray(msg.ranges, dtype=np.float64), angle_min=msg.angle_min,
                 angle_increment=msg.angle_increment, range_min=msg.range_min, range_max=msg.range_max,
@@ -186,8 +191,8 @@ class CostmapROS:
             return
         with self.lock:
             if self.costmap is not None:
-                if self.rolling_window:
-                    self.costmap.recentre(x, y)
+                if base is not None:
+                    self.costmap.recentre(base[0], base[1])
                 self.costmap.add_scan(scan)
             # only a scan that reached the obstacle layer counts as fresh: one add_scan rejected keeps aging
             self.last_scan_time = msg.header.stamp
@@ -213,6 +218,18 @@ class CostmapROS:
 
     # ------------------------------------------------------------------ upkeep
     def _on_update_timer(self, _event: rospy.timer.TimerEvent) -> None:
+        try:
+            self._update()
+        except Exception as err:  # an exception would end rospy's timer thread: the costmap would freeze
+            rospy.logerr_throttle(5.0, f"{self.name}: costmap update failed: {err!r}")
+
+    def _on_publish_timer(self, _event: rospy.timer.TimerEvent) -> None:
+        try:
+            self.publish()
+        except Exception as err:  # as above: the next tick tries again
+            rospy.logerr_throttle(5.0, f"{self.name}: costmap publish failed: {err!r}")
+
+    def _update(self) -> None:
         centre = None
         if self.rolling_window:
             try:  # outside the lock: a tf wait must not hold up the users of the costmap
@@ -240,10 +257,15 @@ class CostmapROS:
         self.publisher.publish(msg)
 
     def snapshot(self) -> Optional[Tuple[np.ndarray, CostmapGeometry]]:
-        """A copy of the current costs and geometry (for planning or checking outside the lock), or None."""
+        """A copy of the current costs and geometry (for planning or checking outside the lock), or None.
+
+        The master costs are brought up to date first: a scan moves the window and marks the obstacle layer,
+        and costs copied before the next timer update would be placed by the new geometry but hold the old
+        window's contents (every obstacle out of place by the robot's motion since)."""
         with self.lock:
             if self.costmap is None:
                 return None
+            self.costmap.update()
             return self.costmap.costs.copy(), dataclasses.replace(self.costmap.geometry)
 
     def wait_for_map(self, timeout_s: float = MAP_WAIT_S) -> bool:
