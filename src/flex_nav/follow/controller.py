@@ -117,14 +117,15 @@ class SafeFollower:
     def set_path(self, poses: object) -> None:
         """Follow ``poses`` ((N, 2|3) in the controller's frame); ConfigError if empty or not finite.
 
-        The previous command is kept, so a replaced path continues smoothly. So is the time the robot has
-        been held by a collision ahead: a planner that replaces the path every second must not keep a
-        robot standing in front of an obstacle from ever reaching ``collision_timeout``.
+        The previous command is kept, so a replaced path continues smoothly. So are the time the robot has
+        been held by a collision ahead and the time an obstacle has sat on the path: a planner that replaces
+        the path every second must not keep a robot standing in front of an obstacle from ever reaching
+        ``collision_timeout`` or ``blocked_timeout`` (a new path that avoids the obstacle ends the latter at
+        the next tick). Both start afresh with the first path after :meth:`stop`.
         """
         self.pursuit.set_path(poses)
         self._path = as_path(poses)
         self._lengths = cumulative_lengths(self._path)
-        self.blocked.reset()
 
     def stop(self) -> None:
         """The goal ended (or the robot was stopped): forget the path and the previous command."""
@@ -156,7 +157,9 @@ class SafeFollower:
         if decision.outcome is not Outcome.RUNNING:
             self.stop()
             return decision
-        return self._within_limits(decision)
+        decision = self._within_limits(decision)
+        self.pursuit.override_last_command(decision.v, decision.w)  # the next step ramps from what was sent
+        return decision
 
     def _within_limits(self, decision: Decision) -> Decision:
         """The last guard: no command beyond the configured speeds — ``max_angular_vel`` [rad/s], and

@@ -203,6 +203,12 @@ class RegulatedPurePursuit:
         self._last_v = self._last_w = 0.0
         self._xy_reached = False
 
+    def override_last_command(self, v: float, w: float) -> None:
+        """The command actually sent after :meth:`step` (v [m/s], w [rad/s]) when a rule above pursuit replaced
+        or scaled it: the acceleration limits of the next step start from it, so a robot held still (or backing
+        away) by such a rule speeds up from there, not from the speed pursuit would have reached meanwhile."""
+        self._last_v, self._last_w = v, w
+
     def step(
         self,
         pose: Tuple[float, float, float],

@@ -106,6 +106,34 @@ def test_follower_aborts_blocked_and_stops_after_the_timeout():
     assert f.pursuit.path is None
 
 
+def test_a_path_replaced_at_every_tick_still_ends_blocked_and_a_new_goal_starts_afresh():
+    """FollowTopic replaces the path with every plan: that must not restart the blocked time (it would never
+    reach the timeout), while a new goal after stop() must not inherit the old goal's time."""
+    f = follower(1.0)
+    costs = costmap_with(1.2)
+    decisions = []
+    for k in range(10):
+        now = 0.05 * (k + 1)
+        f.set_path(STRAIGHT)  # a new plan, the same way
+        f.watchdog.saw("odom", now)
+        decisions.append(f.tick(now, lambda: (0.5, 0.0, 0.0), (0.3, 0.0), lambda: (costs, GEOMETRY)))
+        if decisions[-1].outcome is not Outcome.RUNNING:
+            break
+    assert decisions[-1].outcome is Outcome.ABORTED and decisions[-1].reason.startswith("blocked")
+    assert 4 <= len(decisions) <= 6  # 0.2 s at 0.05 s per tick, as with one path
+
+    f = follower(1.0)
+    f.set_path(STRAIGHT)
+    for k in range(3):  # 0.15 s blocked, less than the timeout
+        f.watchdog.saw("odom", 0.05 * (k + 1))
+        d = f.tick(0.05 * (k + 1), lambda: (0.5, 0.0, 0.0), (0.3, 0.0), lambda: (costs, GEOMETRY))
+        assert d.outcome is Outcome.RUNNING
+    f.stop()
+    f.set_path(STRAIGHT)  # the next goal, 0.25 s after the first blocked tick: its own time starts now
+    f.watchdog.saw("odom", 0.3)
+    assert f.tick(0.3, lambda: (0.5, 0.0, 0.0), (0.0, 0.0), lambda: (costs, GEOMETRY)).outcome is Outcome.RUNNING
+
+
 def test_follower_drives_on_when_the_obstacle_is_farther_than_the_distance():
     f = follower(1.0)
     f.set_path(STRAIGHT)

@@ -150,6 +150,28 @@ def test_safe_follower_gives_way_and_the_blocked_watch_stays_quiet():
         assert d.outcome is Outcome.RUNNING and d.v == 0.0 and d.reason.startswith("yielding")
 
 
+def test_after_giving_way_the_robot_speeds_up_from_standstill_within_the_acceleration_limit():
+    """While the rule holds the robot, pursuit must not ramp up unseen: the first command after the way is clear
+    is one acceleration step from the zero that was sent, not a jump to the cruising speed."""
+    f = follower(YieldRule(PARAMS))
+    f.set_path(np.array([[0.0, 0.0, 0.0], [10.0, 0.0, 0.0]]))
+    crossing = [person(3.0, -1.5, 0.0, 0.8)]
+    now, dt = 0.0, 0.05
+    for k in range(120):  # 2 s held at the corridor's edge, then the walker is gone
+        now = dt * (k + 1)
+        f.watchdog.saw("odom", now)
+        tracks = crossing if k < 40 else []
+        d = f.tick(now, lambda: (2.52, 0.0, 0.0), (0.0, 0.0), lambda: None, lambda tracks=tracks: tracks)
+        assert d.outcome is Outcome.RUNNING
+        if k < 40:
+            assert d.v == 0.0 and d.reason.startswith("yielding")
+        elif d.v > 0.0:
+            break
+    assert not d.reason.startswith("yielding"), "the rule never let the robot go"
+    assert d.v == pytest.approx(PURSUIT.max_linear_accel * dt)
+    assert d.v < PURSUIT.desired_linear_vel
+
+
 def test_giving_way_without_a_break_is_bounded_by_the_patience():
     """A walker who keeps crossing (a lingering track, a tracker artefact) must not hold the goal forever."""
     f = follower(YieldRule(dataclasses.replace(PARAMS, patience_s=3.0)))
