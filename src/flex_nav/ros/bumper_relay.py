@@ -15,7 +15,7 @@ from geometry_msgs.msg import PointStamped
 
 from flex_nav.bumper_contacts import BumperContacts
 from flex_nav.msg import BumperEvent, BumperState, CreateBumper
-from flex_nav.ros.params import param_str
+from flex_nav.ros.params import param_str, reject_unknown
 from flex_nav_sim.profiles import load_profile
 
 INPUTS = ("state", "kobuki", "create")
@@ -24,6 +24,7 @@ KOBUKI_ZONES = {BumperEvent.LEFT: "left", BumperEvent.CENTER: "center", BumperEv
 
 class BumperRelay:
     def __init__(self) -> None:
+        reject_unknown("~", ("base_frame", "profile", "input"))
         self.base_frame = param_str("~base_frame", "base_footprint")
         self.contacts = BumperContacts(load_profile(param_str("~profile", "kobuki")))
         source = param_str("~input", "state", INPUTS)

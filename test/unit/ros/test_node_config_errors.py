@@ -35,6 +35,8 @@ def shared_master(tmp_path_factory):
         ("get_path_server", ["_global_costmap/robot_radus:=0.2"],
          "global_costmap/robot_radus is not a parameter of this node"),
         ("follow_path_server", ["_planner/lethal_cost:=300"], "lethal_cost = 300 is outside [1, 255]"),
+        ("bumper_relay", ["_inputs:=kobuki"], "/inputs is not a parameter of this node (valid: base_frame, input, "
+                                              "profile)"),
     ],
 )
 def test_bad_parameter_stops_the_node(shared_master: PrivateMaster, node, args, expected):
