@@ -12,6 +12,7 @@ from flex_nav.behavior.state import State
 from flex_nav.behavior.userdata import UserDataView, unwrap
 from flex_nav.msg import GetPathGoal, GetPathResult
 from flex_nav_states import validation
+from flex_nav_states.action_base import SERVER_LOST_S
 from flex_nav_states.proxy_types import ActionClientLike, PublisherLike, proxies_of
 
 GET_PATH = action_type("GetPath")
@@ -23,12 +24,15 @@ class ReplanState(State):
     Runs beside a FollowTopic controller (which follows ``plan_topic``) in a concurrency container, as
     move_base's planner thread replans at ``planner_frequency``. It never finishes by itself while plans
     keep coming; it fails after ``max_failures`` planning failures in a row or when the server is missing.
+    A plan request without an answer for ``plan_timeout_s`` is cancelled and counts as a failure; a server that
+    disconnects while a request is out fails the state after ``SERVER_LOST_S`` (as every action state).
 
     -- action_name       str    GetPath server name, relative to the behavior's namespace.
     -- plan_topic        str    nav_msgs/Path topic the plans are published on (latched).
     -- period_s          float  [s] Time between the starts of two plans (> 0; move_base: 1 / planner_frequency).
     -- max_failures      int    Planning failures in a row before giving up (>= 1).
     -- server_timeout_s  float  [s] Fail if the server is not connected this long after entry.
+    -- plan_timeout_s    float  [s] A plan request unanswered this long is cancelled and counts as a failure.
 
     ># goal  PoseStamped  The goal to plan to.
     #> plan  Path         The newest plan.
@@ -37,7 +41,7 @@ class ReplanState(State):
     """
 
     def __init__(self, action_name: str = "get_path_server", plan_topic: str = "replan/plan", period_s: float = 1.0,
-                 max_failures: int = 3, server_timeout_s: float = 5.0) -> None:
+                 max_failures: int = 3, server_timeout_s: float = 5.0, *, plan_timeout_s: float = 5.0) -> None:
         super().__init__(outcomes=["failed"], input_keys=["goal"], output_keys=["plan"])
         owner = type(self).__name__
         self._action_name = validation.name(owner, "action_name", action_name)
@@ -46,12 +50,15 @@ class ReplanState(State):
         self._max_failures = int(validation.number(owner, "max_failures", max_failures, minimum=1.0))
         self._server_timeout_s = validation.number(owner, "server_timeout_s", server_timeout_s, positive=True,
                                                    unit="[s]")
+        self._plan_timeout_s = validation.number(owner, "plan_timeout_s", plan_timeout_s, positive=True, unit="[s]")
         self._client: Optional[ActionClientLike] = None
         self._publisher: Optional[PublisherLike] = None
         self._goal: Any = None
         self._entered_s = 0.0
         self._next_plan_s = 0.0  # [s] when the next plan may start
         self._plan_in_flight = False  # a GetPath goal is out
+        self._sent_s = 0.0  # [s] when it was sent
+        self._lost_since_s: Optional[float] = None  # [s] the server disconnected while it was out
         self._failures = 0
         self._plans = 0
 
@@ -71,7 +78,7 @@ class ReplanState(State):
         now = self.now_s()
         if self._plan_in_flight:
             if not self._client.has_result():
-                return None
+                return self._unanswered(now)
             self._plan_in_flight = False
             result = self._client.result()
             if self._client.state() == GoalStatus.SUCCEEDED and result is not None and \
@@ -80,13 +87,8 @@ class ReplanState(State):
                 self._plans += 1
                 userdata.plan = result.plan
                 self._publisher.publish(result.plan)
-            else:
-                self._failures += 1
-                reason = result.message if result is not None else "no result"
-                self.log_warn(f"{self._action_name}: replan {self._failures}/{self._max_failures} failed: {reason}")
-                if self._failures >= self._max_failures:
-                    self.log_error(f"{self._action_name}: {self._failures} plans in a row failed; giving up")
-                    return "failed"
+            elif self._failed(result.message if result is not None else "no result"):
+                return "failed"
         if now < self._next_plan_s:
             return None
         if not self._client.is_available(0.0):
@@ -96,8 +98,39 @@ class ReplanState(State):
             return None
         self._client.send_goal(self._goal, server_timeout_s=0.05)
         self._plan_in_flight = True
+        self._sent_s, self._lost_since_s = now, None
         self._next_plan_s = now + self._replan_period_s
         return None
+
+    def _unanswered(self, now: float) -> Optional[str]:
+        """The request out has no answer yet: "failed" when its server has gone, else None (wait, or count a
+        request unanswered for plan_timeout_s as a failure and plan again at the next period)."""
+        assert self._client is not None
+        if self._client.is_available(0.0):
+            self._lost_since_s = None
+        elif self._lost_since_s is None:
+            self._lost_since_s = now
+        elif now - self._lost_since_s >= SERVER_LOST_S:
+            self._client.cancel()
+            self._plan_in_flight = False
+            self.log_error(f"{self._action_name}: GetPath server went away during a plan "
+                           f"(disconnected for {SERVER_LOST_S:g} s; request cancelled)")
+            return "failed"
+        if now - self._sent_s >= self._plan_timeout_s:
+            self._client.cancel()
+            self._plan_in_flight = False
+            if self._failed(f"no answer within plan_timeout_s {self._plan_timeout_s:g} s; request cancelled"):
+                return "failed"
+        return None
+
+    def _failed(self, reason: str) -> bool:
+        """Count one failed plan with its reason; True when max_failures in a row have failed."""
+        self._failures += 1
+        self.log_warn(f"{self._action_name}: replan {self._failures}/{self._max_failures} failed: {reason}")
+        if self._failures >= self._max_failures:
+            self.log_error(f"{self._action_name}: {self._failures} plans in a row failed; giving up")
+            return True
+        return False
 
     def on_exit(self, userdata: UserDataView) -> None:
         if self._plan_in_flight and self._client is not None and self._client.is_active():

@@ -2,13 +2,15 @@
 
 from __future__ import annotations
 
+import pytest
 from actionlib_msgs.msg import GoalStatus
 from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import Path
 from unit.states.states_testlib import Harness
 
-from flex_nav.behavior import BehaviorStatus
+from flex_nav.behavior import BehaviorStatus, LogLevel
 from flex_nav.msg import GetPathAction, GetPathResult
+from flex_nav_states.action_base import SERVER_LOST_S
 from flex_nav_states.replan_state import ReplanState
 
 
@@ -79,3 +81,27 @@ def test_exit_cancels_the_plan_in_flight() -> None:
     h.executor.preempt("test")
     h.tick()
     assert client.cancels == 1
+
+
+def test_a_server_that_goes_away_during_a_plan_fails_the_state_in_bounded_time() -> None:
+    h = Harness(ReplanState(period_s=1.0, plan_timeout_s=60.0), inputs={"goal": _goal()})
+    client = h.proxies.client("get_path_server", GetPathAction)  # no response queued: the request stays out
+    h.start().run_for(0.5)
+    assert len(client.goals) == 1 and client.is_active()
+    client.available_at_s = float("inf")  # get_path_server died mid-plan
+    gone_s = h.clock.now()
+    result = h.run(max_time_s=10.0)
+    assert result.outcome == "failed"
+    assert h.clock.now() - gone_s == pytest.approx(SERVER_LOST_S, abs=0.2)
+    assert client.cancels == 1
+    assert any("went away during a plan" in t for t in h.texts(LogLevel.ERROR)), h.log_text()
+
+
+def test_an_unanswered_plan_is_cancelled_counted_and_planned_again() -> None:
+    h = Harness(ReplanState(period_s=1.0, plan_timeout_s=2.0, max_failures=2), inputs={"goal": _goal()})
+    client = h.proxies.client("get_path_server", GetPathAction)  # connected, never answers
+    result = h.start().run(max_time_s=20.0)
+    assert result.outcome == "failed"
+    assert len(client.goals) == 2 and client.cancels == 2
+    assert h.clock.now() - 1000.0 == pytest.approx(4.0, abs=0.2)  # two requests of 2 s each
+    assert sum("no answer within plan_timeout_s 2 s" in t for t in h.texts()) == 2, h.log_text()
