@@ -7,6 +7,7 @@ import sys
 import time
 import unittest
 
+import rosgraph
 import rospy
 import rostest
 from actionlib.action_client import CommState
@@ -15,7 +16,14 @@ from std_msgs.msg import Int32, String
 from std_srvs.srv import Trigger, TriggerRequest
 
 from flex_nav.exceptions import ConfigError, NotReadyError, TimedOutError
-from flex_nav.msg import FollowPathAction, FollowPathGoal, GetPathAction, GetPathGoal, GetPathResult
+from flex_nav.msg import (
+    FollowPathAction,
+    FollowPathActionResult,
+    FollowPathGoal,
+    GetPathAction,
+    GetPathGoal,
+    GetPathResult,
+)
 from flex_nav.ros.node import init_node
 from flex_nav.ros.proxies import RosProxies
 
@@ -29,6 +37,21 @@ def wait_for(predicate, timeout_s=WAIT_S):
             return False
         time.sleep(0.01)
     return True
+
+
+def _own_topics(kind):
+    """Topics this node is registered for at the master (``kind``: 0 publishers, 1 subscribers)."""
+    state = rosgraph.Master(rospy.get_name()).getSystemState()
+    me = rospy.get_name()
+    return {topic for topic, nodes in state[kind] if me in nodes}
+
+
+def subscribed_topics():
+    return _own_topics(1)
+
+
+def published_topics():
+    return _own_topics(0)
 
 
 class TestProxies(unittest.TestCase):
@@ -117,15 +140,25 @@ class TestProxies(unittest.TestCase):
             self.assertEqual(client.result().message, "no path to the goal")
         proxies.shutdown()
 
-    def test_cancel_and_shutdown_cancels_active_goal(self):
+    def test_shutdown_cancels_the_active_goal_and_unregisters_the_client(self):
+        results = []
+        observer = rospy.Subscriber("slow_follow/result", FollowPathActionResult, results.append, queue_size=10)
+        self.assertTrue(wait_for(lambda: observer.get_num_connections() > 0))
         proxies = RosProxies()
         client = proxies.action_client("slow_follow", FollowPathAction)
         client.send_goal(FollowPathGoal(), server_timeout_s=WAIT_S)
         self.assertTrue(wait_for(lambda: client.state() == GoalStatus.ACTIVE))
         self.assertTrue(client.is_active())
+        self.assertIn("/slow_follow/status", subscribed_topics())
         proxies.shutdown()
-        self.assertTrue(wait_for(client.has_result))
-        self.assertEqual(client.state(), GoalStatus.PREEMPTED)
+        # the cancel reached the server (the client itself no longer listens: it was unregistered)
+        self.assertTrue(wait_for(lambda: any(r.status.status == GoalStatus.PREEMPTED for r in results)))
+        observer.unregister()
+        # a runner that starts behavior after behavior must not keep every old behavior's action clients
+        for topic in ("status", "result", "feedback"):
+            self.assertTrue(wait_for(lambda t=topic: f"/slow_follow/{t}" not in subscribed_topics()), topic)
+        for topic in ("goal", "cancel"):
+            self.assertTrue(wait_for(lambda t=topic: f"/slow_follow/{t}" not in published_topics()), topic)
 
     def test_two_behaviors_do_not_share_connections(self):
         first, second = RosProxies(), RosProxies()

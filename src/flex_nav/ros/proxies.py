@@ -250,6 +250,14 @@ class ActionClientProxy:
         if handle is not None:
             handle.cancel()  # outside the lock: actionlib calls the transition callback from here
 
+    def close(self, deadline: float) -> None:
+        """Cancel the active goal and unregister the client's five topics (after its goal and cancel messages
+        were sent, or at ``deadline``, time.monotonic() [s]). The proxy is unusable afterwards."""
+        self.cancel()
+        for pub in (self._client.pub_goal, self._client.pub_cancel):
+            _drain(pub, deadline)
+        self._client.stop()
+
 
 class ServiceCallerProxy:
     """A service caller with a bounded wait for the service and a typed failure."""
@@ -357,6 +365,8 @@ class RosProxies:
             for _msg_type, pub in self._publishers.values():
                 _drain(pub, deadline)
                 pub.unregister()
+            for client in self._action_clients.values():
+                client.close(deadline)
             self._publishers.clear()
             self._subscriptions.clear()
             self._action_clients.clear()
