@@ -128,6 +128,7 @@ class FakeActionClient:
         self.goals: List[Any] = []
         self.sent_at: List[float] = []
         self.cancels = 0
+        self.closed = False
         self.availability_checks: List[float] = []  # timeout_s of each is_available call (must be ~0)
         self._state = GoalStatus.LOST
         self._result: Any = None
@@ -213,6 +214,11 @@ class FakeActionClient:
             if hasattr(result, "message"):
                 result.message = "cancelled"
             self.finish(GoalStatus.PREEMPTED, result)
+
+    def close(self, deadline: float) -> None:
+        """Cancel and disconnect (the proxies' shutdown); ``deadline`` [s] is not needed without ROS."""
+        self.cancel()
+        self.closed = True
 
 
 class FakeProxies:
