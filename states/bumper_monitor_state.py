@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import threading
 from typing import Any, Dict, List, Optional, Sequence, Set
 
 from flex_nav.behavior.state import State
@@ -17,7 +18,6 @@ DRIVER_TOPICS = {"kobuki": "events/bumper", "create": "bumper", "zones": "bumper
 DRIVER_TYPES = {"kobuki": BumperEvent, "create": CreateBumper, "zones": BumperState}
 KOBUKI_ZONES = {BumperEvent.LEFT: "left", BumperEvent.CENTER: "center", BumperEvent.RIGHT: "right"}
 CREATE_ZONES = ("left", "right")
-EVENT_BUFFER = 50  # kobuki events kept between ticks (presses and releases; the state is rebuilt from them)
 
 
 class BumperMonitorState(State):
@@ -26,7 +26,8 @@ class BumperMonitorState(State):
     The profile (``sim/robots/<name>.yaml``) says how the robot's driver reports its bumper: ``kobuki``
     (flex_nav/BumperEvent press/release events, zones left/center/right), ``create`` (flex_nav/CreateBumper
     is_left_pressed/is_right_pressed, zones left/right) or ``zones`` (flex_nav/BumperState, the profile's
-    zone names). A bumper still pressed when the state is entered counts at once. Cliff sensors, when
+    zone names). A bumper still pressed when the state is entered counts at once; with kobuki events, so does
+    a press released again between two ticks while the state is active (a glancing contact). Cliff sensors, when
     ``cliff_topic`` is set, are read as flex_nav/BumperState (zone = sensor name, pressed = cliff).
 
     -- profile       str   Robot profile name (kobuki, create2, turtlebot4) or path: driver style and zones.
@@ -77,7 +78,12 @@ class BumperMonitorState(State):
         self._cliff_topic = validation.name(owner, "cliff_topic", cliff_topic, allow_empty=True)
         self._sub: Optional[SubscriptionLike] = None
         self._cliff_sub: Optional[SubscriptionLike] = None
-        self._kobuki_pressed: Set[str] = set()  # rebuilt from press/release events
+        # kobuki: every event reaches every monitor of the behavior (a callback each, in rospy's thread), so
+        # one that is not running does not miss the release that a running one saw
+        self._events_lock = threading.Lock()
+        self._kobuki_held: Set[str] = set()  # zones pressed and not released
+        self._kobuki_hit: Set[str] = set()  # zones pressed since the last tick (or entry)
+        self._unknown_bumpers: List[int] = []
         self._warned_missing: Set[str] = set()
 
     @property
@@ -86,11 +92,29 @@ class BumperMonitorState(State):
 
     def on_start(self) -> None:
         proxies = proxies_of(self)
-        buffer = EVENT_BUFFER if self._style == "kobuki" else 0
-        self._sub = proxies.subscription(self._topic, DRIVER_TYPES[self._style], buffer_size=buffer)
+        self._sub = proxies.subscription(self._topic, DRIVER_TYPES[self._style])
         if self._cliff_topic:
             self._cliff_sub = proxies.subscription(self._cliff_topic, BumperState)
-        self._kobuki_pressed = set()
+        with self._events_lock:
+            self._kobuki_held.clear()
+            self._kobuki_hit.clear()
+        if self._style == "kobuki":
+            self._sub.add_callback(self._on_kobuki_event)
+
+    def on_enter(self, userdata: UserDataView) -> None:
+        with self._events_lock:
+            self._kobuki_hit.clear()  # a press released before entry does not count; one still held does
+
+    def _on_kobuki_event(self, event: Any) -> None:
+        zone = KOBUKI_ZONES.get(event.bumper)
+        with self._events_lock:
+            if zone is None:
+                self._unknown_bumpers.append(event.bumper)
+            elif event.state == BumperEvent.PRESSED:
+                self._kobuki_held.add(zone)
+                self._kobuki_hit.add(zone)
+            else:
+                self._kobuki_held.discard(zone)
 
     def execute(self, userdata: UserDataView) -> Optional[str]:
         if self._sub is None:
@@ -112,18 +136,13 @@ class BumperMonitorState(State):
         if sub is None:
             return []
         if self._style == "kobuki":
-            while True:
-                event = sub.pop_buffered()
-                if event is None:
-                    break
-                zone = KOBUKI_ZONES.get(event.bumper)
-                if zone is None:
-                    self.log_warn(f"ignored a bumper event with unknown bumper {event.bumper} on {self._topic}")
-                elif event.state == BumperEvent.PRESSED:
-                    self._kobuki_pressed.add(zone)
-                else:
-                    self._kobuki_pressed.discard(zone)
-            return sorted(self._kobuki_pressed, key=list(KOBUKI_ZONES.values()).index)
+            with self._events_lock:
+                pressed = self._kobuki_held | self._kobuki_hit
+                self._kobuki_hit.clear()
+                unknown, self._unknown_bumpers = self._unknown_bumpers, []
+            for bumper in unknown:
+                self.log_warn(f"ignored a bumper event with unknown bumper {bumper} on {self._topic}")
+            return sorted(pressed, key=list(KOBUKI_ZONES.values()).index)
         msg = sub.last()
         if msg is None:
             return []

@@ -7,7 +7,7 @@ proxies of the behavior a state runs in (``NotReadyError`` if its runner injecte
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Optional, Protocol, cast
+from typing import TYPE_CHECKING, Any, Callable, Optional, Protocol, cast
 
 if TYPE_CHECKING:
     from flex_nav.behavior.state import State
@@ -33,6 +33,10 @@ class SubscriptionLike(Protocol):
     def has_buffered(self) -> bool: ...
 
     def pop_buffered(self) -> Optional[Any]: ...
+
+    def add_callback(self, callback: Callable[[Any], None]) -> None:
+        """Also call ``callback(msg)`` for every message (in the transport's thread)."""
+        ...
 
 
 class ActionClientLike(Protocol):

@@ -9,13 +9,14 @@ from nav_msgs.msg import Odometry
 from sensor_msgs.msg import LaserScan
 from unit.states.states_testlib import Harness, KinematicRobot, pose_stamped
 
-from flex_nav.behavior import LogLevel
+from flex_nav.behavior import LogLevel, StateMachine
 from flex_nav.exceptions import ConfigError
 from flex_nav.msg import BumperEvent, BumperState, CreateBumper
 from flex_nav_states.bumper_monitor_state import BumperMonitorState
 from flex_nav_states.get_pose_state import GetPoseState
 from flex_nav_states.sensor_freshness_state import SensorFreshnessState
 from flex_nav_states.stuck_monitor_state import StuckMonitorState
+from flex_nav_states.wait_state import WaitState
 
 # --- BumperMonitor ------------------------------------------------------------------------------------------
 
@@ -51,6 +52,40 @@ def test_bumper_kobuki_press_and_release_before_entry_does_not_fire():
     sub.inject(event(BumperEvent.CENTER, True))
     result = h.run(max_time_s=1.0)
     assert result.outputs["bumper_zones"] == ["left", "center"]
+
+
+def test_bumper_kobuki_short_press_while_watching_fires():
+    """A glancing contact: pressed and released between two ticks of the running monitor."""
+    h = Harness(BumperMonitorState(profile="kobuki")).start()
+    sub = h.proxies.sub("events/bumper")
+    h.run_for(0.5)
+    sub.inject(event(BumperEvent.CENTER, True))
+    sub.inject(event(BumperEvent.CENTER, False))
+    result = h.run(max_time_s=1.0)
+    assert result.outcome == "bumper" and result.outputs["bumper_zones"] == ["center"]
+
+
+def test_bumper_kobuki_monitors_of_one_behavior_each_see_every_event():
+    """Two monitors on one topic (as move_base_like's copies of its navigate state): a release that arrives
+    while the other one runs must still reach the first, or it reports the old press when entered again."""
+    sm = StateMachine(outcomes=["finished"])
+    sm.add("A", BumperMonitorState(profile="kobuki"), transitions={"bumper": "WaitA", "cliff": "finished"})
+    sm.add("WaitA", WaitState(wait_time_s=1.0), transitions={"done": "B"})
+    sm.add("B", BumperMonitorState(profile="kobuki"), transitions={"bumper": "WaitB", "cliff": "finished"})
+    sm.add("WaitB", WaitState(wait_time_s=1.0), transitions={"done": "A"})
+    h = Harness(sm).start()
+    sub = h.proxies.sub("events/bumper")
+    h.run_for(0.5)
+    sub.inject(event(BumperEvent.CENTER, True))  # A fires
+    h.run_for(0.5)
+    sub.inject(event(BumperEvent.CENTER, False))  # released while waiting
+    h.run_for(1.0)  # B runs
+    sub.inject(event(BumperEvent.LEFT, True))  # B fires
+    h.run_for(0.5)
+    sub.inject(event(BumperEvent.LEFT, False))
+    h.run_for(2.0)  # A runs again: nothing is pressed
+    presses = [t for t in h.texts(LogLevel.WARN) if t.startswith("bumper pressed")]
+    assert presses == ["bumper pressed: center (on events/bumper)", "bumper pressed: left (on events/bumper)"]
 
 
 def test_bumper_still_pressed_at_entry_fires_at_once():
