@@ -354,6 +354,40 @@ class TestControllerSafety(unittest.TestCase):
         second.cancel()
         self.assertEqual(self.wait_terminal(second), GoalStatus.PREEMPTED)
 
+    # ------------------------------------------------------------------ the controller shuts down
+    def test_a_controller_shut_down_mid_goal_sends_a_zero_twist_last(self):
+        """Ctrl-C on the launch (SIGINT): the controller's last command is a stop, not its last drive."""
+        cmds = Commands("pp_stopping/cmd")
+        node = subprocess.Popen(["rosrun", "flex_nav", "pure_pursuit_path", "__name:=pp_stopping",
+                                 "cmd_vel_stamped:=pp_stopping/cmd", "_controller_frequency:=20.0",
+                                 "_sensor_timeout:=1.0", "_pure_pursuit/desired_linear_vel:=0.3"],
+                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=dict(os.environ))
+        try:
+            client = actionlib.ActionClient("pp_stopping", FollowPathAction)
+            self.assertTrue(client.wait_for_server(rospy.Duration(WAIT_S)), "pp_stopping did not come up")
+            deadline = rospy.get_time() + WAIT_S
+            handle = None
+            while rospy.get_time() < deadline:  # its odometry subscription may take a moment
+                mark = cmds.mark()
+                handle = client.send_goal(FollowPathGoal(path=straight_path()))
+                if cmds.wait_for(moving, mark, 2.0) is not None:
+                    break
+                handle.cancel()
+            self.assertIsNotNone(handle)
+            mark = cmds.mark()
+            self.assertIsNotNone(cmds.wait_for(moving, mark), "pp_stopping never drove")
+            mark = cmds.mark()
+            node.send_signal(signal.SIGINT)
+            node.wait(RESULT_WAIT_S)
+            rospy.sleep(4 * PERIOD_S)
+            sent = cmds.since(mark)
+            self.assertTrue(sent, "nothing was published after the signal")
+            self.assertTrue(is_zero(sent[-1]), f"the last command was {sent[-1].twist}")
+        finally:
+            if node.poll() is None:
+                node.kill()
+                node.wait(RESULT_WAIT_S)
+
     # ------------------------------------------------------------------ the client's node dies
     def start_doomed_client(self, *args):
         return subprocess.Popen([sys.executable, str(DOOMED_CLIENT), "pp_path", *args], stdout=subprocess.PIPE,

@@ -4,6 +4,7 @@ bumper hits and clear_costmap (nodes_io.test)."""
 
 import math
 import os
+import signal
 import subprocess
 import sys
 import tempfile
@@ -134,6 +135,38 @@ class TestNodesIO(unittest.TestCase):
             self.assertFalse(os.path.exists(os.path.join(folder, "none.yaml")))
 
     # ------------------------------------------------------------------ twist_relay
+    def test_twist_relay_stops_the_base_when_it_shuts_down(self):
+        """Ctrl-C on a launch: the relay's last word to the base is a zero Twist (its timeout is off here, so
+        nothing else would send one)."""
+        relay = subprocess.Popen(["rosrun", "flex_nav", "twist_relay", "__name:=twist_relay", "__ns:=stopping",
+                                  "_timeout:=0.0"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                 start_new_session=True)
+        try:
+            out = Latest("stopping/cmd_vel", Twist)
+            pub = rospy.Publisher("stopping/cmd_vel_stamped", TwistStamped, queue_size=1)
+            deadline = rospy.get_time() + WAIT_S
+            while (pub.get_num_connections() == 0 or out.sub.get_num_connections() == 0) and \
+                    rospy.get_time() < deadline:
+                rospy.sleep(0.05)
+            self.assertGreater(out.sub.get_num_connections(), 0, "the second relay did not come up")
+            cmd = TwistStamped()
+            cmd.header.stamp = rospy.Time.now()
+            cmd.twist.linear.x = 0.2
+            pub.publish(cmd)
+            self.assertIsNotNone(out.wait_for(lambda m: m.linear.x == 0.2), "command not forwarded")
+            moving = out.count()
+            relay.send_signal(signal.SIGINT)
+            relay.wait(timeout=WAIT_S)
+            stop = out.wait_for(lambda m: m.linear.x == 0.0 and m.angular.z == 0.0, timeout_s=2.0, after=moving)
+            self.assertIsNotNone(stop, "no zero Twist when the relay shut down")
+            self.assertEqual(out.msgs[-1].linear.x, 0.0, "a command followed the zero")
+            pub.unregister()
+            out.sub.unregister()
+        finally:
+            if relay.poll() is None:
+                relay.kill()
+                relay.wait(timeout=WAIT_S)
+
     def test_twist_relay_forwards_drops_non_finite_and_times_out(self):
         out = Latest("cmd_vel", Twist)
         pub = rospy.Publisher("cmd_vel_stamped", TwistStamped, queue_size=1)

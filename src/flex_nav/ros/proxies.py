@@ -255,7 +255,7 @@ class ActionClientProxy:
         were sent, or at ``deadline``, time.monotonic() [s]). The proxy is unusable afterwards."""
         self.cancel()
         for pub in (self._client.pub_goal, self._client.pub_cancel):
-            _drain(pub, deadline)
+            drain_publisher(pub, deadline)
         self._client.stop()
 
 
@@ -363,7 +363,7 @@ class RosProxies:
                 sub.unregister()
             deadline = time.monotonic() + PUBLISH_DRAIN_S
             for _msg_type, pub in self._publishers.values():
-                _drain(pub, deadline)
+                drain_publisher(pub, deadline)
                 pub.unregister()
             for client in self._action_clients.values():
                 client.close(deadline)
@@ -373,7 +373,7 @@ class RosProxies:
             self._services.clear()
 
 
-def _drain(publisher: rospy.Publisher, deadline: float) -> None:
+def drain_publisher(publisher: rospy.Publisher, deadline: float) -> None:
     """Wait until rospy has sent everything published on ``publisher``, or until ``deadline`` (time.monotonic()
     [s]). A publisher made with ``queue_size`` hands messages to one writer thread per
     connection (rospy's QueuedConnection), which takes the whole queue and writes it outside its lock; the

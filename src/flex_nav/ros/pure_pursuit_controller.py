@@ -57,9 +57,11 @@ from flex_nav.ros.frames import frame_pose, path_in_frame
 from flex_nav.ros.goal_server import RESULT_ABORTED, RESULT_SUCCEEDED, GoalServer, GoalTicket
 from flex_nav.ros.moving_obstacles_ros import MovingObstaclesROS, yield_rule
 from flex_nav.ros.params import param_bool, param_float, param_str, reject_unknown
+from flex_nav.ros.proxies import drain_publisher
 from flex_nav.ros.topic_path import TopicPath, TopicPaths
 
 SOURCES = ("path", "topic")
+SHUTDOWN_DRAIN_S = 0.5  # [s] bound on sending the final zero twist while the node shuts down
 PARAMETERS = (
     "global_frame", "robot_base_frame", "controller_frequency", "sensor_timeout", "collision_timeout",
     "transform_timeout", "topic_timeout", "feedback_frequency", "local_costmap", "pure_pursuit",
@@ -133,6 +135,8 @@ class PurePursuitController:
         self._publish_lock = threading.Lock()
         self._topics = TopicPaths(self._wake)
         self.cmd_publisher = rospy.Publisher("cmd_vel_stamped", TwistStamped, queue_size=1, tcp_nodelay=True)
+        self._shut_down = False  # set by the shutdown hook: no moving command after its zero twist
+        rospy.on_shutdown(self._on_shutdown)
         self.odom_subscriber = rospy.Subscriber("odom", Odometry, self._on_odom, queue_size=1, tcp_nodelay=True)
         self.costmap.serve_clear_costmap(self.name + "/clear_costmap")
         spec = action_type("FollowPath" if source == "path" else "FollowTopic")
@@ -178,7 +182,7 @@ class PurePursuitController:
         """Publish (v, w); a non-zero command only while ``ticket`` is the current goal. True if published."""
         with self._publish_lock:
             moving = v != 0.0 or w != 0.0
-            if moving and (ticket is None or not self.server.is_current(ticket)):
+            if moving and (ticket is None or self._shut_down or not self.server.is_current(ticket)):
                 return False
             msg = TwistStamped()
             msg.header.stamp = rospy.Time.now()
@@ -186,6 +190,13 @@ class PurePursuitController:
             msg.twist.linear.x, msg.twist.angular.z = v, w
             self.cmd_publisher.publish(msg)
             return True
+
+    def _on_shutdown(self) -> None:
+        """The node is stopping: a zero twist, sent before rospy closes the connections; nothing moves after."""
+        with self._publish_lock:
+            self._shut_down = True
+        self._publish(None, 0.0, 0.0)
+        drain_publisher(self.cmd_publisher, time.monotonic() + SHUTDOWN_DRAIN_S)
 
     def _on_cancel(self, _ticket: GoalTicket, replaced: bool) -> None:
         self._publish(None, 0.0, 0.0)

@@ -10,20 +10,24 @@ between them: a command stamped before one already forwarded is dropped, and at 
 (:class:`~flex_nav.follow.safety.CommandOrder`). When ROS time moves backwards (a restarted simulation, a
 looped bag) a zero Twist goes out and the order starts afresh, so the new timeline's commands get through; a
 command stamped more than 1 s ahead of this node's clock (the old timeline's, sent by a node that has not seen
-the jump yet) is dropped, so it cannot block them again.
+the jump yet) is dropped, so it cannot block them again. When the node shuts down (Ctrl-C, the launch ending,
+``rosnode kill``) it publishes a last zero Twist and forwards nothing after it.
 """
 
 from __future__ import annotations
 
 import threading
+import time
 
 import rospy
 from geometry_msgs.msg import Twist, TwistStamped
 
 from flex_nav.follow.safety import CommandOrder, CommandTimeout, twist_problem
 from flex_nav.ros.params import param_float, reject_unknown
+from flex_nav.ros.proxies import drain_publisher
 
 CHECK_PERIOD_MIN_S = 0.01  # [s] fastest timeout check
+SHUTDOWN_DRAIN_S = 0.5  # [s] bound on sending the final zero Twist while the node shuts down
 FUTURE_STAMP_TOLERANCE_S = 1.0  # [s] commands stamped further ahead of this node's clock are not forwarded
 
 
@@ -38,6 +42,8 @@ class TwistRelay:
         self.subscriber = rospy.Subscriber("cmd_vel_stamped", TwistStamped, self._on_command, queue_size=1,
                                            tcp_nodelay=True)
         self._timer = None
+        self._shut_down = False
+        rospy.on_shutdown(self._on_shutdown)
         self._last_now_s = rospy.get_time()
         if timeout_s > 0.0:
             period_s = max(CHECK_PERIOD_MIN_S, timeout_s / 5.0)
@@ -63,6 +69,8 @@ class TwistRelay:
         lin, ang = msg.twist.linear, msg.twist.angular
         problem = twist_problem((lin.x, lin.y, lin.z), (ang.x, ang.y, ang.z))
         with self._lock:
+            if self._shut_down:
+                return
             self._clock_went_back()
             if problem is not None:
                 rospy.logerr_throttle(1.0, f"twist_relay: {problem}; dropped, publishing a zero Twist instead")
@@ -89,3 +97,11 @@ class TwistRelay:
             if self._timeout.due(self._last_now_s):
                 rospy.logwarn(f"twist_relay: no command for {self._timeout.timeout_s:.2f} s; publishing a zero Twist")
                 self.publisher.publish(Twist())
+
+    def _on_shutdown(self) -> None:
+        """The node is stopping (Ctrl-C, roslaunch ending, rosnode kill): the base gets a zero Twist, not the
+        last command until its driver's own timeout; nothing is forwarded after it."""
+        with self._lock:
+            self._shut_down = True
+            self.publisher.publish(Twist())
+        drain_publisher(self.publisher, time.monotonic() + SHUTDOWN_DRAIN_S)
