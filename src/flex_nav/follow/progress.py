@@ -62,7 +62,8 @@ class PathProgress:
         if not (math.isfinite(x) and math.isfinite(y)):
             raise ConfigError(f"robot position must be finite, got ({x!r}, {y!r})")
         window = math.inf if self._fresh else 2.0 * self.lookahead_distance + self.goal_tolerance
-        closest = closest_point(self.path, x, y, start_index=self._index, max_arc=window, lengths=self.lengths)
+        closest = closest_point(self.path, x, y, start_index=self._index, max_arc=window, lengths=self.lengths,
+                                earliest_within=self.goal_tolerance if self._fresh else 0.0)
         self._fresh = False
         self._index = closest.index
         end_x, end_y = float(self.path[-1, 0]), float(self.path[-1, 1])

@@ -63,13 +63,17 @@ def closest_point(
     start_index: int = 0,
     max_arc: float = math.inf,
     lengths: np.ndarray | None = None,
+    earliest_within: float = 0.0,
 ) -> PathPoint:
     """The point of the path nearest to (x, y) [m], searching segment ``start_index`` and the segments after
     it whose start lies less than ``max_arc`` [m] of arc beyond that segment's end (a bounded window keeps
     following monotonic and fast). Measured from the segment's end, not its start, so that a segment longer
     than the window (planners return sparse paths) never hides the next one.
 
-    Ties go to the earliest segment.
+    Ties go to the earliest segment. With ``earliest_within`` [m] > 0, the nearest point of the first pass of
+    the path by (x, y) is taken, a pass being a run of consecutive segments at most that much farther than the
+    nearest: a robot at the start of a path that loops back to it is at the start, even when the closing
+    segment happens to pass a few millimetres nearer (a follower's first look at a new path).
     """
     lengths = cumulative_lengths(path) if lengths is None else lengths
     n = path.shape[0]
@@ -80,8 +84,25 @@ def closest_point(
     stop = n - 1 if math.isinf(max_arc) else int(np.searchsorted(lengths, window_end, "left"))
     stop = min(max(stop, start_index + 1), n - 1)
     index, t, px, py, d2 = _closest_on_segments(path, start_index, stop, float(x), float(y))
+    if earliest_within > 0.0 and index > start_index:
+        near = _segment_distances(path[start_index:stop + 1], x, y) <= math.sqrt(d2) + earliest_within
+        first = int(np.argmax(near))  # near[index - start_index] is True
+        run_end = first + int(np.argmin(near[first:])) if not near[first:].all() else near.size
+        if start_index + run_end <= index:  # an earlier pass of the path near (x, y): the nearest point of it
+            index, t, px, py, d2 = _closest_on_segments(path, start_index + first, start_index + run_end,
+                                                        float(x), float(y))
     seg = lengths[index + 1] - lengths[index]
     return PathPoint(index, t, px, py, float(lengths[index] + t * seg), math.sqrt(d2))
+
+
+def _segment_distances(path: np.ndarray, x: float, y: float) -> np.ndarray:
+    """[m] from (x, y) to each segment of ``path`` (N - 1 values)."""
+    a, b = path[:-1, :2], path[1:, :2]
+    ab = b - a
+    denom = np.einsum("ij,ij->i", ab, ab)
+    t = np.einsum("ij,ij->i", np.array([x, y]) - a, ab) / np.where(denom > 0.0, denom, 1.0)
+    nearest = a + np.clip(t, 0.0, 1.0)[:, None] * ab
+    return np.hypot(nearest[:, 0] - x, nearest[:, 1] - y)
 
 
 @njit(cache=True, nogil=True)

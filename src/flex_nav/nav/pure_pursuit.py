@@ -252,7 +252,8 @@ class RegulatedPurePursuit:
             lookahead = min(max(abs(v_now) * p.lookahead_time, p.min_lookahead_dist), p.max_lookahead_dist)
         # first step on a path: search all of it; then a window ahead of the last point (monotonic, bounded)
         window = math.inf if self._fresh else 2.0 * max(lookahead, p.max_lookahead_dist)
-        closest = closest_point(path, x, y, start_index=self._index, max_arc=window, lengths=self._lengths)
+        closest = closest_point(path, x, y, start_index=self._index, max_arc=window, lengths=self._lengths,
+                                earliest_within=p.goal_dist_tol if self._fresh else 0.0)
         self._fresh = False
         self._index = closest.index
         remaining = float(self._lengths[-1] - closest.s)

@@ -41,6 +41,17 @@ def test_loop_path_is_not_done_at_its_start():
     assert p.target[:2] == pytest.approx((1.0, 0.0))
 
 
+def test_loop_path_closing_a_hair_nearer_than_its_start_is_not_done_at_its_start():
+    """A closed patrol loop (end = start): the robot a few millimetres nearer the closing segment than the
+    first one is still at the start, not at the end."""
+    loop = np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0], [0.0, 0.0]])
+    progress = PathProgress(loop, lookahead_distance=1.0, goal_tolerance=0.1)
+    p = progress.update(-0.003, 0.02)  # 0.003 m from the closing segment, 0.020 m from the first
+    assert not p.done
+    assert p.travelled == pytest.approx(0.0)
+    assert p.remaining == pytest.approx(8.0)
+
+
 def test_tracking_is_monotonic_where_the_path_passes_close_by():
     # an S whose later part passes 0.4 m from the start region
     path = np.array([[0.0, 0.0], [5.0, 0.0], [5.0, 1.0], [1.0, 1.0], [1.0, 0.4], [6.0, 0.4]])

@@ -40,6 +40,20 @@ def test_lengths():
     assert path_length(np.array([[1.0, 1.0]])) == 0.0
 
 
+def test_closest_point_prefers_the_earliest_segment_within_the_slack():
+    loop = np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0], [0.0, 0.0]])
+    nearest = closest_point(loop, -0.003, 0.02)
+    assert nearest.index == 3 and nearest.distance == pytest.approx(0.003)  # the closing segment
+    early = closest_point(loop, -0.003, 0.02, earliest_within=0.05)
+    assert early.index == 0 and early.s == pytest.approx(0.0)
+    assert early.distance == pytest.approx(math.hypot(0.003, 0.02))
+    # a segment farther than the slack is not preferred
+    assert closest_point(loop, -0.003, 0.02, earliest_within=0.01).index == 3
+    # one pass: its nearest point, not the earliest segment within the slack
+    line = np.column_stack([np.linspace(0.0, 5.0, 101), np.zeros(101)])
+    assert closest_point(line, 2.0, 0.01, earliest_within=0.5).s == pytest.approx(2.0)
+
+
 def test_closest_point_projects_on_segments():
     p = closest_point(L_PATH, 1.2, -0.5)
     assert (p.index, p.x, p.y, p.s) == (0, 1.2, 0.0, 1.2) and p.distance == pytest.approx(0.5)

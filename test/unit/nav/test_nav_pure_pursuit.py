@@ -38,6 +38,15 @@ def test_straight_path_accelerates_within_limits():
     assert cmd.v == pytest.approx(0.5)  # desired speed, never above
 
 
+def test_a_closed_loop_is_not_reached_at_its_start():
+    """A patrol loop ending where it starts: the robot a hair nearer the closing segment drives the loop."""
+    loop = np.array([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [2.0, 2.0, 0.0], [0.0, 2.0, 0.0], [0.0, 0.0, 0.0]])
+    ctl = controller(loop, goal_dist_tol=0.1, use_final_heading=False)
+    cmd = ctl.step((-0.003, 0.02, 0.0), (0.0, 0.0), DT)  # 0.003 m from the closing leg, 0.020 m from the first
+    assert cmd.status is PursuitStatus.FOLLOWING, cmd.reason
+    assert cmd.distance_to_goal == pytest.approx(8.0, abs=0.01)
+
+
 def test_path_behind_rotates_in_place_towards_it():
     ctl = controller()
     cmd = ctl.step((1.0, 0.0, math.pi * 0.75), (0.0, 0.0), DT)  # facing back-left, path ahead along +x
