@@ -5,11 +5,15 @@ from __future__ import annotations
 import math
 from typing import Optional
 
+from sensor_msgs.msg import LaserScan
+
 from flex_nav.behavior.userdata import UserDataView
 from flex_nav.exceptions import ConfigError
 from flex_nav_states import validation
-from flex_nav_states.messages import OdomSample, wrap_angle
+from flex_nav_states.messages import OdomSample, message_age_s, wrap_angle
 from flex_nav_states.motion_base import MotionBase, closed_loop_timeout, stall_watch
+from flex_nav_states.proxy_types import SubscriptionLike, proxies_of
+from flex_nav_states.rear_clearance import gap_behind_m
 
 SLOWDOWN_GAIN = 1.5  # [1/s] commanded speed = gain x remaining distance near the end (capped at speed_mps)
 MIN_SPEED_MPS = 0.05  # [m/s] slowest commanded speed (below this many bases do not move)
@@ -34,9 +38,18 @@ class MoveDistanceState(MotionBase):
     -- odom_timeout_s    float  [s] Fail when no fresh odometry for this long.
     -- cmd_topic         str    geometry_msgs/TwistStamped command topic.
     -- frame_id          str    frame_id of the commands (the robot's base frame).
+    -- scan_topic        str    sensor_msgs/LaserScan topic: backing up, stop and fail when a point lies in the
+                                way behind ("" for none: the robot backs up blind). Its frame is taken as the
+                                base's (a lidar near the centre; see flex_nav_states.rear_clearance). A
+                                scan that does not cover the back (a front-only lidar, a depth camera) shows
+                                it free: the check is only as good as the scan's field of view.
+    -- robot_radius_m    float  [m] Radius of the base, for the way behind (> 0).
+    -- clearance_m       float  [m] Margin kept to what is behind (>= 0).
+    -- scan_max_age_s    float  [s] Backing up needs a scan at most this old.
 
     <= done    The distance was driven (within tolerance_m).
-    <= failed  Stalled, timed out, or odometry was missing; the reason is logged.
+    <= failed  Stalled, timed out, odometry was missing, or (with scan_topic) something was in the way behind
+               or no fresh scan showed it free; the reason is logged.
     """
 
     def __init__(
@@ -52,6 +65,10 @@ class MoveDistanceState(MotionBase):
         odom_timeout_s: float = 0.5,
         cmd_topic: str = "cmd_vel_stamped",
         frame_id: str = "base_footprint",
+        scan_topic: str = "",
+        robot_radius_m: float = 0.2,
+        clearance_m: float = 0.05,
+        scan_max_age_s: float = 0.5,
     ) -> None:
         super().__init__(
             ["done", "failed"],
@@ -72,8 +89,19 @@ class MoveDistanceState(MotionBase):
         self._stall = stall_watch(owner, stall_window_s, progress_name="stall_distance_m",
                                   min_progress=stall_distance_m, unit="m",
                                   slowest_speed=min(MIN_SPEED_MPS, self._speed_mps))
+        self._scan_topic = validation.name(owner, "scan_topic", scan_topic, allow_empty=True)
+        self._robot_radius_m = validation.number(owner, "robot_radius_m", robot_radius_m, positive=True, unit="[m]")
+        self._clearance_m = validation.number(owner, "clearance_m", clearance_m, minimum=0.0, unit="[m]")
+        self._scan_max_age_s = validation.number(owner, "scan_max_age_s", scan_max_age_s, positive=True,
+                                                 unit="[s]")
+        self._scan: Optional[SubscriptionLike] = None
         self._start: Optional[OdomSample] = None
         self._progress_m = 0.0
+
+    def on_start(self) -> None:
+        super().on_start()
+        if self._scan_topic and self._distance_m < 0.0:
+            self._scan = proxies_of(self).subscription(self._scan_topic, LaserScan)
 
     def on_enter(self, userdata: UserDataView) -> None:
         super().on_enter(userdata)
@@ -104,20 +132,39 @@ class MoveDistanceState(MotionBase):
         if remaining <= self._tolerance_m:
             self.log_info(f"moved {direction * self._progress_m:+.3f} m (target {self._distance_m:+.3f} m)")
             return "done"
-        if self.elapsed_s() > self._timeout_s:
-            self.log_error(
-                f"move {self._distance_m:+.3f} m timed out after {self._timeout_s:.1f} s at "
-                f"{direction * self._progress_m:+.3f} m"
-            )
-            return "failed"
-        if self._stall.stalled(self._progress_m, now):
-            self.log_error(
-                f"move {self._distance_m:+.3f} m stalled at {direction * self._progress_m:+.3f} m: less than "
-                f"{self._stall.min_progress:g} m of progress in {self._stall.window_s:g} s"
-            )
+        problem = self._problem(now, remaining)
+        if problem is not None:
+            self.stop()
+            self.log_error(f"move {self._distance_m:+.3f} m {problem}")
             return "failed"
         speed = min(self._speed_mps, max(MIN_SPEED_MPS, SLOWDOWN_GAIN * remaining))
         heading_error = wrap_angle(sample.yaw - start.yaw)
         w = max(-MAX_HEADING_RATE, min(MAX_HEADING_RATE, -HEADING_GAIN * heading_error))
         self.send(direction * speed, w)
         return None
+
+    def _problem(self, now: float, remaining_m: float) -> Optional[str]:
+        """Why the move fails now (timed out, stalled, something behind), or None."""
+        at = f"at {math.copysign(1.0, self._distance_m) * self._progress_m:+.3f} m"
+        if self.elapsed_s() > self._timeout_s:
+            return f"timed out after {self._timeout_s:.1f} s {at}"
+        if self._stall.stalled(self._progress_m, now):
+            return (f"stalled {at}: less than {self._stall.min_progress:g} m of progress in "
+                    f"{self._stall.window_s:g} s")
+        behind = self._way_behind_problem(remaining_m)
+        return f"stopped {at}: {behind}" if behind is not None else None
+
+    def _way_behind_problem(self, remaining_m: float) -> Optional[str]:
+        """Why backing up on is not safe (something in the way, no fresh scan), or None (also when not checked)."""
+        if not self._scan_topic or self._distance_m > 0.0:
+            return None
+        sub = self._scan
+        if sub is None:
+            sub = self._scan = proxies_of(self).subscription(self._scan_topic, LaserScan)
+        scan = sub.last()
+        if scan is None or message_age_s(scan, sub, self.now_s()) > self._scan_max_age_s:
+            return f"no scan on {self._scan_topic} newer than scan_max_age_s {self._scan_max_age_s:g} s to see behind"
+        gap = gap_behind_m(scan, self._robot_radius_m, self._clearance_m, remaining_m)
+        if gap is None:
+            return None
+        return f"something is {gap:.2f} m behind the robot, in the way (clearance_m {self._clearance_m:g} m)"

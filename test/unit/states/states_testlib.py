@@ -9,6 +9,7 @@ from typing import Any, Dict, List, Optional
 import genpy
 from geometry_msgs.msg import PoseStamped, TwistStamped
 from nav_msgs.msg import Odometry, Path
+from sensor_msgs.msg import LaserScan
 from unit.states.fake_proxies import FakeProxies
 
 from flex_nav.behavior import BehaviorExecutor, BehaviorResult, LogEvent, ManualClock, State
@@ -159,6 +160,19 @@ def path(points: List[tuple], frame: str = "map", stamp_s: float = START_S) -> P
         yaw = math.atan2(ny - y, nx - x) if i + 1 < len(points) else math.atan2(y - py, x - px)
         msg.poses.append(pose_stamped(x, y, yaw, stamp_s, frame))
     return msg
+
+
+def rear_wall_scan(stamp_s: float, robot_x: float, wall_x: Optional[float] = None) -> LaserScan:
+    """A 360-beam scan from a robot at ``robot_x`` facing +x: a wall across the world at x = ``wall_x`` behind
+    it, or nothing at all (None)."""
+    scan = LaserScan()
+    scan.header.stamp = genpy.Time.from_sec(stamp_s)
+    scan.angle_min, scan.angle_increment = -math.pi, 2.0 * math.pi / 360
+    scan.range_min, scan.range_max = 0.1, 12.0
+    cosines = [math.cos(scan.angle_min + i * scan.angle_increment) for i in range(360)]
+    gap = robot_x - wall_x if wall_x is not None else 0.0
+    scan.ranges = [gap / -c if wall_x is not None and c < -1e-6 else math.inf for c in cosines]
+    return scan
 
 
 def twists(harness: Harness, topic: str = "cmd_vel_stamped") -> List[tuple]:

@@ -7,7 +7,8 @@ from pathlib import Path
 
 from actionlib_msgs.msg import GoalStatus
 from geometry_msgs.msg import PoseStamped
-from unit.states.states_testlib import Harness, KinematicRobot, path, pose_stamped, twists
+from sensor_msgs.msg import LaserScan
+from unit.states.states_testlib import Harness, KinematicRobot, path, pose_stamped, rear_wall_scan, twists
 from unit.states.test_states_obstacles import Camera
 
 from flex_nav.behavior.yaml_loader import load_behavior
@@ -45,6 +46,8 @@ class Scene:
                 clear.respond(GoalStatus.SUCCEEDED, ClearCostmapResult(code=ClearCostmapResult.SUCCESS))
         self.h.start()
         self.camera = Camera(self.h, label)
+        self.lidar = self.h.proxies.subscription("scan", LaserScan)
+        self.wall_behind_x = None  # [m] world x of something behind the robot (None: free all round)
         self.h.proxies.subscription("move_base_simple/goal", PoseStamped).inject(
             pose_stamped(3.0, 0.0, stamp_s=self.h.clock.now()))
 
@@ -59,6 +62,7 @@ class Scene:
             if on_step is not None:
                 on_step()
             self.camera.publish()
+            self.lidar.inject(rear_wall_scan(self.h.clock.now(), self.robot.x, self.wall_behind_x))
         raise AssertionError(f"no {text!r} within {max_time_s} s:\n{self.h.log_text()}")
 
     def visited(self) -> list:
@@ -83,6 +87,16 @@ def test_person_is_never_pushed_the_robot_backs_off_waits_and_goes_on():
     assert all(v <= 0.0 for v, _ in twists(scene.h))  # never a forward command (the controller is faked)
     assert abs(scene.robot.x + 0.3) < 0.03
     assert any("path clear" in t for t in scene.h.texts())
+    assert len(scene.follower.goals) == 2
+
+
+def test_backing_off_from_a_person_stops_for_someone_behind_and_the_behavior_goes_on():
+    scene = Scene(lambda t: "person" if t < 4.0 else "clear", BLOCKED_THEN_DONE, backoff_m=-0.3)
+    scene.wall_behind_x = -0.35  # someone 0.35 m behind the start: 0.18 m behind the robot's back
+    scene.run_until("goal reached", 30.0)
+    assert any("behind the robot, in the way" in t for t in scene.h.texts()), scene.h.log_text()
+    assert -0.2 < scene.robot.x <= 0.0  # stopped short of the 0.3 m back-off
+    assert any("path clear" in t for t in scene.h.texts())  # waited for the person as after a full back-off
     assert len(scene.follower.goals) == 2
 
 

@@ -6,14 +6,16 @@ import math
 
 import pytest
 from nav_msgs.msg import Odometry
+from sensor_msgs.msg import LaserScan
 from unit.states.fake_proxies import FakeProxies
-from unit.states.states_testlib import Harness, KinematicRobot, odometry, path, twists
+from unit.states.states_testlib import Harness, KinematicRobot, odometry, path, rear_wall_scan, twists
 
 from flex_nav.behavior import Autonomy, BehaviorStatus, LogLevel, ManualClock, StateMachine
 from flex_nav.exceptions import ConfigError
 from flex_nav_states.messages import message_age_s
 from flex_nav_states.move_distance_state import MoveDistanceState
 from flex_nav_states.pure_pursuit_state import PurePursuitState
+from flex_nav_states.rear_clearance import gap_behind_m
 from flex_nav_states.rotate_angle_state import RotateAngleState
 from flex_nav_states.timed_stop_state import TimedStopState
 from flex_nav_states.timed_twist_state import TimedTwistState
@@ -43,6 +45,61 @@ def test_move_distance_drives_the_distance_on_odometry(distance):
     signs = {math.copysign(1.0, v) for v, _ in twists(h) if v != 0.0}
     assert signs == {math.copysign(1.0, distance)}
     assert max(abs(v) for v, _ in twists(h)) <= 0.2 + 1e-9
+
+
+def back_up_with_scan(wall_x, *, wall_from_s=0.0, scan=True):
+    """Backs up 0.3 m with the way behind checked; a wall at ``wall_x`` appears at ``wall_from_s``."""
+    h, robot = with_robot(MoveDistanceState(distance_m=-0.3, speed_mps=0.15, scan_topic="scan",
+                                            robot_radius_m=0.2, clearance_m=0.05))
+    sub = h.proxies.subscription("scan", LaserScan)
+    h.start()
+    start = h.clock.now()
+    while h.clock.now() - start < 10.0:
+        if scan:
+            elapsed = h.clock.now() - start
+            sub.inject(rear_wall_scan(h.clock.now(), robot.x, wall_x if elapsed >= wall_from_s else None))
+        if h.tick():
+            return h, robot, h.executor.result()
+        h.advance(0.05)
+    raise AssertionError(h.log_text())
+
+
+def test_backing_up_with_the_way_behind_free_drives_the_distance():
+    h, robot, result = back_up_with_scan(wall_x=-0.6)  # the corridor swept ends 0.55 m behind the start
+    assert result.outcome == "done", h.log_text()
+    assert robot.x == pytest.approx(-0.3, abs=0.02)
+
+
+def test_backing_up_toward_something_behind_does_not_start():
+    h, robot, result = back_up_with_scan(wall_x=-0.45)
+    assert result.outcome == "failed"
+    assert all(v == 0.0 for v, _ in twists(h)) and robot.x == 0.0
+    assert any("0.25 m behind the robot, in the way" in t for t in h.texts(LogLevel.ERROR)), h.log_text()
+
+
+def test_backing_up_stops_when_someone_steps_in_behind():
+    h, robot, result = back_up_with_scan(wall_x=-0.5, wall_from_s=0.8)
+    assert result.outcome == "failed"
+    assert -0.2 < robot.x < -0.05  # it had started
+    assert last_twist(h) == (0.0, 0.0)
+    assert any("behind the robot" in t for t in h.texts(LogLevel.ERROR)), h.log_text()
+
+
+def test_backing_up_without_a_scan_does_not_start():
+    h, robot, result = back_up_with_scan(wall_x=-5.0, scan=False)
+    assert result.outcome == "failed" and robot.x == 0.0
+    assert any("no scan on scan newer than scan_max_age_s 0.5 s" in t for t in h.texts(LogLevel.ERROR))
+
+
+def test_gap_behind_sees_only_the_corridor_swept():
+    scan = LaserScan(angle_min=-math.pi, angle_increment=math.pi / 2, range_min=0.05, range_max=10.0,
+                     ranges=[0.5, 0.3, 0.4, 0.3])  # behind, right, ahead, left
+    assert gap_behind_m(scan, 0.2, 0.05, 0.3) == pytest.approx(0.3)
+    assert gap_behind_m(scan, 0.2, 0.05, 0.0) is None  # 0.5 m behind the centre: beyond 0.25 m
+    scan.ranges = [math.inf, 0.3, 0.4, 0.3]  # only beside and ahead: free behind
+    assert gap_behind_m(scan, 0.2, 0.05, 1.0) is None
+    scan.ranges = [0.04, 0.3, 0.4, 0.3]  # closer than range_min: no return
+    assert gap_behind_m(scan, 0.2, 0.05, 1.0) is None
 
 
 def test_move_distance_holds_the_heading():

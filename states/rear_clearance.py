@@ -1,0 +1,32 @@
+"""Is the way behind the robot free? A laser scan's points in the corridor a backing-up robot sweeps.
+
+Used by :class:`~flex_nav_states.move_distance_state.MoveDistanceState` when it backs up with a ``scan_topic``.
+The scan's frame is taken as the robot's base frame (x forward, y left): a lidar mounted near the centre of a
+round base, as on the TurtleBot 2 and 4, within a few centimetres that the clearance covers.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Optional
+
+import numpy as np
+
+
+def gap_behind_m(scan: Any, radius_m: float, clearance_m: float, reach_m: float) -> Optional[float]:
+    """[m] from the robot's back to the nearest scan point in the corridor it sweeps backing up ``reach_m``
+    [m] more (width: 2 x (``radius_m`` + ``clearance_m``), length: ``reach_m`` + ``radius_m`` +
+    ``clearance_m`` behind the centre), or None when that corridor is free. Returns that are not finite or
+    outside [range_min, range_max] are no points."""
+    ranges = np.asarray(scan.ranges, dtype=np.float64)
+    if ranges.size == 0:
+        return None
+    angles = scan.angle_min + scan.angle_increment * np.arange(ranges.size)
+    valid = np.isfinite(ranges) & (ranges >= scan.range_min) & (ranges <= scan.range_max)
+    r = np.where(valid, ranges, 0.0)  # no inf x 0 for beams without a return
+    x = r * np.cos(angles)
+    y = r * np.sin(angles)
+    half_width = radius_m + clearance_m
+    in_way = valid & (x < 0.0) & (np.abs(y) <= half_width) & (-x <= reach_m + half_width)
+    if not in_way.any():
+        return None
+    return max(0.0, float(np.min(-x[in_way])) - radius_m)
