@@ -25,6 +25,7 @@ MsgT = TypeVar("MsgT")
 
 DEFAULT_BUFFER_SIZE = 10  # messages kept by a buffered subscription
 PUBLISH_DRAIN_S = 1.0  # [s] bound on sending what is still queued (a final zero twist) before unregistering
+SHUTDOWN_DRAIN_S = 0.5  # [s] bound on sending a node's last zero twist while it shuts down
 AVAILABILITY_POLL_S = 0.01  # [s] how often ActionClientProxy.is_available looks again while it may wait
 
 

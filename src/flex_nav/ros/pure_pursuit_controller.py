@@ -57,11 +57,10 @@ from flex_nav.ros.frames import frame_pose, path_in_frame
 from flex_nav.ros.goal_server import RESULT_ABORTED, RESULT_SUCCEEDED, GoalServer, GoalTicket
 from flex_nav.ros.moving_obstacles_ros import MovingObstaclesROS, yield_rule
 from flex_nav.ros.params import param_bool, param_float, param_str, reject_unknown
-from flex_nav.ros.proxies import drain_publisher
+from flex_nav.ros.proxies import SHUTDOWN_DRAIN_S, drain_publisher
 from flex_nav.ros.topic_path import TopicPath, TopicPaths
 
 SOURCES = ("path", "topic")
-SHUTDOWN_DRAIN_S = 0.5  # [s] bound on sending the final zero twist while the node shuts down
 PARAMETERS = (
     "global_frame", "robot_base_frame", "controller_frequency", "sensor_timeout", "collision_timeout",
     "transform_timeout", "topic_timeout", "feedback_frequency", "local_costmap", "pure_pursuit",

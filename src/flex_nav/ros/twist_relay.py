@@ -24,10 +24,9 @@ from geometry_msgs.msg import Twist, TwistStamped
 
 from flex_nav.follow.safety import CommandOrder, CommandTimeout, twist_problem
 from flex_nav.ros.params import param_float, reject_unknown
-from flex_nav.ros.proxies import drain_publisher
+from flex_nav.ros.proxies import SHUTDOWN_DRAIN_S, drain_publisher
 
 CHECK_PERIOD_MIN_S = 0.01  # [s] fastest timeout check
-SHUTDOWN_DRAIN_S = 0.5  # [s] bound on sending the final zero Twist while the node shuts down
 FUTURE_STAMP_TOLERANCE_S = 1.0  # [s] commands stamped further ahead of this node's clock are not forwarded
 
 
