@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, Optional
 
+from nav_msgs.msg import Path
 from std_msgs.msg import String
 
 from flex_nav.action_types import action_type
@@ -11,6 +12,8 @@ from flex_nav.behavior.userdata import UserDataView
 from flex_nav.msg import FollowTopicGoal
 from flex_nav_states import validation
 from flex_nav_states.action_base import ActionClientBase
+from flex_nav_states.messages import stamp_s
+from flex_nav_states.proxy_types import SubscriptionLike, proxies_of
 
 FOLLOW_TOPIC = action_type("FollowTopic")
 
@@ -25,14 +28,19 @@ class FollowTopicState(ActionClientBase):
     -- action_name       str    FollowTopic server name, relative to the behavior's namespace.
     -- server_timeout_s  float  [s] Fail if the server is not connected this long after entry.
     -- timeout_s         float  [s] Cancel and fail if no result this long after sending (0: no limit).
+    -- fresh_path_s      float  [s] > 0: send the goal only once path_topic carries a Path stamped after entry,
+                                and fail after this long without one, so that a latched plan for the previous
+                                goal is never followed; 0: send at once (the server takes a Path older than
+                                the goal when no newer one comes within a second: a one-shot publisher).
 
     <= done       The server reached the end of the path (code SUCCESS).
-    <= failed     The server failed (no path on the topic, blocked, stale sensors), is missing, or timed out.
+    <= failed     The server failed (no path on the topic, blocked, stale sensors), is missing, or timed out;
+                  or no fresh path came within fresh_path_s.
     <= preempted  The server stopped the goal for someone else.
     """
 
     def __init__(self, path_topic: str = "follow_path_server/plan", action_name: str = "pure_pursuit_topic",
-                 server_timeout_s: float = 5.0, timeout_s: float = 0.0) -> None:
+                 server_timeout_s: float = 5.0, timeout_s: float = 0.0, *, fresh_path_s: float = 0.0) -> None:
         super().__init__(
             spec=FOLLOW_TOPIC,
             action_name=action_name,
@@ -44,7 +52,37 @@ class FollowTopicState(ActionClientBase):
             cancelled="preempted",
             code_outcomes={"FAILURE": "failed", "PREEMPT": "preempted"},
         )
-        self._path_topic = validation.name(type(self).__name__, "path_topic", path_topic)
+        owner = type(self).__name__
+        self._path_topic = validation.name(owner, "path_topic", path_topic)
+        self._fresh_path_s = validation.number(owner, "fresh_path_s", fresh_path_s, minimum=0.0, unit="[s]")
+        self._paths: Optional[SubscriptionLike] = None
+        self._entered_s = 0.0
+        self._path_is_fresh = True
+
+    def on_start(self) -> None:
+        super().on_start()
+        if self._fresh_path_s > 0.0:
+            self._paths = proxies_of(self).subscription(self._path_topic, Path)
+
+    def on_enter(self, userdata: UserDataView) -> None:
+        super().on_enter(userdata)
+        self._entered_s = self.now_s()
+        self._path_is_fresh = self._fresh_path_s == 0.0
+
+    def execute(self, userdata: UserDataView) -> Optional[str]:
+        if not self._path_is_fresh:
+            if self._paths is None:
+                self._paths = proxies_of(self).subscription(self._path_topic, Path)
+            newest = self._paths.last()
+            if newest is not None and stamp_s(newest) >= self._entered_s:
+                self._path_is_fresh = True
+            elif self.now_s() - self._entered_s >= self._fresh_path_s:
+                self.log_error(f"{self.action_name}: no path on {self._path_topic} newer than this goal within "
+                               f"fresh_path_s {self._fresh_path_s:g} s; not following an older one")
+                return "failed"
+            else:
+                return None
+        return super().execute(userdata)
 
     def make_goal(self, userdata: UserDataView) -> Any:
         return FollowTopicGoal(topic=String(data=self._path_topic))

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import pytest
 from actionlib_msgs.msg import GoalStatus
+from nav_msgs.msg import Path
 from unit.states.states_testlib import Harness, path, pose_stamped
 
 from flex_nav.behavior import BehaviorStatus, ConcurrencyContainer, LogLevel, State
@@ -259,6 +260,31 @@ def test_follow_topic_sends_the_topic_and_maps_failure():
     assert h.start().run(max_time_s=2.0).outcome == "failed"
     assert client.goals[0].topic.data == "mid/plan"
     assert any("no path on mid/plan" in t for t in h.texts(LogLevel.ERROR))
+
+
+def test_follow_topic_with_fresh_path_never_sends_for_the_previous_goals_plan():
+    """move_base_like's latched plan topic still holds the previous goal's plan; the first replans fail."""
+    h = Harness(FollowTopicState(path_topic="mb/plan", fresh_path_s=3.0))
+    client = h.proxies.client("pure_pursuit_topic", FollowTopicAction)
+    h.proxies.subscription("mb/plan", Path).inject(path([(0, 0), (5, 0)], stamp_s=h.clock.now() - 10.0))
+    start = h.clock.now()
+    result = h.start().run(max_time_s=10.0)
+    assert result.outcome == "failed" and client.goals == []
+    assert h.clock.now() - start == pytest.approx(3.0, abs=0.15)
+    assert any("no path on mb/plan newer than this goal within fresh_path_s 3 s" in t
+               for t in h.texts(LogLevel.ERROR)), h.log_text()
+
+
+def test_follow_topic_with_fresh_path_sends_once_a_new_plan_comes():
+    h = Harness(FollowTopicState(path_topic="mb/plan", fresh_path_s=3.0))
+    client = h.proxies.client("pure_pursuit_topic", FollowTopicAction)
+    plans = h.proxies.subscription("mb/plan", Path)
+    plans.inject(path([(0, 0), (5, 0)], stamp_s=h.clock.now() - 10.0))
+    h.start().run_for(1.0)
+    assert client.goals == []
+    plans.inject(path([(0, 0), (2, 0)], stamp_s=h.clock.now()))  # the first plan for this goal
+    h.run_for(0.2)
+    assert len(client.goals) == 1 and client.goals[0].topic.data == "mb/plan"
 
 
 def test_follow_topic_preempt_cancels():
