@@ -32,15 +32,20 @@ class FollowTopicState(ActionClientBase):
                                 and fail after this long without one, so that a latched plan for the previous
                                 goal is never followed; 0: send at once (the server takes a Path older than
                                 the goal when no newer one comes within a second: a one-shot publisher).
+    -- follow_next_path  bool   True: at the end of a path, wait for a Path stamped after it and follow that
+                                one (at most fresh_path_s, when > 0), never done: for a controller beside a
+                                planner that decides arrival (a local plan that stops short of the goal, e.g.
+                                before a person standing on it, must not leave the controller idle).
 
-    <= done       The server reached the end of the path (code SUCCESS).
+    <= done       The server reached the end of the path (code SUCCESS; not with follow_next_path).
     <= failed     The server failed (no path on the topic, blocked, stale sensors), is missing, or timed out;
                   or no fresh path came within fresh_path_s.
     <= preempted  The server stopped the goal for someone else.
     """
 
     def __init__(self, path_topic: str = "follow_path_server/plan", action_name: str = "pure_pursuit_topic",
-                 server_timeout_s: float = 5.0, timeout_s: float = 0.0, *, fresh_path_s: float = 0.0) -> None:
+                 server_timeout_s: float = 5.0, timeout_s: float = 0.0, *, fresh_path_s: float = 0.0,
+                 follow_next_path: bool = False) -> None:
         super().__init__(
             spec=FOLLOW_TOPIC,
             action_name=action_name,
@@ -55,13 +60,14 @@ class FollowTopicState(ActionClientBase):
         owner = type(self).__name__
         self._path_topic = validation.name(owner, "path_topic", path_topic)
         self._fresh_path_s = validation.number(owner, "fresh_path_s", fresh_path_s, minimum=0.0, unit="[s]")
+        self._follow_next_path = bool(follow_next_path)
         self._paths: Optional[SubscriptionLike] = None
         self._entered_s = 0.0
         self._path_is_fresh = True
 
     def on_start(self) -> None:
         super().on_start()
-        if self._fresh_path_s > 0.0:
+        if self._fresh_path_s > 0.0 or self._follow_next_path:
             self._paths = proxies_of(self).subscription(self._path_topic, Path)
 
     def on_enter(self, userdata: UserDataView) -> None:
@@ -76,13 +82,19 @@ class FollowTopicState(ActionClientBase):
             newest = self._paths.last()
             if newest is not None and stamp_s(newest) >= self._entered_s:
                 self._path_is_fresh = True
-            elif self.now_s() - self._entered_s >= self._fresh_path_s:
+            elif self._fresh_path_s > 0.0 and self.now_s() - self._entered_s >= self._fresh_path_s:
                 self.log_error(f"{self.action_name}: no path on {self._path_topic} newer than this goal within "
                                f"fresh_path_s {self._fresh_path_s:g} s; not following an older one")
                 return "failed"
             else:
                 return None
-        return super().execute(userdata)
+        outcome = super().execute(userdata)
+        if outcome == "done" and self._follow_next_path:
+            self.log_info(f"{self.action_name}: end of the path on {self._path_topic}; following the next one")
+            self.on_enter(userdata)  # a new goal once a newer Path comes
+            self._path_is_fresh = False
+            return None
+        return outcome
 
     def make_goal(self, userdata: UserDataView) -> Any:
         return FollowTopicGoal(topic=String(data=self._path_topic))

@@ -287,6 +287,24 @@ def test_follow_topic_with_fresh_path_sends_once_a_new_plan_comes():
     assert len(client.goals) == 1 and client.goals[0].topic.data == "mb/plan"
 
 
+def test_follow_topic_following_the_next_path_is_never_done_and_resumes_on_a_newer_path():
+    """Beside a planner: the local plan ended short of the goal (someone stands on it); the controller must
+    follow the planner's next plan, not stay idle until a stuck monitor fires."""
+    h = Harness(FollowTopicState(path_topic="mid/plan", follow_next_path=True))
+    client = h.proxies.client("pure_pursuit_topic", FollowTopicAction)
+    plans = h.proxies.subscription("mid/plan", Path)
+    client.respond(GoalStatus.SUCCEEDED, FollowTopicResult(code=FollowTopicResult.SUCCESS, message="goal reached"))
+    h.start().run_for(2.0)  # the first goal ends at once; the plan on the topic is not newer: nothing sent
+    assert len(client.goals) == 1
+    assert any("following the next one" in t for t in h.texts())
+    plans.inject(path([(0, 0), (3, 0)], stamp_s=h.clock.now()))  # the planner's next plan
+    h.run_for(0.2)
+    assert len(client.goals) == 2 and client.is_active()
+    h.executor.preempt()  # the planner arrived: the container ends it
+    h.tick()
+    assert client.cancels == 1
+
+
 def test_follow_topic_preempt_cancels():
     h = Harness(FollowTopicState())
     client = h.proxies.client("pure_pursuit_topic", FollowTopicAction)
