@@ -10,7 +10,7 @@ and publishes the plan on ``~plan`` -- the path a ``pure_pursuit_topic`` control
 point backs off along the path until it lies on the costmap on a passable cell.
 
 The goal succeeds within ``~goal_tolerance`` [m] of the path's end; it aborts with the reason on a bad
-path (empty, NaN, unknown frame), when no plan could be made for ``~failure_timeout`` [s] (blocked path,
+path (empty, NaN, unknown frame), when no plan could be made for ``~failure_timeout`` [s] of ROS time (blocked path,
 no robot pose, no map) or when the node that sent it is gone for ``~client_timeout`` [s] (2.0; 0: off), and it
 is preempted by a cancel or replaced by a newer goal. Keep
 ``lookahead_distance`` well above (controller speed / planner_frequency), or the controller reaches the
@@ -134,7 +134,7 @@ class FollowServer:
         self._follow(ticket, progress, source, used if source is not None else 0)
 
     def _follow(self, ticket: GoalTicket, progress: PathProgress, source: Optional[TopicPath], used: int) -> None:
-        last_plan_s = time.monotonic()
+        last_plan_s = rospy.get_time()  # failure_timeout runs on ROS time, as every other timeout; the pacing is wall
         next_due = time.monotonic()
         pose: Optional[Tuple[float, float, float]] = None
         while True:
@@ -163,11 +163,11 @@ class FollowServer:
                 self._end(ticket, RESULT_SUCCEEDED,
                           f"reached the end of the path ({state.distance_to_end:.3f} m from it)", pose)
                 return
-            if problem is None:
-                last_plan_s = time.monotonic()
-            elif time.monotonic() - last_plan_s >= self.failure_timeout_s:
-                self._end(ticket, RESULT_ABORTED,
-                          f"no local plan for {time.monotonic() - last_plan_s:.1f} s: {problem}", pose)
+            now_s = rospy.get_time()
+            if problem is None or now_s < last_plan_s:  # (ROS time went back: start the count afresh)
+                last_plan_s = now_s
+            elif now_s - last_plan_s >= self.failure_timeout_s:
+                self._end(ticket, RESULT_ABORTED, f"no local plan for {now_s - last_plan_s:.1f} s: {problem}", pose)
                 return
             else:
                 rospy.logwarn_throttle(1.0, f"{self.name}: {problem}")
