@@ -82,6 +82,7 @@ class FollowTopicState(ActionClientBase):
             newest = self._paths.last()
             if newest is not None and stamp_s(newest) >= self._entered_s:
                 self._path_is_fresh = True
+                self._wait_start_s = self.now_s()  # server_timeout_s counts from here, not from entry
             elif self._fresh_path_s > 0.0 and self.now_s() - self._entered_s >= self._fresh_path_s:
                 self.log_error(f"{self.action_name}: no path on {self._path_topic} newer than this goal within "
                                f"fresh_path_s {self._fresh_path_s:g} s; not following an older one")

@@ -287,6 +287,18 @@ def test_follow_topic_with_fresh_path_sends_once_a_new_plan_comes():
     assert len(client.goals) == 1 and client.goals[0].topic.data == "mb/plan"
 
 
+def test_follow_topic_server_timeout_counts_from_the_fresh_path_not_from_entry():
+    """A wait for a fresh path longer than server_timeout_s must not use up the server's grace."""
+    h = Harness(FollowTopicState(path_topic="mb/plan", fresh_path_s=10.0, server_timeout_s=1.0))
+    client = h.proxies.client("pure_pursuit_topic", FollowTopicAction)
+    client.available_at_s = h.clock.now() + 6.5  # the controller restarts while the planner is still planning
+    plans = h.proxies.subscription("mb/plan", Path)
+    h.start().run_for(6.0)
+    plans.inject(path([(0, 0), (2, 0)], stamp_s=h.clock.now()))
+    h.run_for(1.0)  # the server is back 0.5 s after the fresh plan, within its 1 s grace: not failed
+    assert len(client.goals) == 1, h.log_text()
+
+
 def test_follow_topic_following_the_next_path_is_never_done_and_resumes_on_a_newer_path():
     """Beside a planner: the local plan ended short of the goal (someone stands on it); the controller must
     follow the planner's next plan, not stay idle until a stuck monitor fires."""
