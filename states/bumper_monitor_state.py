@@ -18,6 +18,7 @@ DRIVER_TOPICS = {"kobuki": "events/bumper", "create": "bumper", "zones": "bumper
 DRIVER_TYPES = {"kobuki": BumperEvent, "create": CreateBumper, "zones": BumperState}
 KOBUKI_ZONES = {BumperEvent.LEFT: "left", BumperEvent.CENTER: "center", BumperEvent.RIGHT: "right"}
 CREATE_ZONES = ("left", "right")
+MAX_UNKNOWN_REPORTS = 8  # unknown bumper ids kept for the next tick's warning (a driver sending them on a loop)
 
 
 class BumperMonitorState(State):
@@ -104,12 +105,14 @@ class BumperMonitorState(State):
     def on_enter(self, userdata: UserDataView) -> None:
         with self._events_lock:
             self._kobuki_hit.clear()  # a press released before entry does not count; one still held does
+            self._unknown_bumpers.clear()  # nor is an unknown bumper seen while not running reported now
 
     def _on_kobuki_event(self, event: Any) -> None:
         zone = KOBUKI_ZONES.get(event.bumper)
         with self._events_lock:
             if zone is None:
-                self._unknown_bumpers.append(event.bumper)
+                if len(self._unknown_bumpers) < MAX_UNKNOWN_REPORTS:  # bounded between two ticks
+                    self._unknown_bumpers.append(event.bumper)
             elif event.state == BumperEvent.PRESSED:
                 self._kobuki_held.add(zone)
                 self._kobuki_hit.add(zone)

@@ -12,7 +12,7 @@ from unit.states.states_testlib import Harness, KinematicRobot, pose_stamped
 from flex_nav.behavior import LogLevel, StateMachine
 from flex_nav.exceptions import ConfigError
 from flex_nav.msg import BumperEvent, BumperState, CreateBumper
-from flex_nav_states.bumper_monitor_state import BumperMonitorState
+from flex_nav_states.bumper_monitor_state import MAX_UNKNOWN_REPORTS, BumperMonitorState
 from flex_nav_states.get_pose_state import GetPoseState
 from flex_nav_states.sensor_freshness_state import SensorFreshnessState
 from flex_nav_states.stuck_monitor_state import StuckMonitorState
@@ -86,6 +86,26 @@ def test_bumper_kobuki_monitors_of_one_behavior_each_see_every_event():
     h.run_for(2.0)  # A runs again: nothing is pressed
     presses = [t for t in h.texts(LogLevel.WARN) if t.startswith("bumper pressed")]
     assert presses == ["bumper pressed: center (on events/bumper)", "bumper pressed: left (on events/bumper)"]
+
+
+def test_bumper_kobuki_unknown_bumpers_are_reported_bounded_and_only_while_running():
+    """A driver sending an unknown bumper id on a loop: a running monitor warns about at most
+    MAX_UNKNOWN_REPORTS of them per tick; a monitor that was not running does not report them on entry."""
+    sm = StateMachine(outcomes=["finished"])
+    sm.add("A", BumperMonitorState(profile="kobuki"), transitions={"bumper": "WaitA", "cliff": "finished"})
+    sm.add("WaitA", WaitState(wait_time_s=1.0), transitions={"done": "B"})
+    sm.add("B", BumperMonitorState(profile="kobuki"), transitions={"bumper": "finished", "cliff": "finished"})
+    h = Harness(sm).start()
+    sub = h.proxies.sub("events/bumper")
+    h.run_for(0.5)
+    for _ in range(3 * MAX_UNKNOWN_REPORTS):
+        sub.inject(event(7, True))  # seen by A (running) and by B (not running)
+    h.run_for(0.2)
+    sub.inject(event(BumperEvent.LEFT, True))  # A fires; B runs after WaitA
+    sub.inject(event(BumperEvent.LEFT, False))
+    h.run_for(2.0)
+    unknown = [t for t in h.texts(LogLevel.WARN) if "unknown bumper 7" in t]
+    assert len(unknown) == MAX_UNKNOWN_REPORTS, h.log_text()
 
 
 def test_bumper_still_pressed_at_entry_fires_at_once():
