@@ -57,6 +57,30 @@ def status_name(status: int) -> str:
     return GOAL_STATUS_NAMES.get(status, f"UNKNOWN({status})")
 
 
+class ServerLossWatch:
+    """Tells when an action server has been disconnected for ``SERVER_LOST_S`` while a goal is out.
+
+    Call :meth:`reset` when a goal is sent and :meth:`gone` on every tick while it runs; a reconnection
+    within the grace starts the count again.
+    """
+
+    def __init__(self) -> None:
+        self._lost_since_s: Optional[float] = None  # [s] since when the server is disconnected
+
+    def reset(self) -> None:
+        self._lost_since_s = None
+
+    def gone(self, client: ActionClientLike, now_s: float) -> bool:
+        """True once ``client``'s server has been disconnected for SERVER_LOST_S [s] without a break."""
+        if client.is_available(0.0):
+            self._lost_since_s = None
+            return False
+        if self._lost_since_s is None:
+            self._lost_since_s = now_s
+            return False
+        return now_s - self._lost_since_s >= SERVER_LOST_S
+
+
 class ActionClientBase(State):
     """Base of the action-client states (not a state by itself; see the module docstring)."""
 
@@ -100,7 +124,7 @@ class ActionClientBase(State):
         self._done = False
         self._wait_start_s = 0.0  # [s] since when we wait for the server
         self._sent_s = 0.0  # [s] when the goal was sent
-        self._lost_since_s: Optional[float] = None  # [s] since when the server is disconnected during the goal
+        self._server_loss = ServerLossWatch()  # the server disconnected during the goal
         self._paused_s = 0.0  # [s] goal run time spent paused (not counted against timeout_s)
         self._pause_start_s = 0.0
 
@@ -189,11 +213,7 @@ class ActionClientBase(State):
     # --- internals -------------------------------------------------------------------------------
     def _goal_problem(self, client: ActionClientLike, now: float) -> Optional[str]:
         """Why the running goal has failed without a result (the server went away, timeout_s), else None."""
-        if client.is_available(0.0):
-            self._lost_since_s = None
-        elif self._lost_since_s is None:
-            self._lost_since_s = now
-        elif now - self._lost_since_s >= SERVER_LOST_S:
+        if self._server_loss.gone(client, now):
             client.cancel()  # in case it was only cut off and comes back: it must not run the goal on
             return (f"action server {self._action_name} ({self._spec.name}) went away during the goal "
                     f"(disconnected for {SERVER_LOST_S:g} s; goal cancelled)")
@@ -212,7 +232,7 @@ class ActionClientBase(State):
         self._sent = True
         self._sent_s = now
         self._paused_s = 0.0
-        self._lost_since_s = None
+        self._server_loss.reset()
         what = self.describe_goal(self._goal)
         self.log_info(f"{self._action_name}: goal sent{': ' + what if what else ''}")
         return True

@@ -12,7 +12,7 @@ from flex_nav.behavior.state import State
 from flex_nav.behavior.userdata import UserDataView, unwrap
 from flex_nav.msg import GetPathGoal, GetPathResult
 from flex_nav_states import validation
-from flex_nav_states.action_base import SERVER_LOST_S
+from flex_nav_states.action_base import SERVER_LOST_S, ServerLossWatch
 from flex_nav_states.proxy_types import ActionClientLike, PublisherLike, proxies_of
 
 GET_PATH = action_type("GetPath")
@@ -58,7 +58,7 @@ class ReplanState(State):
         self._next_plan_s = 0.0  # [s] when the next plan may start
         self._plan_in_flight = False  # a GetPath goal is out
         self._sent_s = 0.0  # [s] when it was sent
-        self._lost_since_s: Optional[float] = None  # [s] the server disconnected while it was out
+        self._server_loss = ServerLossWatch()  # the server disconnected while a request is out
         self._failures = 0
         self._plans = 0
 
@@ -98,7 +98,8 @@ class ReplanState(State):
             return None
         self._client.send_goal(self._goal, server_timeout_s=0.05)
         self._plan_in_flight = True
-        self._sent_s, self._lost_since_s = now, None
+        self._sent_s = now
+        self._server_loss.reset()
         self._next_plan_s = now + self._replan_period_s
         return None
 
@@ -106,11 +107,7 @@ class ReplanState(State):
         """The request out has no answer yet: "failed" when its server has gone, else None (wait, or count a
         request unanswered for plan_timeout_s as a failure and plan again at the next period)."""
         assert self._client is not None
-        if self._client.is_available(0.0):
-            self._lost_since_s = None
-        elif self._lost_since_s is None:
-            self._lost_since_s = now
-        elif now - self._lost_since_s >= SERVER_LOST_S:
+        if self._server_loss.gone(self._client, now):
             self._client.cancel()
             self._plan_in_flight = False
             self.log_error(f"{self._action_name}: GetPath server went away during a plan "
