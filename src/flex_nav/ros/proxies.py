@@ -252,9 +252,9 @@ class ActionClientProxy:
             handle.cancel()  # outside the lock: actionlib calls the transition callback from here
 
     def close(self, deadline: float) -> None:
-        """Cancel the active goal and unregister the client's five topics (after its goal and cancel messages
-        were sent, or at ``deadline``, time.monotonic() [s]). The proxy is unusable afterwards."""
-        self.cancel()
+        """Unregister the client's five topics, after the goal and cancel messages already published were sent
+        (or at ``deadline``, time.monotonic() [s]); cancel first to stop an active goal. The proxy is unusable
+        afterwards."""
         for pub in (self._client.pub_goal, self._client.pub_cancel):
             drain_publisher(pub, deadline)
         self._client.stop()

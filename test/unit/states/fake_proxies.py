@@ -216,8 +216,7 @@ class FakeActionClient:
             self.finish(GoalStatus.PREEMPTED, result)
 
     def close(self, deadline: float) -> None:
-        """Cancel and disconnect (the proxies' shutdown); ``deadline`` [s] is not needed without ROS."""
-        self.cancel()
+        """Disconnect (the proxies' shutdown, after its cancel); ``deadline`` [s] is not needed without ROS."""
         self.closed = True
 
 
@@ -272,8 +271,11 @@ class FakeProxies:
         return None
 
     def shutdown(self) -> None:
+        """As RosProxies.shutdown: cancel every active goal, then disconnect every client."""
         for client in self.clients.values():
             client.cancel()
+        for client in self.clients.values():
+            client.close(deadline=0.0)
 
     # --- conveniences for tests ---
     def sub(self, topic: str) -> FakeSubscription:
