@@ -50,6 +50,18 @@ def master_pid(uri: str, timeout_s: float = MASTER_CALL_TIMEOUT_S) -> int | None
     return int(reply[2]) if ok else None
 
 
+def node_pid(master_uri: str, node_name: str, timeout_s: float = MASTER_CALL_TIMEOUT_S) -> int | None:
+    """The process id that node ``node_name``, registered with the master at ``master_uri``, reports, else None
+    (each of the two XML-RPC calls bounded by ``timeout_s`` [s]; a node answers ``getPid`` as the master does)."""
+    proxy = xmlrpc.client.ServerProxy(master_uri, transport=_TimeoutTransport(timeout_s))
+    try:
+        reply: Any = proxy.lookupNode("/flex_nav_probe", node_name)
+    except (OSError, xmlrpc.client.Error):
+        return None
+    found = isinstance(reply, list) and len(reply) == 3 and reply[0] == 1 and isinstance(reply[2], str)
+    return master_pid(reply[2], timeout_s) if found else None
+
+
 def master_is_up(uri: str, timeout_s: float = MASTER_CALL_TIMEOUT_S) -> bool:
     """True when a ROS master answers ``getPid`` at ``uri`` within ``timeout_s`` [s]."""
     return master_pid(uri, timeout_s) is not None
@@ -127,23 +139,29 @@ class PrivateMaster:
         if self.process is not None:
             # roslaunch starts rosmaster in a session of its own: when roscore is too slow to stop it (a loaded
             # machine) and gets SIGKILL, the master would outlive it, orphaned. Ask for its pid first.
+            # The same holds for rosout, which roslaunch also starts in a session of its own.
             orphan = master_pid(self.uri) if self.uri else None
+            rosout = node_pid(self.uri, "/rosout") if self.uri else None
             self.process.stop()
             self.process = None
-            if orphan is not None and self._is_our_master(orphan):  # not a reused pid
-                with contextlib.suppress(ProcessLookupError, PermissionError):
-                    os.kill(orphan, signal.SIGKILL)
+            for pid, ours in ((orphan, self._is_our_master), (rosout, self._is_our_rosout)):
+                if pid is not None and ours(pid):  # not a reused pid
+                    with contextlib.suppress(ProcessLookupError, PermissionError):
+                        os.kill(pid, signal.SIGKILL)
         if self._own_home:
             shutil.rmtree(self.ros_home, ignore_errors=True)
 
     def _is_our_master(self, pid: int) -> bool:
         """True while process ``pid`` is a rosmaster serving this master's port."""
-        try:
-            args = Path(f"/proc/{pid}/cmdline").read_bytes().decode(errors="replace").split("\0")
-        except OSError:
-            return False
+        args = _cmdline(pid)
         serves_port = any(a == "-p" and b == str(self.port) for a, b in zip(args, args[1:]))
         return serves_port and any(Path(a).name == "rosmaster" for a in args[:2])
+
+    def _is_our_rosout(self, pid: int) -> bool:
+        """True while process ``pid`` is a rosout logging under this master's ROS_HOME."""
+        args = _cmdline(pid)
+        log_prefix = f"__log:={self.ros_home}{os.sep}"
+        return bool(args) and Path(args[0]).name == "rosout" and any(a.startswith(log_prefix) for a in args)
 
     def __enter__(self) -> PrivateMaster:
         return self.start()
@@ -155,3 +173,11 @@ class PrivateMaster:
         tb: TracebackType | None,
     ) -> None:
         self.stop()
+
+
+def _cmdline(pid: int) -> list[str]:
+    """The arguments of process ``pid`` from /proc (empty if it is gone)."""
+    try:
+        return Path(f"/proc/{pid}/cmdline").read_bytes().decode(errors="replace").split("\0")
+    except OSError:
+        return []

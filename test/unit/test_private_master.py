@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 from flex_nav.exceptions import NotReadyError
-from flex_nav.private_master import PrivateMaster, free_port, master_is_up, master_pid
+from flex_nav.private_master import PrivateMaster, free_port, master_is_up, master_pid, node_pid
 from flex_nav.process import ManagedProcess, wait_until
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
@@ -42,16 +42,32 @@ def test_a_master_orphaned_by_a_killed_roscore_is_stopped_too(tmp_path: Path) ->
     the grace period on a loaded machine) leaves the master running; stop() must end it as well."""
     master = PrivateMaster(ros_home=tmp_path).start()
     orphan = master_pid(master.uri)
+    rosout = None
     try:
+        wait_until(lambda: node_pid(master.uri, "/rosout") is not None, 10.0, "rosout to register")
+        rosout = node_pid(master.uri, "/rosout")
         assert orphan is not None and orphan != master.process.pid
-        os.killpg(master.process.pid, signal.SIGKILL)  # roscore's group only: the master lives on
+        assert rosout is not None and rosout not in (orphan, master.process.pid)
+        os.killpg(master.process.pid, signal.SIGKILL)  # roscore's group only: the master and rosout live on
         time.sleep(0.5)
         assert master_is_up(master.uri), "the master should have outlived roscore (its own session)"
+        assert _running(rosout), "rosout should have outlived roscore (its own session)"
         master.stop()
         wait_until(lambda: not master_is_up(master.uri, timeout_s=0.2), 5.0, "the orphaned master to stop")
+        wait_until(lambda: not _running(rosout), 5.0, "the orphaned rosout to stop")
     finally:
-        if orphan is not None and Path(f"/proc/{orphan}").exists():
-            os.kill(orphan, signal.SIGKILL)
+        for pid in (orphan, rosout):
+            if pid is not None and _running(pid):
+                os.kill(pid, signal.SIGKILL)
+
+
+def _running(pid: int) -> bool:
+    """True while process ``pid`` exists and is not a zombie."""
+    try:
+        status = Path(f"/proc/{pid}/status").read_text()
+    except OSError:
+        return False
+    return "\nState:\tZ" not in status
 
 
 def test_master_is_up_false_quickly_for_closed_port() -> None:
