@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from typing import Any, Optional
 
+import genpy
 from nav_msgs.msg import Path
 from std_msgs.msg import String
 
@@ -30,7 +31,8 @@ class FollowTopicState(ActionClientBase):
     -- timeout_s         float  [s] Cancel and fail if no result this long after sending (0: no limit).
     -- fresh_path_s      float  [s] > 0: send the goal only once path_topic carries a Path stamped after entry,
                                 and fail after this long without one, so that a latched plan for the previous
-                                goal is never followed; 0: send at once (the server takes a Path older than
+                                goal is never followed (the goal's newer_than is the entry time: the server
+                                takes that Path at once); 0: send at once (the server takes a Path older than
                                 the goal when no newer one comes within a second: a one-shot publisher).
     -- follow_next_path  bool   True: at the end of a path, wait for a Path stamped after it and follow that
                                 one (at most fresh_path_s, when > 0), never done: for a controller beside a
@@ -98,7 +100,12 @@ class FollowTopicState(ActionClientBase):
         return outcome
 
     def make_goal(self, userdata: UserDataView) -> Any:
-        return FollowTopicGoal(topic=String(data=self._path_topic))
+        goal = FollowTopicGoal(topic=String(data=self._path_topic))
+        if self._fresh_path_s > 0.0 or self._follow_next_path:
+            # built at entry (or at a re-arm): the state sends it only with a Path stamped since, so the server
+            # need not wait for one newer than the goal (up to 1 s idle at every start)
+            goal.newer_than = genpy.Time.from_sec(self.now_s())
+        return goal
 
     def describe_goal(self, goal: Any) -> str:
         return f"follow the paths on {self._path_topic}"

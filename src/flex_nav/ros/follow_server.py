@@ -46,7 +46,7 @@ from flex_nav.ros.get_path_server import warm_up
 from flex_nav.ros.goal_server import RESULT_ABORTED, RESULT_SUCCEEDED, GoalServer, GoalTicket
 from flex_nav.ros.nav_params import planner_params
 from flex_nav.ros.params import param_float, reject_unknown
-from flex_nav.ros.topic_path import TopicPath, TopicPaths
+from flex_nav.ros.topic_path import TopicPath, TopicPaths, fresh_from
 
 SOURCES = ("path", "topic")
 PARAMETERS = (
@@ -118,9 +118,9 @@ class FollowServer:
             if not topic:
                 self._end(ticket, RESULT_ABORTED, "the goal names no topic", None)
                 return
-            started = rospy.Time.now()
+            fresh_since = fresh_from(ticket.goal.newer_than)
             source = self._topics.subscribe(topic)
-            if not self._topics.wait_first(source, self.topic_timeout_s, ticket.cancelled, newer_than=started):
+            if not self._topics.wait_first(source, self.topic_timeout_s, ticket.cancelled, newer_than=fresh_since):
                 if not ticket.cancelled.is_set():
                     self._end(ticket, RESULT_ABORTED, source.no_path_reason(self.topic_timeout_s), None)
                 return

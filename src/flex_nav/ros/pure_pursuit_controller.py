@@ -58,7 +58,7 @@ from flex_nav.ros.goal_server import RESULT_ABORTED, RESULT_SUCCEEDED, GoalServe
 from flex_nav.ros.moving_obstacles_ros import MovingObstaclesROS, yield_rule
 from flex_nav.ros.params import param_bool, param_float, param_str, reject_unknown
 from flex_nav.ros.proxies import SHUTDOWN_DRAIN_S, drain_publisher
-from flex_nav.ros.topic_path import TopicPath, TopicPaths
+from flex_nav.ros.topic_path import TopicPath, TopicPaths, fresh_from
 
 SOURCES = ("path", "topic")
 PARAMETERS = (
@@ -234,9 +234,9 @@ class PurePursuitController:
         if not topic:
             self._end(ticket, RESULT_ABORTED, "the goal names no topic")
             return
-        started = rospy.Time.now()
+        fresh_since = fresh_from(ticket.goal.newer_than)
         source = self._topics.subscribe(topic)
-        if not self._topics.wait_first(source, self.topic_timeout_s, ticket.cancelled, newer_than=started):
+        if not self._topics.wait_first(source, self.topic_timeout_s, ticket.cancelled, newer_than=fresh_since):
             if not ticket.cancelled.is_set():
                 self._end(ticket, RESULT_ABORTED, source.no_path_reason(self.topic_timeout_s))
             return

@@ -7,6 +7,8 @@ kept while consecutive goals name the same topic, so a latched or frequent topic
 A Path stamped before the goal started is most likely what the topic held for the previous goal (a
 planner's latched plan): following it, a controller already at its end would report success at once.
 Such a Path is used only if no newer one arrives within ``STALE_GRACE_S`` (a one-shot latched publisher).
+A client that already waited for a fresh Path says from when it counted (the goal's ``newer_than``), so the
+server does not wait again for one newer than the goal.
 """
 
 from __future__ import annotations
@@ -88,6 +90,12 @@ class TopicPaths:
                         break
                     self._wake.wait(left)
         return source.msg is not None and not cancelled.is_set()
+
+
+def fresh_from(goal_newer_than: rospy.Time) -> rospy.Time:
+    """The time from which a Path counts as this goal's: the goal's ``newer_than`` when its client set one (it
+    saw a fresh Path before sending: no need to wait for another), else now (the goal's start)."""
+    return goal_newer_than if not goal_newer_than.is_zero() else rospy.Time.now()
 
 
 def is_older(msg: Path, time_point: rospy.Time) -> bool:

@@ -287,6 +287,24 @@ def test_follow_topic_with_fresh_path_sends_once_a_new_plan_comes():
     assert len(client.goals) == 1 and client.goals[0].topic.data == "mb/plan"
 
 
+def test_follow_topic_goal_says_from_when_a_path_counts_as_fresh():
+    """With fresh_path_s (or follow_next_path) the state sends the goal only with a Path stamped since entry, so
+    the goal carries the entry time and the server takes that Path without waiting for a newer one; without
+    either, newer_than stays 0 and the server counts from the goal's start."""
+    h = Harness(FollowTopicState(path_topic="mb/plan", fresh_path_s=3.0))
+    client = h.proxies.client("pure_pursuit_topic", FollowTopicAction)
+    entered_s = h.clock.now()
+    h.start().run_for(0.5)
+    h.proxies.subscription("mb/plan", Path).inject(path([(0, 0), (2, 0)], stamp_s=h.clock.now()))
+    h.run_for(0.2)
+    assert len(client.goals) == 1
+    assert client.goals[0].newer_than.to_sec() == pytest.approx(entered_s, abs=1e-6)
+    plain = Harness(FollowTopicState(path_topic="mid/plan"))
+    plain_client = plain.proxies.client("pure_pursuit_topic", FollowTopicAction)
+    plain.start().run_for(0.2)
+    assert len(plain_client.goals) == 1 and plain_client.goals[0].newer_than.is_zero()
+
+
 def test_follow_topic_server_timeout_counts_from_the_fresh_path_not_from_entry():
     """A wait for a fresh path longer than server_timeout_s must not use up the server's grace."""
     h = Harness(FollowTopicState(path_topic="mb/plan", fresh_path_s=10.0, server_timeout_s=1.0))
