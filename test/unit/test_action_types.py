@@ -19,7 +19,7 @@ def test_fields_and_types() -> None:
     expected = {
         "GetPath": (["pose"], ["code", "plan", "message"], ["location", "goal"]),
         "FollowPath": (["path"], ["code", "pose", "message"], ["twist", "pose"]),
-        "FollowTopic": (["topic"], ["code", "pose", "message"], ["path", "pose"]),
+        "FollowTopic": (["topic", "newer_than"], ["code", "pose", "message"], ["path", "pose"]),
         "ClearCostmap": ([], ["code", "message"], []),
     }
     for name, (goal, result, feedback) in expected.items():
@@ -28,7 +28,7 @@ def test_fields_and_types() -> None:
         assert list(spec.result.__slots__) == result
         assert list(spec.feedback.__slots__) == feedback
     assert ACTION_TYPES["GetPath"].goal._slot_types == ["geometry_msgs/PoseStamped"]
-    assert ACTION_TYPES["FollowTopic"].goal._slot_types == ["std_msgs/String"]
+    assert ACTION_TYPES["FollowTopic"].goal._slot_types == ["std_msgs/String", "time"]
     assert ACTION_TYPES["GetPath"].result._slot_types == ["uint8", "nav_msgs/Path", "string"]
 
 
