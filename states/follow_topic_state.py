@@ -102,8 +102,9 @@ class FollowTopicState(ActionClientBase):
     def make_goal(self, userdata: UserDataView) -> Any:
         goal = FollowTopicGoal(topic=String(data=self._path_topic))
         if self._fresh_path_s > 0.0 or self._follow_next_path:
-            # built at entry (or at a re-arm): the state sends it only with a Path stamped since, so the server
-            # need not wait for one newer than the goal (up to 1 s idle at every start)
+            # Paths count from entry (or the re-arm): where the state first waits for one stamped since, the server
+            # takes it at once instead of waiting up to 1 s for one newer than the goal; where it sends at once
+            # (follow_next_path's first entry) this is the goal's start, as with 0
             goal.newer_than = genpy.Time.from_sec(self.now_s())
         return goal
 

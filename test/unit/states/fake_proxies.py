@@ -128,7 +128,6 @@ class FakeActionClient:
         self.goals: List[Any] = []
         self.sent_at: List[float] = []
         self.cancels = 0
-        self.closed = False
         self.availability_checks: List[float] = []  # timeout_s of each is_available call (must be ~0)
         self._state = GoalStatus.LOST
         self._result: Any = None
@@ -216,8 +215,7 @@ class FakeActionClient:
             self.finish(GoalStatus.PREEMPTED, result)
 
     def close(self, deadline: float) -> None:
-        """Disconnect (the proxies' shutdown, after its cancel); ``deadline`` [s] is not needed without ROS."""
-        self.closed = True
+        """Disconnect (the proxies' shutdown, after its cancel): nothing to do without ROS; ``deadline`` [s] unused."""
 
 
 class FakeProxies:
