@@ -139,15 +139,17 @@ class PrivateMaster:
         if self.process is not None:
             # roslaunch starts rosmaster in a session of its own: when roscore is too slow to stop it (a loaded
             # machine) and gets SIGKILL, the master would outlive it, orphaned. Ask for its pid first.
-            # The same holds for rosout, which roslaunch also starts in a session of its own.
             orphan = master_pid(self.uri) if self.uri else None
-            rosout = node_pid(self.uri, "/rosout") if self.uri else None
             self.process.stop()
             self.process = None
-            for pid, ours in ((orphan, self._is_our_master), (rosout, self._is_our_rosout)):
-                if pid is not None and ours(pid):  # not a reused pid
-                    with contextlib.suppress(ProcessLookupError, PermissionError):
-                        os.kill(pid, signal.SIGKILL)
+            # The same holds for rosout, also in a session of its own; it may not have registered yet when a
+            # master is stopped right after start, so it is found by its log directory under our ROS_HOME.
+            rosouts = [int(entry.name) for entry in Path("/proc").iterdir()
+                       if entry.name.isdigit() and self._is_our_rosout(int(entry.name))]
+            ours = ([orphan] if orphan is not None and self._is_our_master(orphan) else []) + rosouts
+            for pid in ours:  # checked on /proc just now: not a reused pid
+                with contextlib.suppress(ProcessLookupError, PermissionError):
+                    os.kill(pid, signal.SIGKILL)
         if self._own_home:
             shutil.rmtree(self.ros_home, ignore_errors=True)
 
