@@ -10,6 +10,7 @@ import math
 from typing import Any, Collection, List, Optional
 
 from flex_nav.exceptions import ConfigError, choices_message
+from flex_nav.follow.topic_name import topic_name_problem
 
 # Sanity bounds of the motion states' speed parameters: far above what the supported bases drive (0.3-0.7 m/s,
 # 1.5-2 rad/s in config/), so a value beyond them is a unit mistake (cm/s, deg/s), refused at load time.
@@ -48,6 +49,9 @@ def name(owner: str, what: str, value: Any, *, allow_empty: bool = False) -> str
         raise ConfigError(f"{owner}: {what} must not be empty")
     if value != value.strip() or any(c.isspace() for c in value):
         raise ConfigError(f"{owner}: {what} must not contain blanks, got {value!r}")
+    problem = topic_name_problem(value) if value else None
+    if problem is not None:
+        raise ConfigError(f"{owner}: {what}: {problem}")
     return value
 
 

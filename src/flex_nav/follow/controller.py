@@ -138,6 +138,12 @@ class SafeFollower:
         if self.yielding is not None:
             self.yielding.reset()
 
+    def hold(self) -> None:
+        """The robot was stopped outside the control law (ROS time stood still): the next step ramps up from a
+        zero command and measures its interval afresh; the path and the goal are kept."""
+        self.pursuit.override_last_command(0.0, 0.0)
+        self._last_tick_s = None
+
     def tick(
         self,
         now_s: float,

@@ -100,6 +100,12 @@ class SensorWatchdog:
         if not self._last:
             raise ConfigError("a sensor watchdog needs at least one sensor name")
 
+    def restart(self, now_s: float) -> None:
+        """Forget every sensor's last message and count from ``now_s`` again: ROS time moved backwards, and
+        times from the old timeline would make a silent sensor look fresh (a negative age)."""
+        self._start_s = now_s
+        self._last = dict.fromkeys(self._last)
+
     def saw(self, sensor: str, now_s: float) -> None:
         if sensor not in self._last:
             raise ConfigError(f"sensor {sensor!r} is not watched (watched: {', '.join(self._last)})")

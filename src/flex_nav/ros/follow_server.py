@@ -12,7 +12,9 @@ point backs off along the path until it lies on the costmap on a passable cell.
 The goal succeeds within ``~goal_tolerance`` [m] of the path's end; it aborts with the reason on a bad
 path (empty, NaN, unknown frame), when no plan could be made for ``~failure_timeout`` [s] of ROS time (blocked path,
 no robot pose, no map) or when the node that sent it is gone for ``~client_timeout`` [s] (2.0; 0: off), and it
-is preempted by a cancel or replaced by a newer goal. Keep
+is preempted by a cancel or replaced by a newer goal. Replanning is paced on ROS time: while ROS time stands
+still (a paused simulation) nothing is replanned; when it moves backwards (a restarted simulation) the goal
+aborts with the reason. A FollowTopic goal naming an illegal topic (empty, ``..``, blanks) aborts at once. Keep
 ``lookahead_distance`` well above (controller speed / planner_frequency), or the controller reaches the
 end of a local plan before the next one arrives.
 
@@ -35,7 +37,9 @@ from nav_msgs.msg import Path
 
 from flex_nav.action_types import action_type
 from flex_nav.exceptions import ConfigError, NotReadyError
+from flex_nav.follow.clock_watch import ClockChange, ClockWatch
 from flex_nav.follow.progress import PathProgress, Progress
+from flex_nav.follow.topic_name import topic_name_problem
 from flex_nav.msg import FollowPathFeedback, FollowTopicFeedback
 from flex_nav.nav.costmap_grid import FREE
 from flex_nav.nav.planner import GridPlanner
@@ -46,6 +50,7 @@ from flex_nav.ros.get_path_server import warm_up
 from flex_nav.ros.goal_server import RESULT_ABORTED, RESULT_SUCCEEDED, GoalServer, GoalTicket
 from flex_nav.ros.nav_params import planner_params
 from flex_nav.ros.params import param_float, reject_unknown
+from flex_nav.ros.ros_clock import RosClock
 from flex_nav.ros.topic_path import TopicPath, TopicPaths, fresh_from
 
 SOURCES = ("path", "topic")
@@ -53,6 +58,7 @@ PARAMETERS = (
     "global_frame", "robot_base_frame", "lookahead_distance", "planner_frequency", "goal_tolerance",
     "failure_timeout", "topic_timeout", "transform_timeout", "local_costmap", "planner", "client_timeout",
 )
+CLOCK_POLL_S = 0.01  # [s] wall: on simulated time, how often the replanning loop reads ROS time
 
 
 class FollowServer:
@@ -77,8 +83,9 @@ class FollowServer:
         self.tf_listener = tf2_ros.TransformListener(self.tf_buffer)
         self.costmap = CostmapROS("local_costmap", self.tf_buffer, rolling_default=True, static_default=True)
         self.global_frame = self.costmap.global_frame
+        self.clock = RosClock(poll_s=CLOCK_POLL_S)
         self._wake = threading.Condition()
-        self._topics = TopicPaths(self._wake)
+        self._topics = TopicPaths(self._wake, self.clock)
         # not latched: a stale local plan must not steer the controller of a new goal
         self.plan_publisher = rospy.Publisher("~plan", Path, queue_size=1)
         self.costmap.serve_clear_costmap(self.name + "/clear_costmap")
@@ -114,9 +121,10 @@ class FollowServer:
                 self._end(ticket, RESULT_ABORTED, f"bad path: {err}", None)
                 return
         else:
-            topic = ticket.goal.topic.data.strip()
-            if not topic:
-                self._end(ticket, RESULT_ABORTED, "the goal names no topic", None)
+            topic = ticket.goal.topic.data
+            problem = topic_name_problem(topic)
+            if problem is not None:
+                self._end(ticket, RESULT_ABORTED, f"bad topic in the goal: {problem}", None)
                 return
             fresh_since = fresh_from(ticket.goal.newer_than)
             source = self._topics.subscribe(topic)
@@ -134,19 +142,25 @@ class FollowServer:
         self._follow(ticket, progress, source, used if source is not None else 0)
 
     def _follow(self, ticket: GoalTicket, progress: PathProgress, source: Optional[TopicPath], used: int) -> None:
-        last_plan_s = rospy.get_time()  # failure_timeout runs on ROS time, as every other timeout; the pacing is wall
-        next_due = time.monotonic()
+        last_plan_s = self.clock.now()  # replanning is paced and failure_timeout counted on ROS time
+        next_due_s = last_plan_s
+        watch = ClockWatch(stall_timeout_s=0.0)  # a stopped clock just stops the replanning; a jump back ends it
+        watch.observe(last_plan_s, time.monotonic())
         pose: Optional[Tuple[float, float, float]] = None
         while True:
             with self._wake:
                 while not ticket.cancelled.is_set() and not rospy.is_shutdown():
-                    left = next_due - time.monotonic()
-                    if left <= 0.0:
+                    now_s = self.clock.now()
+                    if self.clock.observe(watch) is ClockChange.JUMPED_BACK:
+                        self._end(ticket, RESULT_ABORTED, f"ROS time moved backwards by {watch.jump_s:.2f} s (a "
+                                                          "restarted simulation or a looped bag): goal dropped", pose)
+                        return
+                    if now_s >= next_due_s:
                         break
-                    self._wake.wait(left)
+                    self._wake.wait(self.clock.wall_wait_s(next_due_s, now_s))
             if ticket.cancelled.is_set() or rospy.is_shutdown():
                 return
-            next_due = max(next_due + self.period_s, time.monotonic())
+            next_due_s = max(next_due_s + self.period_s, self.clock.now())
             if source is not None and source.count != used and source.msg is not None:
                 used = source.count
                 try:
@@ -163,7 +177,7 @@ class FollowServer:
                 self._end(ticket, RESULT_SUCCEEDED,
                           f"reached the end of the path ({state.distance_to_end:.3f} m from it)", pose)
                 return
-            now_s = rospy.get_time()
+            now_s = self.clock.now()
             if problem is None or now_s < last_plan_s:  # (ROS time went back: start the count afresh)
                 last_plan_s = now_s
             elif now_s - last_plan_s >= self.failure_timeout_s:

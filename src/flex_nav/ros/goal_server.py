@@ -25,6 +25,12 @@ controller drives leaves the robot stopped. A node restarted under the same name
 predecessor's goal is ended too. Not detected: a client process that hangs, or whose host drops off the
 network (the TCP connection then stays open for minutes). A goal whose sender was never seen connected (e.g.
 published by hand with ``rostopic pub``) is not watched; the server logs that once.
+
+actionlib's SimpleActionServer takes a goal only if it is stamped at or after the current one: after ROS time
+moved backwards (a restarted simulation, a looped bag) it would cancel every new goal for as long as the old
+timeline's last goal is remembered. A goal stamped more than ``OLD_TIMELINE_TOLERANCE_S`` ahead of this node's
+clock is taken for the old timeline's: a newer-but-earlier goal ends it (aborted with the reason, if still
+running) and is taken.
 """
 
 from __future__ import annotations
@@ -43,6 +49,7 @@ from flex_nav.exceptions import ConfigError
 RESULT_SUCCEEDED = "succeeded"
 RESULT_ABORTED = "aborted"
 CLIENT_CHECK_PERIOD_S = 0.1  # [s] how often the client of the running goal is looked for
+OLD_TIMELINE_TOLERANCE_S = 1.0  # [s] a goal stamped this far ahead of the node's clock is from before a jump back
 
 
 class GoalTicket:
@@ -92,6 +99,8 @@ class GoalServer:
         self._stopping = False
         self.server = actionlib.SimpleActionServer(name, spec.action, auto_start=False)
         self.server.register_goal_callback(self._on_goal)
+        self._simple_goal_callback = self.server.action_server.goal_callback
+        self.server.action_server.goal_callback = self._on_goal_arrival
         self.server.register_preempt_callback(self._on_preempt)
         self._worker = threading.Thread(target=self._work, name=f"goals:{name}", daemon=True)
         self._client_watch = threading.Thread(target=self._watch_clients, name=f"clients:{name}", daemon=True)
@@ -141,6 +150,30 @@ class GoalServer:
         return ticket is self._current and not ticket.cancelled.is_set()
 
     # ------------------------------------------------------------------ actionlib callbacks (its locks held)
+    def _on_goal_arrival(self, incoming: Any) -> None:
+        """Every goal, before SimpleActionServer's stamp check: forget goals of an old timeline first."""
+        self._forget_old_timeline(incoming.get_goal_id().stamp)
+        self._simple_goal_callback(incoming)
+
+    def _forget_old_timeline(self, stamp: rospy.Time) -> None:
+        ahead_of = rospy.Time.now() + rospy.Duration(OLD_TIMELINE_TOLERANCE_S)
+        for attr in ("current_goal", "next_goal"):
+            handle = getattr(self.server, attr)
+            if handle.get_goal() is None:
+                continue
+            old_stamp = handle.get_goal_id().stamp
+            if not (stamp < old_stamp and old_stamp > ahead_of):
+                continue
+            with self.server.lock:
+                if attr == "current_goal" and self.server.is_active():
+                    reason = "ROS time moved backwards: the goal belongs to the old timeline"
+                    if self._current is not None:
+                        self._stop(self._current, replaced=False)
+                        self._current = None
+                    self.server.set_aborted(self.result("FAILURE", reason), reason)
+                    rospy.logwarn(f"{self.name}: {reason}; aborted it for a new goal")
+                setattr(self.server, attr, actionlib.ServerGoalHandle())
+
     def _on_goal(self) -> None:
         goal = self.server.accept_new_goal()
         if goal is None:

@@ -16,14 +16,20 @@ Safety (see :class:`flex_nav.follow.controller.SafeFollower`): empty path, path 
 pose, stale ``odom`` or scan (``~sensor_timeout`` [s]), a global-frame transform older than
 ``~localization_timeout`` [s] (1.0; 0: off; static transforms have no age), an obstacle ahead for
 ``~collision_timeout`` [s], any exception in the control loop, the node that sent the goal gone for
-``~client_timeout`` [s] (2.0; 0: off; see :mod:`flex_nav.ros.goal_server`) -> zero twist and the goal aborted
-with the reason. A cancel publishes a zero twist from the cancel callback itself (before it returns), and no
-later command of that goal can follow it; a newer goal replacing the current one also starts from a zero twist.
+``~client_timeout`` [s] (2.0; 0: off; see :mod:`flex_nav.ros.goal_server`), no heartbeat from the operator side
+for ``~heartbeat_timeout`` [s of wall time] (0: off, the default; :mod:`flex_nav.ros.heartbeat`), ROS time moving
+backwards (a restarted simulation: nothing computed on the old timeline is executed) -> zero twist and the goal
+aborted with the reason. ROS time standing still for ``~sensor_timeout`` of wall time (the simulator paused or
+crashed) -> one zero twist, then no command until ROS time moves again (the goal goes on then). Control is paced
+on ROS time (:class:`flex_nav.ros.ros_clock.RosClock`). A cancel publishes a zero twist from the cancel callback
+itself (before it returns), and no later command of that goal can follow it; a newer goal replacing the current
+one also starts from a zero twist. A FollowTopic goal naming an illegal topic (empty, ``..``, blanks) aborts at once.
 
 Parameters (private): ``global_frame`` ("map"), ``robot_base_frame`` ("base_footprint"),
 ``controller_frequency`` [Hz] (20), ``sensor_timeout`` [s] (0.5), ``collision_timeout`` [s] (2.0),
 ``client_timeout`` [s] (2.0), ``localization_timeout`` [s] (1.0), ``transform_timeout`` [s] (0.2),
 ``topic_timeout`` [s] (2.0, FollowTopic: wait for the first Path), ``feedback_frequency`` [Hz] (5),
+``heartbeat_timeout`` [s of wall time] (0: off),
 ``blocked_distance`` [m] (0: off; an obstacle on the path this far ahead aborts the goal with a reason starting
 ``blocked``), ``blocked_timeout`` [s] (0.5), ``yield_to_people`` (false; true: track moving obstacles in the
 scan and give way to them, ``yielding/*`` and ``people_tracker/*``, see
@@ -33,6 +39,7 @@ by name; unknown names are rejected).
 
 from __future__ import annotations
 
+import enum
 import math
 import threading
 import time
@@ -46,8 +53,10 @@ from nav_msgs.msg import Odometry, Path
 
 from flex_nav.action_types import action_type
 from flex_nav.exceptions import ConfigError, NotReadyError
+from flex_nav.follow.clock_watch import ClockChange, ClockWatch
 from flex_nav.follow.controller import Decision, LocalCostmap, Outcome, SafeFollower, no_tracks, warm_up
 from flex_nav.follow.planar import transform_poses
+from flex_nav.follow.topic_name import topic_name_problem
 from flex_nav.msg import FollowPathFeedback, FollowTopicFeedback
 from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.nav.pure_pursuit import PurePursuitParams
@@ -55,9 +64,11 @@ from flex_nav.ros.conversions import pose_of_xy_yaw
 from flex_nav.ros.costmap_ros import CostmapROS
 from flex_nav.ros.frames import frame_pose, path_in_frame
 from flex_nav.ros.goal_server import RESULT_ABORTED, RESULT_SUCCEEDED, GoalServer, GoalTicket
+from flex_nav.ros.heartbeat import HeartbeatListener
 from flex_nav.ros.moving_obstacles_ros import MovingObstaclesROS, yield_rule
 from flex_nav.ros.params import param_bool, param_float, param_str, reject_unknown
 from flex_nav.ros.proxies import SHUTDOWN_DRAIN_S, drain_publisher
+from flex_nav.ros.ros_clock import RosClock
 from flex_nav.ros.topic_path import TopicPath, TopicPaths, fresh_from
 
 SOURCES = ("path", "topic")
@@ -65,8 +76,19 @@ PARAMETERS = (
     "global_frame", "robot_base_frame", "controller_frequency", "sensor_timeout", "collision_timeout",
     "transform_timeout", "topic_timeout", "feedback_frequency", "local_costmap", "pure_pursuit",
     "blocked_distance", "blocked_timeout", "yield_to_people", "yielding", "people_tracker", "client_timeout",
-    "localization_timeout",
+    "localization_timeout", "heartbeat_timeout",
 )
+CLOCK_CHECK_PERIOD_S = 0.05  # [s] wall: longest wait in the control loop before ROS time is looked at again
+
+
+class Wake(enum.Enum):
+    """Why the control loop's wait ended."""
+
+    TICK = "tick"
+    CANCELLED = "cancelled"
+    STALLED = "stalled"
+    JUMPED_BACK = "jumped back"
+    LINK_LOST = "link lost"
 
 
 def pursuit_params(raw: dict, costmap: CostmapROS) -> PurePursuitParams:
@@ -117,10 +139,14 @@ class PurePursuitController:
         self.people = MovingObstaclesROS(self.tf_buffer, self.global_frame) if yield_to_people else None
         yielding = (yield_rule(self.costmap.inflation.inscribed_radius, params.desired_linear_vel)
                     if yield_to_people else None)
+        sensor_timeout_s = param_float("~sensor_timeout", 0.5, 0.01, 600.0)
+        self.clock = RosClock(poll_s=min(self.period_s / 10.0, 0.005))
+        self.clock_watch = ClockWatch(stall_timeout_s=sensor_timeout_s)  # the node's: jumps between goals count
+        self.heartbeat = HeartbeatListener(param_float("~heartbeat_timeout", 0.0, 0.0, 3600.0))
         self.follower = SafeFollower(
             params,
             sensors=sensors,
-            sensor_timeout_s=param_float("~sensor_timeout", 0.5, 0.01, 600.0),
+            sensor_timeout_s=sensor_timeout_s,
             collision_timeout_s=param_float("~collision_timeout", 2.0, 0.0, 600.0),
             nominal_period_s=self.period_s,
             start_s=rospy.get_time(),
@@ -132,7 +158,7 @@ class PurePursuitController:
         self._odom: Optional[Odometry] = None
         self._odom_count = 0
         self._publish_lock = threading.Lock()
-        self._topics = TopicPaths(self._wake)
+        self._topics = TopicPaths(self._wake, self.clock)
         self.cmd_publisher = rospy.Publisher("cmd_vel_stamped", TwistStamped, queue_size=1, tcp_nodelay=True)
         self._shut_down = False  # set by the shutdown hook: no moving command after its zero twist
         rospy.on_shutdown(self._on_shutdown)
@@ -230,9 +256,10 @@ class PurePursuitController:
                 return
             self._control(ticket, None)
             return
-        topic = ticket.goal.topic.data.strip()
-        if not topic:
-            self._end(ticket, RESULT_ABORTED, "the goal names no topic")
+        topic = ticket.goal.topic.data
+        problem = topic_name_problem(topic)
+        if problem is not None:
+            self._end(ticket, RESULT_ABORTED, f"bad topic in the goal: {problem}")
             return
         fresh_since = fresh_from(ticket.goal.newer_than)
         source = self._topics.subscribe(topic)
@@ -242,28 +269,58 @@ class PurePursuitController:
             return
         self._control(ticket, source)
 
+    def _wait_for_tick(self, ticket: GoalTicket, next_due_s: float, used_odom: int) -> Wake:
+        """Wait until a tick is due (``next_due_s`` [s ROS time] passed and new odometry, or one period later
+        without), the goal is cancelled, or ROS time or the operator link fails."""
+        latest_by_s = next_due_s + self.period_s
+        with self._wake:
+            while True:
+                if ticket.cancelled.is_set() or rospy.is_shutdown():
+                    return Wake.CANCELLED
+                now_s = self.clock.now()
+                change = self.clock_watch.observe(now_s, time.monotonic())
+                if change in (ClockChange.JUMPED_BACK, ClockChange.STALLED):
+                    return Wake.JUMPED_BACK if change is ClockChange.JUMPED_BACK else Wake.STALLED
+                if self.heartbeat.lost():
+                    return Wake.LINK_LOST
+                if not self.clock_watch.stalled and (
+                        (now_s >= next_due_s and self._odom_count != used_odom) or now_s >= latest_by_s):
+                    return Wake.TICK
+                deadline_s = next_due_s if now_s < next_due_s else latest_by_s
+                self._wake.wait(min(self.clock.wall_wait_s(deadline_s, now_s), CLOCK_CHECK_PERIOD_S))
+
     def _control(self, ticket: GoalTicket, source: Optional[TopicPath]) -> None:
         used_odom = -1
         used_path = -1
-        next_due = time.monotonic()
-        last_feedback = -math.inf
+        next_due_s = self.clock.now()
+        last_feedback_s = -math.inf
         while True:
+            wake = self._wait_for_tick(ticket, next_due_s, used_odom)
+            if wake is Wake.CANCELLED:
+                self.follower.stop()
+                return
+            if wake is Wake.STALLED:
+                self._publish(None, 0.0, 0.0)
+                self.follower.hold()
+                rospy.logerr(f"{self.name}: goal #{ticket.number}: ROS time has not advanced for "
+                             f"{self.clock_watch.stall_timeout_s:.2f} s of wall time (simulator paused or gone?); "
+                             "zero twist published, no command until it moves again")
+                continue
+            if wake is Wake.JUMPED_BACK:
+                self.follower.watchdog.restart(self.clock.now())
+                self._end(ticket, RESULT_ABORTED, f"ROS time moved backwards by {self.clock_watch.jump_s:.2f} s "
+                                                  "(a restarted simulation or a looped bag): goal dropped")
+                return
+            if wake is Wake.LINK_LOST:
+                self._end(ticket, RESULT_ABORTED, self.heartbeat.why_lost())
+                return
             with self._wake:
-                latest_by = next_due + self.period_s
-                while not ticket.cancelled.is_set() and not rospy.is_shutdown():
-                    now = time.monotonic()
-                    if (now >= next_due and self._odom_count != used_odom) or now >= latest_by:
-                        break
-                    self._wake.wait((next_due if now < next_due else latest_by) - now)
-                if ticket.cancelled.is_set() or rospy.is_shutdown():
-                    self.follower.stop()
-                    return
                 used_odom = self._odom_count
                 path_msg = source.msg if source is not None and source.count != used_path else None
                 if source is not None:
                     used_path = source.count
-            now = time.monotonic()
-            next_due = now + self.period_s  # from the tick itself: odometry arriving later starts the next one
+            now_s = self.clock.now()
+            next_due_s = now_s + self.period_s  # from the tick itself: odometry arriving later starts the next one
             if path_msg is not None:
                 try:
                     self.follower.set_path(path_in_frame(self.tf_buffer, path_msg, self.global_frame,
@@ -279,8 +336,8 @@ class PurePursuitController:
             if not self._publish(ticket, decision.v, decision.w):
                 self.follower.stop()
                 return
-            if now - last_feedback >= self.feedback_period_s:
-                last_feedback = now
+            if now_s - last_feedback_s >= self.feedback_period_s:
+                last_feedback_s = now_s
                 self._feedback(ticket, decision, source)
 
     def _tick(self) -> Decision:

@@ -1,30 +1,51 @@
-"""The behavior executor's clock on ROS time, so behaviors follow ``/clock`` when ``use_sim_time`` is set."""
+"""ROS time for everything that paces or times out, so nodes and behaviors follow ``/clock`` with ``use_sim_time``.
+
+One clock for the behavior executor, the controllers and the follow servers: deadlines are in ROS time; a wait
+for one is a bounded wall-time wait (on simulated time the wall duration of a sim interval is unknown, so such a
+wait polls). Whether ROS time itself still runs is watched with :class:`flex_nav.follow.clock_watch.ClockWatch`.
+"""
 
 from __future__ import annotations
 
 import math
 import threading
+import time
 
 import rospy
 
+from flex_nav.follow.clock_watch import ClockChange, ClockWatch
+
 SIM_TIME_POLL_S = 0.002  # [s] wall period at which a wait on simulated time re-reads the clock
+IDLE_WAIT_S = 0.1  # [s] wall bound of a wait with no finite deadline
 
 
 class RosClock:
-    """``now()`` is ``rospy.get_time()``; waits end at the deadline, on a wake-up, or on shutdown."""
+    """``now()`` is ``rospy.get_time()``; waits end at the deadline, on a wake-up, or on shutdown.
 
-    def __init__(self) -> None:
+    ``poll_s`` [s]: on simulated time, the longest wall-time wait before ROS time is read again.
+    """
+
+    def __init__(self, poll_s: float = SIM_TIME_POLL_S) -> None:
         self._sim_time = bool(rospy.get_param("/use_sim_time", False))
+        self._poll_s = poll_s
 
     def now(self) -> float:
         return float(rospy.get_time())
 
-    def wait_until(self, deadline_s: float, wake: threading.Event) -> None:
-        remaining_s = deadline_s - self.now()
+    def wall_wait_s(self, deadline_s: float, now_s: float) -> float:
+        """[s of wall time] to wait, from ROS time ``now_s``, before looking at ROS deadline ``deadline_s`` again."""
+        remaining_s = deadline_s - now_s
         if remaining_s <= 0.0:
-            return
+            return 0.0
         if not math.isfinite(remaining_s):
-            wake.wait(0.1)
-            return
-        # On simulated time the wall duration of a sim interval is unknown: poll briefly (the executor loops).
-        wake.wait(min(remaining_s, SIM_TIME_POLL_S) if self._sim_time else remaining_s)
+            return IDLE_WAIT_S
+        return min(remaining_s, self._poll_s) if self._sim_time else remaining_s
+
+    def wait_until(self, deadline_s: float, wake: threading.Event) -> None:
+        wait_s = self.wall_wait_s(deadline_s, self.now())
+        if wait_s > 0.0:
+            wake.wait(wait_s)
+
+    def observe(self, watch: ClockWatch) -> ClockChange:
+        """Let ``watch`` look at ROS time against wall time now."""
+        return watch.observe(self.now(), time.monotonic())

@@ -7,6 +7,7 @@ kept while consecutive goals name the same topic, so a latched or frequent topic
 A Path stamped before the goal started is most likely what the topic held for the previous goal (a
 planner's latched plan): following it, a controller already at its end would report success at once.
 Such a Path is used only if no newer one arrives within ``STALE_GRACE_S`` (a one-shot latched publisher).
+Both waits run on ROS time (:class:`flex_nav.ros.ros_clock.RosClock`), like every other timeout of the nodes.
 A client that already waited for a fresh Path says from when it counted (the goal's ``newer_than``), so the
 server does not wait again for one newer than the goal.
 """
@@ -14,13 +15,14 @@ server does not wait again for one newer than the goal.
 from __future__ import annotations
 
 import threading
-import time
 from typing import Optional
 
 import rospy
 from nav_msgs.msg import Path
 
-STALE_GRACE_S = 1.0  # [s] wall: how long to wait for a Path newer than the goal before using an older one
+from flex_nav.ros.ros_clock import RosClock
+
+STALE_GRACE_S = 1.0  # [s] ROS time: how long to wait for a Path newer than the goal before using an older one
 
 
 class TopicPath:
@@ -51,8 +53,9 @@ class TopicPath:
 class TopicPaths:
     """Owns the current :class:`TopicPath`; ``wake`` is notified on every new Path (and by cancels)."""
 
-    def __init__(self, wake: threading.Condition) -> None:
+    def __init__(self, wake: threading.Condition, clock: RosClock) -> None:
         self._wake = wake
+        self._clock = clock
         self.current: Optional[TopicPath] = None
 
     def subscribe(self, topic: str) -> TopicPath:
@@ -74,21 +77,21 @@ class TopicPaths:
         """True once ``source`` has a Path; False after ``timeout_s`` [s] or when ``cancelled`` is set
         (whoever sets it must notify ``wake``). With ``newer_than`` (the goal's start), a Path stamped
         before it is used only when no newer Path arrives within ``grace_s`` [s]."""
-        deadline = time.monotonic() + timeout_s
+        deadline_s = self._clock.now() + timeout_s
         with self._wake:
             while source.msg is None and not cancelled.is_set():
-                left = deadline - time.monotonic()
-                if left <= 0.0:
+                now_s = self._clock.now()
+                if now_s >= deadline_s:
                     return False
-                self._wake.wait(left)
+                self._wake.wait(self._clock.wall_wait_s(deadline_s, now_s))
             if newer_than is not None and source.msg is not None and is_older(source.msg, newer_than):
                 count = source.count
-                fresh_by = min(deadline, time.monotonic() + grace_s)
+                fresh_by_s = min(deadline_s, self._clock.now() + grace_s)
                 while source.count == count and not cancelled.is_set():
-                    left = fresh_by - time.monotonic()
-                    if left <= 0.0:
+                    now_s = self._clock.now()
+                    if now_s >= fresh_by_s:
                         break
-                    self._wake.wait(left)
+                    self._wake.wait(self._clock.wall_wait_s(fresh_by_s, now_s))
         return source.msg is not None and not cancelled.is_set()
 
 

@@ -10,8 +10,14 @@ between them: a command stamped before one already forwarded is dropped, and at 
 (:class:`~flex_nav.follow.safety.CommandOrder`). When ROS time moves backwards (a restarted simulation, a
 looped bag) a zero Twist goes out and the order starts afresh, so the new timeline's commands get through; a
 command stamped more than 1 s ahead of this node's clock (the old timeline's, sent by a node that has not seen
-the jump yet) is dropped, so it cannot block them again. When the node shuts down (Ctrl-C, the launch ending,
-``rosnode kill``) it publishes a last zero Twist and forwards nothing after it.
+the jump yet) is dropped, so it cannot block them again. When ROS time stops advancing for longer than
+``~timeout`` of wall time (the simulator paused or crashed: every timeout on ROS time stands still with it), one
+zero Twist goes out and nothing is forwarded until ROS time moves again. ``~heartbeat_timeout`` [s of wall time]
+(0 = off, the default; see :mod:`flex_nav.ros.heartbeat`): when set, no heartbeat from the operator side for that
+long -- the link to the computer running the behavior dropped -- sends one zero Twist and forwards nothing until
+heartbeats come again (nothing at all before the first one). When the node shuts down (Ctrl-C, the launch
+ending, ``rosnode kill``) it publishes a last zero Twist and forwards nothing after it. The checks run on a
+wall-time thread, so they work while ROS time stands still.
 """
 
 from __future__ import annotations
@@ -22,47 +28,73 @@ import time
 import rospy
 from geometry_msgs.msg import Twist, TwistStamped
 
+from flex_nav.follow.clock_watch import ClockChange, ClockWatch
 from flex_nav.follow.safety import CommandOrder, CommandTimeout, twist_problem
+from flex_nav.ros.heartbeat import HeartbeatListener
 from flex_nav.ros.params import param_float, reject_unknown
 from flex_nav.ros.proxies import SHUTDOWN_DRAIN_S, drain_publisher
 
-CHECK_PERIOD_MIN_S = 0.01  # [s] fastest timeout check
+CHECK_PERIOD_MIN_S = 0.01  # [s] wall: fastest check
+CHECK_PERIOD_MAX_S = 0.05  # [s] wall: slowest check (a timeout of 0.5 s of ROS time is 0.25 s of wall at rtf 2)
 FUTURE_STAMP_TOLERANCE_S = 1.0  # [s] commands stamped further ahead of this node's clock are not forwarded
 
 
 class TwistRelay:
     def __init__(self) -> None:
-        reject_unknown("~", ("timeout",))
+        reject_unknown("~", ("timeout", "heartbeat_timeout"))
         timeout_s = param_float("~timeout", 0.5, 0.0, 3600.0)
         self._timeout = CommandTimeout(timeout_s)
         self._order = CommandOrder()
         self._lock = threading.Lock()
+        self._clock = ClockWatch(stall_timeout_s=timeout_s)
         self.publisher = rospy.Publisher("cmd_vel", Twist, queue_size=1)
+        self._heartbeat = HeartbeatListener(param_float("~heartbeat_timeout", 0.0, 0.0, 3600.0))
+        self._link_lost = self._heartbeat.link.enabled  # nothing is forwarded before the first heartbeat
+        self._shut_down = False
+        self._last_now_s = rospy.get_time()
+        self._clock.observe(self._last_now_s, time.monotonic())
+        rospy.on_shutdown(self._on_shutdown)
         self.subscriber = rospy.Subscriber("cmd_vel_stamped", TwistStamped, self._on_command, queue_size=1,
                                            tcp_nodelay=True)
-        self._timer = None
-        self._shut_down = False
-        rospy.on_shutdown(self._on_shutdown)
-        self._last_now_s = rospy.get_time()
-        if timeout_s > 0.0:
-            period_s = max(CHECK_PERIOD_MIN_S, timeout_s / 5.0)
-            self._timer = rospy.Timer(rospy.Duration(period_s), self._on_check, reset=True)  # survives time jumps
-        else:
-            rospy.logwarn("twist_relay: ~timeout 0: no zero Twist after the commands stop; the base driver's own "
-                          "command timeout must stop the robot")
+        if timeout_s == 0.0:
+            rospy.logwarn("twist_relay: ~timeout 0: no zero Twist after the commands stop or when ROS time stops; "
+                          "the base driver's own command timeout must stop the robot")
+        self._period_s = min(CHECK_PERIOD_MAX_S, max(CHECK_PERIOD_MIN_S, timeout_s / 5.0))
+        self._checker = threading.Thread(target=self._check_loop, name="twist_relay checks", daemon=True)
+        self._checker.start()
 
-    def _clock_went_back(self) -> bool:
-        """True (once) when ROS time moved backwards since the last call; the order starts afresh then."""
-        now_s = rospy.get_time()
-        back = now_s < self._last_now_s
-        self._last_now_s = now_s
-        if back:
-            rospy.logwarn("twist_relay: ROS time moved backwards; publishing a zero Twist and forgetting the "
-                          "stamps of the old timeline")
+    def _stop_base(self) -> None:
+        """One zero Twist; no timeout is due after it until the next forwarded command (lock held)."""
+        self._timeout.stopped()
+        self.publisher.publish(Twist())
+
+    def _look_at_clock(self) -> None:
+        """Read ROS time into ``_last_now_s`` and act on a jump back, a stall or a resume (lock held)."""
+        self._last_now_s = rospy.get_time()
+        change = self._clock.observe(self._last_now_s, time.monotonic())
+        if change is ClockChange.JUMPED_BACK:
+            rospy.logwarn(f"twist_relay: ROS time moved backwards by {self._clock.jump_s:.2f} s; publishing a zero "
+                          "Twist and forgetting the stamps of the old timeline")
             self._order.reset()
-            self._timeout.stopped()
-            self.publisher.publish(Twist())
-        return back
+            self._stop_base()
+        elif change is ClockChange.STALLED:
+            rospy.logerr(f"twist_relay: ROS time has not advanced for {self._clock.stall_timeout_s:.2f} s of wall "
+                         "time (simulator paused or gone?); publishing a zero Twist and forwarding nothing until "
+                         "it moves again")
+            self._stop_base()
+        elif change is ClockChange.RESUMED:
+            rospy.logwarn("twist_relay: ROS time moves again; forwarding commands")
+
+    def _look_at_link(self) -> None:
+        """Stop the base once when the operator's heartbeat is lost; forward again when it is back (lock held)."""
+        lost = self._heartbeat.lost()
+        if lost and not self._link_lost:
+            rospy.logerr(f"twist_relay: {self._heartbeat.why_lost()}; publishing a zero Twist and forwarding "
+                         "nothing until it is back")
+            self._stop_base()
+        elif not lost and self._link_lost:
+            rospy.logwarn(f"twist_relay: operator heartbeat on {self._heartbeat.topic} heard; forwarding commands")
+        self._link_lost = lost
 
     def _on_command(self, msg: TwistStamped) -> None:
         lin, ang = msg.twist.linear, msg.twist.angular
@@ -70,11 +102,14 @@ class TwistRelay:
         with self._lock:
             if self._shut_down:
                 return
-            self._clock_went_back()
+            self._look_at_clock()
             if problem is not None:
                 rospy.logerr_throttle(1.0, f"twist_relay: {problem}; dropped, publishing a zero Twist instead")
-                self._timeout.stopped()
-                self.publisher.publish(Twist())
+                self._stop_base()
+                return
+            if self._clock.stalled or self._link_lost:
+                why = "ROS time stands still" if self._clock.stalled else "the operator's heartbeat is lost"
+                rospy.logwarn_throttle(1.0, f"twist_relay: dropped a command: {why}")
                 return
             moving = any(v != 0.0 for v in (lin.x, lin.y, lin.z, ang.x, ang.y, ang.z))
             stamp_s = msg.header.stamp.to_sec()
@@ -86,16 +121,27 @@ class TwistRelay:
             if not self._order.admit(stamp_s, moving):
                 rospy.logdebug("twist_relay: dropped a command stamped before one already forwarded")
                 return
-            self._timeout.command(self._last_now_s)  # read by _clock_went_back above
+            self._timeout.command(self._last_now_s)
             self.publisher.publish(msg.twist)
 
-    def _on_check(self, _event: rospy.timer.TimerEvent) -> None:
-        with self._lock:
-            if self._clock_went_back():
-                return
-            if self._timeout.due(self._last_now_s):
-                rospy.logwarn(f"twist_relay: no command for {self._timeout.timeout_s:.2f} s; publishing a zero Twist")
-                self.publisher.publish(Twist())
+    def _check_loop(self) -> None:
+        """Wall-time checks: the command timeout (on ROS time), ROS time itself, the operator's heartbeat."""
+        while not rospy.is_shutdown():
+            time.sleep(self._period_s)
+            try:
+                with self._lock:
+                    if self._shut_down:
+                        return
+                    self._check()
+            except Exception as err:  # the checks must go on
+                rospy.logerr_throttle(5.0, f"twist_relay: check failed: {err!r}")
+
+    def _check(self) -> None:
+        self._look_at_clock()
+        self._look_at_link()
+        if self._timeout.due(self._last_now_s):
+            rospy.logwarn(f"twist_relay: no command for {self._timeout.timeout_s:.2f} s; publishing a zero Twist")
+            self.publisher.publish(Twist())
 
     def _on_shutdown(self) -> None:
         """The node is stopping (Ctrl-C, roslaunch ending, rosnode kill): the base gets a zero Twist, not the

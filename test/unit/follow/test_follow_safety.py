@@ -106,3 +106,15 @@ def test_command_order_after_a_reset_admits_the_new_timeline():
     order.reset()
     assert order.admit(5.0, moving=False) and order.admit(5.1, moving=True)
     assert not order.admit(5.0, moving=True)  # ordered again within the new timeline
+
+
+def test_watchdog_restart_forgets_the_old_timeline() -> None:
+    # after ROS time jumped back, a sensor last seen at t=100 s must not look fresh (a negative age) at t=2 s
+    dog = SensorWatchdog(["odom"], 0.5, start_s=0.0)
+    dog.saw("odom", 100.0)
+    assert dog.problem(2.0) is None  # the age is negative: the bug restart() is for
+    dog.restart(2.0)
+    assert dog.problem(2.4) is None  # one timeout of grace from the restart
+    assert "no odom message since start" in (dog.problem(2.6) or "")
+    dog.saw("odom", 2.7)
+    assert dog.problem(2.8) is None

@@ -26,7 +26,8 @@ def shared_master(tmp_path_factory):
 @pytest.mark.parametrize(
     ("node", "args", "expected"),
     [
-        ("twist_relay", ["_timout:=0.3"], "/timout is not a parameter of this node (valid: timeout)"),
+        ("twist_relay", ["_timout:=0.3"],
+         "/timout is not a parameter of this node (valid: heartbeat_timeout, timeout)"),
         ("twist_relay", ["_timeout:=-1.0"], "/timeout = -1.0 is outside [0.0, 3600.0]"),
         ("pure_pursuit_path", ["_pure_pursuit/desired_linear_vell:=0.3"],
          "pure pursuit parameter 'desired_linear_vell' is not valid"),

@@ -462,3 +462,10 @@ def test_clear_costmaps_paused_time_does_not_count():
     h.run_for(0.8)  # 1.8 s of unpaused time: still waiting for the third server
     clients[2].finish(SUCCEEDED, ok())
     assert h.run(max_time_s=1.0).outcome == "done"
+
+
+@pytest.mark.parametrize("topic", ["..", "a/../b", "plan/", "1plan"])
+def test_follow_topic_state_refuses_an_illegal_topic_at_load_time(topic: str) -> None:
+    # before: taken as given; the servers waited topic_timeout for a Path on it and failed 2 s later
+    with pytest.raises(ConfigError, match="not a legal ROS name"):
+        FollowTopicState(path_topic=topic)
