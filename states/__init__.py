@@ -21,7 +21,8 @@ Modules (one state or one small family each):
 - obstacles (push or avoid): :mod:`follow_until_blocked_state` (FollowPath with a ``blocked`` outcome),
   :mod:`obstacle_class_state` (person / movable / clear from the obstacle classifier), :mod:`push_state`
   (push a distance, fails fast on a heavy object, never pushes a person), :mod:`wait_path_clear_state`;
-- operator: :mod:`operator_decision_state`, :mod:`log_state`, :mod:`wait_state`.
+- operator: :mod:`operator_decision_state`, :mod:`log_state`, :mod:`wait_state`;
+- retries: :mod:`backoff_state` (a wait before the next try of a goal, doubling after each failed one).
 
 :func:`state_classes` imports them all and lists the concrete states (for documentation checks and tools);
 ``EXAMPLE_PARAMS`` gives constructor arguments for the states that have required parameters (every other
@@ -54,6 +55,7 @@ STATE_MODULES = (
     "operator_decision_state",
     "log_state",
     "wait_state",
+    "backoff_state",
     "obstacle_class_state",
     "push_state",
     "wait_path_clear_state",

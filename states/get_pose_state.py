@@ -10,7 +10,7 @@ from flex_nav.behavior.state import State
 from flex_nav.behavior.userdata import UserDataView
 from flex_nav.nav.pose_checks import pose_problem
 from flex_nav_states import validation
-from flex_nav_states.messages import describe, message_age_s, stamp_s
+from flex_nav_states.messages import FUTURE_STAMP_TOLERANCE_S, describe, message_age_s, stamp_s
 from flex_nav_states.proxy_types import SubscriptionLike, proxies_of
 
 BUFFER_SIZE = 10  # goals kept between two ticks (more than anyone clicks in 0.1 s)
@@ -20,7 +20,9 @@ class GetPoseState(State):
     """Waits for a goal pose on a topic and writes it to userdata; stale and malformed messages are dropped.
 
     A message counts only if it is fresh when the state looks at it: a stamped message must be at most
-    ``max_age_s`` old (so a goal left over from an earlier run or latched long ago is ignored); an
+    ``max_age_s`` old (so a goal left over from an earlier run or latched long ago is ignored) and at most
+    ``max_age_s`` ahead of the behavior's clock (dropped with the offset: a sender's clock far ahead, or a goal of
+    the timeline before a restarted simulation; one ahead by less is taken with a warning naming the offset); an
     unstamped message (stamp 0) must have arrived after the state was entered. Messages with an empty
     frame_id, non-finite values or an unnormalised orientation are dropped with a warning. Goals are taken
     in arrival order (a goal that came while the state was inactive and is still fresh is used first).
@@ -78,6 +80,15 @@ class GetPoseState(State):
         return None
 
     def _accept(self, msg: Any, sub: SubscriptionLike, now: float) -> bool:
+        ahead_s = stamp_s(msg) - now
+        if stamp_s(msg) > 0.0 and ahead_s > self._max_age_s:
+            self.log_warn(f"dropped a goal on {self._topic} stamped {ahead_s:.2f} s ahead of the behavior's clock "
+                          f"(more than max_age_s {self._max_age_s:g} s: the sender's clock is ahead, or the goal is "
+                          "from before a restarted simulation)")
+            return False
+        if stamp_s(msg) > 0.0 and ahead_s > FUTURE_STAMP_TOLERANCE_S:
+            self.log_warn(f"goal on {self._topic} stamped {ahead_s:.2f} s ahead of the behavior's clock: are the "
+                          "clocks of the two computers synchronised? (its age is taken from its arrival)")
         if stamp_s(msg) > 0.0:
             age = message_age_s(msg, sub, now)
             if abs(age) > self._max_age_s:

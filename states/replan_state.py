@@ -13,6 +13,7 @@ from flex_nav.behavior.userdata import UserDataView, unwrap
 from flex_nav.msg import GetPathGoal, GetPathResult
 from flex_nav_states import validation
 from flex_nav_states.action_base import SERVER_LOST_S, ServerLossWatch
+from flex_nav_states.backoff_state import retry_delay_s
 from flex_nav_states.proxy_types import ActionClientLike, PublisherLike, proxies_of
 
 GET_PATH = action_type("GetPath")
@@ -25,7 +26,9 @@ class ReplanState(State):
     move_base's planner thread replans at ``planner_frequency``. It never finishes by itself while plans
     keep coming; it fails after ``max_failures`` planning failures in a row or when the server is missing.
     A plan request without an answer for ``plan_timeout_s`` is cancelled and counts as a failure; a server that
-    disconnects while a request is out fails the state after ``SERVER_LOST_S`` (as every action state).
+    disconnects while a request is out fails the state after ``SERVER_LOST_S`` (as every action state). After a
+    failed plan the next one starts later, doubling the period after each failure in a row up to
+    ``backoff_max_s`` (a transient fault is not answered by back-to-back requests that all fail).
 
     -- action_name       str    GetPath server name, relative to the behavior's namespace.
     -- plan_topic        str    nav_msgs/Path topic the plans are published on (latched).
@@ -33,6 +36,8 @@ class ReplanState(State):
     -- max_failures      int    Planning failures in a row before giving up (>= 1).
     -- server_timeout_s  float  [s] Fail if the server is not connected this long after entry.
     -- plan_timeout_s    float  [s] A plan request unanswered this long is cancelled and counts as a failure.
+    -- backoff_max_s     float  [s] Longest time between the starts of two plans after failures (never below
+                                period_s).
 
     ># goal  PoseStamped  The goal to plan to.
     #> plan  Path         The newest plan.
@@ -41,7 +46,8 @@ class ReplanState(State):
     """
 
     def __init__(self, action_name: str = "get_path_server", plan_topic: str = "replan/plan", period_s: float = 1.0,
-                 max_failures: int = 3, server_timeout_s: float = 5.0, *, plan_timeout_s: float = 5.0) -> None:
+                 max_failures: int = 3, server_timeout_s: float = 5.0, *, plan_timeout_s: float = 5.0,
+                 backoff_max_s: float = 4.0) -> None:
         super().__init__(outcomes=["failed"], input_keys=["goal"], output_keys=["plan"])
         owner = type(self).__name__
         self._action_name = validation.name(owner, "action_name", action_name)
@@ -51,6 +57,8 @@ class ReplanState(State):
         self._server_timeout_s = validation.number(owner, "server_timeout_s", server_timeout_s, positive=True,
                                                    unit="[s]")
         self._plan_timeout_s = validation.number(owner, "plan_timeout_s", plan_timeout_s, positive=True, unit="[s]")
+        self._backoff_max_s = max(self._replan_period_s,
+                                  validation.number(owner, "backoff_max_s", backoff_max_s, positive=True, unit="[s]"))
         self._client: Optional[ActionClientLike] = None
         self._publisher: Optional[PublisherLike] = None
         self._goal: Any = None
@@ -121,8 +129,11 @@ class ReplanState(State):
         return None
 
     def _failed(self, reason: str) -> bool:
-        """Count one failed plan with its reason; True when max_failures in a row have failed."""
+        """Count one failed plan with its reason (the next one waits the back-off); True when max_failures in a row
+        have failed."""
         self._failures += 1
+        self._next_plan_s = max(self._next_plan_s, self._sent_s + retry_delay_s(
+            self._failures, self._replan_period_s, self._backoff_max_s))
         self.log_warn(f"{self._action_name}: replan {self._failures}/{self._max_failures} failed: {reason}")
         if self._failures >= self._max_failures:
             self.log_error(f"{self._action_name}: {self._failures} plans in a row failed; giving up")

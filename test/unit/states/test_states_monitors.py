@@ -332,6 +332,22 @@ def test_get_pose_drops_a_stale_goal_and_takes_the_next():
     assert h.run(max_time_s=1.0).outputs["goal"] is new
 
 
+def test_get_pose_refuses_a_goal_stamped_far_in_the_future_with_the_offset():
+    # before: a goal stamped 100 s ahead was taken silently (its age came from its arrival)
+    h = Harness(GetPoseState(max_age_s=5.0, timeout_s=1.0)).start()
+    h.proxies.sub("move_base_simple/goal").inject(pose_stamped(1.0, 1.0, stamp_s=h.clock.now() + 100.0))
+    assert h.run(max_time_s=2.0).outcome == "timeout"
+    assert any("stamped 100.00 s ahead of the behavior's clock" in t for t in h.texts(LogLevel.WARN)), h.log_text()
+
+
+def test_get_pose_takes_a_goal_slightly_ahead_and_warns_with_the_offset():
+    h = Harness(GetPoseState(max_age_s=5.0)).start()
+    goal = pose_stamped(1.0, 1.0, stamp_s=h.clock.now() + 2.0)  # another computer's clock, 2 s ahead
+    h.proxies.sub("move_base_simple/goal").inject(goal)
+    assert h.run(max_time_s=1.0).outputs["goal"] is goal
+    assert any("2.00 s ahead" in t and "synchronised" in t for t in h.texts(LogLevel.WARN)), h.log_text()
+
+
 def test_get_pose_drops_unstamped_goals_from_before_entry_but_takes_later_ones():
     h = Harness(GetPoseState())
     sub = h.proxies.subscription("move_base_simple/goal", PoseStamped, buffer_size=10)

@@ -35,7 +35,7 @@ EXPECTED = {
     "ClearCostmapsState", "MoveDistanceState", "RotateAngleState", "TimedTwistState", "TimedStopState",
     "PurePursuitState", "BumperMonitorState", "StuckMonitorState", "SensorFreshnessState",
     "OperatorDecisionState", "LogState", "WaitState", "GoalListState", "ReplanState", "FollowUntilBlockedState",
-    "ObstacleClassState", "PushState", "WaitPathClearState",
+    "ObstacleClassState", "PushState", "WaitPathClearState", "BackoffState",
 }
 
 

@@ -105,3 +105,31 @@ def test_an_unanswered_plan_is_cancelled_counted_and_planned_again() -> None:
     assert len(client.goals) == 2 and client.cancels == 2
     assert h.clock.now() - 1000.0 == pytest.approx(4.0, abs=0.2)  # two requests of 2 s each
     assert sum("no answer within plan_timeout_s 2 s" in t for t in h.texts()) == 2, h.log_text()
+
+
+def test_failed_plans_are_spaced_by_a_doubling_back_off() -> None:
+    # period 0.5 s, back-off at most 1.5 s: after failures in a row the starts are 0.5, 1.0, 1.5, 1.5 s apart; a
+    # success goes back to the period. Without the back-off every gap was the period (fails then).
+    h = Harness(ReplanState(period_s=0.5, max_failures=10, backoff_max_s=1.5), inputs={"goal": _goal()})
+    client = h.proxies.client("get_path_server", GetPathAction)
+    for _ in range(4):
+        client.respond(GoalStatus.ABORTED, GetPathResult(code=GetPathResult.FAILURE, message="no pose"))
+    client.respond(GoalStatus.SUCCEEDED, _plan(3.0))
+    client.respond(GoalStatus.SUCCEEDED, _plan(3.0))
+    h.start()
+    h.run_for(6.5, step_s=0.05)
+    gaps = [b - a for a, b in zip(client.sent_at, client.sent_at[1:])]
+    assert len(gaps) >= 5, gaps
+    for gap, expected in zip(gaps, [0.5, 1.0, 1.5, 1.5, 0.5]):
+        assert expected - 1e-9 <= gap <= expected + 0.16, gaps  # late by at most a tick (10 Hz) and a step
+
+
+def test_the_back_off_never_goes_below_the_period() -> None:
+    h = Harness(ReplanState(period_s=2.0, max_failures=10, backoff_max_s=0.5), inputs={"goal": _goal()})
+    client = h.proxies.client("get_path_server", GetPathAction)
+    for _ in range(3):
+        client.respond(GoalStatus.ABORTED, GetPathResult(code=GetPathResult.FAILURE, message="no pose"))
+    h.start()
+    h.run_for(5.0, step_s=0.05)
+    gaps = [b - a for a, b in zip(client.sent_at, client.sent_at[1:])]
+    assert gaps and all(2.0 - 1e-9 <= gap <= 2.11 for gap in gaps), gaps
