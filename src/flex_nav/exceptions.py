@@ -101,6 +101,16 @@ class BehaviorLoadError(BehaviorConstructionError):
         self.reason = message
 
 
+class BehaviorLoadLimitError(BehaviorLoadError):
+    """A load crossed one of its bounds (:class:`flex_nav.behavior.yaml_limits.LoadLimits`): ``limit`` is the
+    limit's name (e.g. ``"max_yaml_nodes"``) and ``value`` its value; the message names both."""
+
+    def __init__(self, message: str, limit: str, value: float, file: str = "", line: int = 0) -> None:
+        super().__init__(message, file, line)
+        self.limit = limit
+        self.value = value
+
+
 class UserDataError(BehaviorError):
     """A state used userdata against its declaration while running."""
 

@@ -32,17 +32,40 @@ line that caused them.
 Sub-behaviors are looked up by name as ``<name>.yaml``: first beside the including file, then in the
 search path (``search_path`` argument, else the ``FLEX_NAV_BEHAVIOR_PATH`` directories, then the
 package's ``behaviors/`` directory).
+
+Where a behavior comes from is explicit (:class:`BehaviorSource`): a *remote* source (a name received over ROS,
+:func:`load_named_behavior`) is only ever looked up in the search path; a *local* one (code, the runner's
+``~behavior`` parameter) may also be a file path (a ``Path``, or a str with a ``/`` or a ``.yaml`` suffix). A
+plain name is never taken from the working directory. Every load is bounded by
+:class:`~flex_nav.behavior.yaml_limits.LoadLimits` (bytes, aliases, expanded nodes, nesting, states, include
+depth, time) and every failure, whatever a file holds (not UTF-8, a state class raising anything), is a
+FlexNavError.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import importlib
 import inspect
 import math
 import os
 import re
 from pathlib import Path
-from typing import Any, Dict, FrozenSet, List, Mapping, NoReturn, Optional, Sequence, Tuple, Type, Union
+from typing import (
+    Any,
+    Callable,
+    Dict,
+    FrozenSet,
+    List,
+    Mapping,
+    NoReturn,
+    Optional,
+    Sequence,
+    Tuple,
+    Type,
+    TypeVar,
+    Union,
+)
 
 import yaml
 from yaml.nodes import MappingNode, Node, ScalarNode, SequenceNode
@@ -53,7 +76,14 @@ from flex_nav.behavior.container import Container, child_path
 from flex_nav.behavior.priority import PriorityContainer
 from flex_nav.behavior.state import State
 from flex_nav.behavior.state_machine import StateMachine
-from flex_nav.exceptions import BehaviorConstructionError, BehaviorLoadError, ConfigError, choices_message
+from flex_nav.behavior.yaml_limits import DEFAULT_LIMITS, MAX_NAME_CHARS, LoadBudget, LoadLimits
+from flex_nav.exceptions import (
+    BehaviorConstructionError,
+    BehaviorLoadError,
+    ConfigError,
+    FlexNavError,
+    choices_message,
+)
 
 BEHAVIOR_PATH_ENV = "FLEX_NAV_BEHAVIOR_PATH"
 PACKAGE_BEHAVIORS_DIR = Path(__file__).resolve().parents[3] / "behaviors"
@@ -97,24 +127,46 @@ def default_search_path() -> List[Path]:
 
 
 def list_behaviors(search_path: Optional[Sequence[Union[str, Path]]] = None) -> Dict[str, Path]:
-    """Behavior names found in the search path (the first file of each name wins)."""
+    """Behavior names found in the search path (the first file of each name wins; unreadable directories and
+    entries that are not regular files are skipped)."""
     found: Dict[str, Path] = {}
     for directory in _dirs(search_path):
-        if directory.is_dir():
-            for path in sorted(directory.glob("*.yaml")):
-                found.setdefault(path.stem, path)
+        try:
+            paths = sorted(directory.glob("*.yaml")) if directory.is_dir() else []
+            for path in paths:
+                if _NAME_RE.match(path.stem) and len(path.stem) <= MAX_NAME_CHARS and path.is_file():
+                    found.setdefault(path.stem, path)
+        except OSError:
+            continue
     return found
 
 
-def find_behavior(name: str, search_path: Optional[Sequence[Union[str, Path]]] = None) -> Path:
-    """The file of behavior ``name`` (a plain name: no path separators, safe for names received remotely)."""
-    if not isinstance(name, str) or not _NAME_RE.match(name):
+def check_behavior_name(name: object) -> str:
+    """``name`` if it is a plain behavior name (letters, digits, '_' or '-', at most MAX_NAME_CHARS); ConfigError
+    saying why not. Looks at no file, so it is safe for names received remotely, however long."""
+    if not isinstance(name, str):
+        raise ConfigError(f"a behavior name must be a string, got {type(name).__name__}")
+    if len(name) > MAX_NAME_CHARS:
+        raise ConfigError(
+            f"behavior name {name[:32]!r}... is {len(name)} characters long (at most {MAX_NAME_CHARS})"
+        )
+    if not _NAME_RE.match(name):
         raise ConfigError(f"behavior name {name!r} must be letters, digits, '_' or '-' (no paths)")
+    return name
+
+
+def find_behavior(name: str, search_path: Optional[Sequence[Union[str, Path]]] = None) -> Path:
+    """The file ``<name>.yaml`` of behavior ``name`` in the search path (a plain name, checked by
+    :func:`check_behavior_name`: safe for names received remotely). ConfigError listing the valid names."""
+    check_behavior_name(name)
     dirs = _dirs(search_path)
     for directory in dirs:
         candidate = directory / f"{name}.yaml"
-        if candidate.is_file():
-            return candidate
+        try:
+            if candidate.is_file():
+                return candidate
+        except OSError:  # e.g. a search path directory that cannot be read: the name is not there
+            continue
     raise ConfigError(
         choices_message(
             f"behavior (looked in: {', '.join(str(d) for d in dirs) or 'no directories'})", name, list_behaviors(dirs)
@@ -122,41 +174,97 @@ def find_behavior(name: str, search_path: Optional[Sequence[Union[str, Path]]] =
     )
 
 
+@dataclasses.dataclass(frozen=True)
+class BehaviorSource:
+    """Where a behavior comes from, and how far it is trusted.
+
+    - :meth:`remote`: a behavior *name*, looked up only in the search path. For names received from other
+      nodes (the runner's ``start`` command): no file outside the search path is ever read or named.
+    - :meth:`local`: a YAML file path (a ``Path``, or a str with a ``/`` or a ``.yaml``/``.yml`` suffix) or a
+      name. For sources given by whoever starts the process (the runner's ``~behavior`` parameter, code).
+
+    A plain str or Path given to :func:`load_behavior` is a local source.
+    """
+
+    text: str
+    is_file: bool = False  # a file path (local only); else a name on the search path
+    trusted: bool = True  # False: received remotely
+
+    def __post_init__(self) -> None:
+        if not self.trusted:  # however it was made, a remote source is a plain name
+            check_behavior_name(self.text)
+            if self.is_file:
+                raise ConfigError(f"a behavior received remotely is a name on the search path, not a file: "
+                                  f"{self.text!r}")
+
+    @classmethod
+    def remote(cls, name: str) -> BehaviorSource:
+        """A name received remotely; ConfigError if it is not a plain behavior name."""
+        return cls(check_behavior_name(name), is_file=False, trusted=False)
+
+    @classmethod
+    def local(cls, source: Union[str, Path]) -> BehaviorSource:
+        if isinstance(source, Path):
+            return cls(str(source), is_file=True)
+        is_file = os.sep in source or "/" in source or source.endswith((".yaml", ".yml"))
+        return cls(source, is_file=is_file)
+
+    def resolve(self, search_path: Optional[Sequence[Union[str, Path]]] = None) -> Path:
+        """The file to read: the path itself, or ``<name>.yaml`` found in the search path."""
+        return Path(self.text) if self.is_file else find_behavior(self.text, search_path)
+
+
+Source = Union[str, Path, BehaviorSource]
+
+
+def _source(source: Source) -> BehaviorSource:
+    return source if isinstance(source, BehaviorSource) else BehaviorSource.local(source)
+
+
 def load_behavior(
-    source: Union[str, Path],
+    source: Source,
     parameters: Optional[Mapping[str, Any]] = None,
     search_path: Optional[Sequence[Union[str, Path]]] = None,
+    limits: LoadLimits = DEFAULT_LIMITS,
 ) -> Behavior:
-    """Load, build and validate a behavior from a file path or a behavior name.
+    """Load, build and validate a behavior: a :class:`BehaviorSource`, or (trusted, local) a file path or a name.
 
-    ``parameters`` override the behavior's declared parameters (type-checked). Raises
-    BehaviorLoadError (``file:line: ...``) for anything wrong in the files, ConfigError for a bad
-    name or parameter override.
+    ``parameters`` override the behavior's declared parameters (type-checked). The load is bounded by ``limits``
+    (size, aliases, nodes, nesting, states, includes, time). Raises BehaviorLoadError (``file:line: ...``; its
+    subclass BehaviorLoadLimitError names the limit crossed) for anything wrong in the files, and ConfigError for
+    a bad name or parameter override: every failure is a FlexNavError, whatever the files hold.
     """
-    loader = _Loader(_dirs(search_path))
-    return loader.load_top(_behavior_file(source, search_path), dict(parameters or {}))
+    resolved = _source(source)
+    path = resolved.resolve(search_path)
+    loader = _Loader(_dirs(search_path), LoadBudget(limits))
+    return _guarded(lambda: loader.load_top(path, dict(parameters or {})), str(path))
+
+
+def load_named_behavior(
+    name: str,
+    parameters: Optional[Mapping[str, Any]] = None,
+    search_path: Optional[Sequence[Union[str, Path]]] = None,
+    limits: LoadLimits = DEFAULT_LIMITS,
+) -> Behavior:
+    """:func:`load_behavior` of a name received remotely: only ``<name>.yaml`` in the search path."""
+    return load_behavior(BehaviorSource.remote(name), parameters, search_path, limits)
 
 
 def declared_parameter_names(
-    source: Union[str, Path], search_path: Optional[Sequence[Union[str, Path]]] = None
+    source: Source, search_path: Optional[Sequence[Union[str, Path]]] = None, limits: LoadLimits = DEFAULT_LIMITS
 ) -> FrozenSet[str]:
-    """The names under a behavior's ``parameters:`` (file path or behavior name; the file is read, nothing is
-    built, so this is cheap and has no side effects). ConfigError for a bad name, BehaviorLoadError for a file
-    that is not YAML."""
-    path = _behavior_file(source, search_path)
-    try:
-        document = yaml.safe_load(path.read_text())
-    except (OSError, yaml.YAMLError) as err:
-        raise BehaviorLoadError(str(err), file=str(path)) from err
-    declared = document.get("parameters") if isinstance(document, dict) else None
-    return frozenset(str(name) for name in declared) if isinstance(declared, dict) else frozenset()
-
-
-def _behavior_file(source: Union[str, Path], search_path: Optional[Sequence[Union[str, Path]]]) -> Path:
-    path = Path(source)
-    if not (path.suffix in (".yaml", ".yml") or path.is_file()):
-        path = find_behavior(str(source), search_path)
-    return path
+    """The names under a behavior's ``parameters:`` (the file is read within ``limits``, nothing is built, so
+    this is cheap and has no side effects). ConfigError for a bad name, BehaviorLoadError for a file that is not
+    YAML."""
+    path = _source(source).resolve(search_path)
+    node = _guarded(lambda: _compose(LoadBudget(limits), path, None), str(path))
+    if isinstance(node, MappingNode):
+        for key_node, value_node in node.value:
+            if isinstance(key_node, ScalarNode) and key_node.value == "parameters" and isinstance(
+                value_node, MappingNode
+            ):
+                return frozenset(str(k.value) for k, _ in value_node.value if isinstance(k, ScalarNode))
+    return frozenset()
 
 
 def load_behavior_text(
@@ -164,10 +272,43 @@ def load_behavior_text(
     file: str = "<string>",
     parameters: Optional[Mapping[str, Any]] = None,
     search_path: Optional[Sequence[Union[str, Path]]] = None,
+    limits: LoadLimits = DEFAULT_LIMITS,
 ) -> Behavior:
     """Like :func:`load_behavior` for YAML text (``file`` is only used in messages)."""
-    loader = _Loader(_dirs(search_path))
-    return loader.load_top(Path(file), dict(parameters or {}), text=text)
+    loader = _Loader(_dirs(search_path), LoadBudget(limits))
+    return _guarded(lambda: loader.load_top(Path(file), dict(parameters or {}), text=text), file)
+
+
+_T = TypeVar("_T")
+
+
+def _guarded(load: Callable[[], _T], file: str) -> _T:
+    """``load()``, with any failure that is not already a FlexNavError turned into a BehaviorLoadError."""
+    try:
+        return load()
+    except FlexNavError:
+        raise
+    except (RecursionError, MemoryError) as err:
+        raise BehaviorLoadError(f"the load ran out of resources ({type(err).__name__})", file, 0) from err
+    except Exception as err:  # a state class can raise anything: the caller still gets a typed error
+        raise BehaviorLoadError(f"the load failed: {type(err).__name__}: {err}", file, 0) from err
+
+
+def _compose(budget: LoadBudget, path: Path, text: Optional[str]) -> Optional[Node]:
+    """The YAML node tree of a file (or of ``text``) within ``budget``; BehaviorLoadError for bad YAML."""
+    file = str(path)
+    if text is None:
+        text = budget.read_text(path)
+    else:
+        budget.count_text(text, file)
+    try:
+        return budget.compose(text, file)
+    except yaml.MarkedYAMLError as err:
+        mark = err.problem_mark or err.context_mark
+        line = mark.line + 1 if mark is not None else 0
+        raise BehaviorLoadError(f"YAML syntax error: {err.problem or err}", file, line) from err
+    except yaml.YAMLError as err:
+        raise BehaviorLoadError(f"YAML error: {err}", file, 0) from err
 
 
 def _dirs(search_path: Optional[Sequence[Union[str, Path]]]) -> List[Path]:
@@ -208,8 +349,9 @@ class _ParamSpec:
 class _Loader:
     """One load: files on the include stack, marks from engine items to lines, YAML constructor."""
 
-    def __init__(self, search_path: List[Path]) -> None:
+    def __init__(self, search_path: List[Path], budget: LoadBudget) -> None:
         self.search_path = search_path
+        self.budget = budget
         self.marks: Dict[MarkKey, Where] = {}
         self.stack: List[Path] = []
         self.file = "<string>"
@@ -289,21 +431,10 @@ class _Loader:
 
     # --- files --------------------------------------------------------------------------------------------
     def compose(self, path: Path, text: Optional[str]) -> Node:
-        file = str(path)
-        try:
-            if text is None:
-                text = path.read_text(encoding="utf-8")
-            node = yaml.compose(text, Loader=yaml.SafeLoader)
-        except OSError as err:
-            raise BehaviorLoadError(f"cannot read the file: {err.strerror or err}", file, 0) from err
-        except yaml.MarkedYAMLError as err:
-            mark = err.problem_mark or err.context_mark
-            line = mark.line + 1 if mark is not None else 0
-            raise BehaviorLoadError(f"YAML syntax error: {err.problem or err}", file, line) from err
-        except yaml.YAMLError as err:
-            raise BehaviorLoadError(f"YAML error: {err}", file, 0) from err
+        node = _compose(self.budget, path, text)
         if node is None:
-            raise BehaviorLoadError("the file is empty (a behavior needs behavior:, outcomes: and states:)", file, 1)
+            what = "the file is empty (a behavior needs behavior:, outcomes: and states:)"
+            raise BehaviorLoadError(what, str(path), 1)
         return node
 
     def load_top(self, path: Path, overrides: Dict[str, Any], text: Optional[str] = None) -> Behavior:
@@ -327,6 +458,10 @@ class _Loader:
         if resolved in self.stack:
             chain = " -> ".join(p.stem for p in [*self.stack, resolved])
             raise BehaviorLoadError(f"behavior includes itself: {chain}", *(included_at or (str(path), 0)))
+        if len(self.stack) > self.budget.limits.max_include_depth:
+            chain = " -> ".join(p.stem for p in [*self.stack, resolved])
+            what = f"sub-behaviors nested more than {self.budget.limits.max_include_depth} deep: {chain}"
+            raise self.budget.exceeded("max_include_depth", what, *(included_at or (str(path), 0)))
         self.stack.append(resolved)
         self.file = str(path)
         try:
@@ -449,6 +584,7 @@ class _Loader:
             self.mark((cpath, None, "initial", initial_node.value), initial_node)
         states = self.pairs(pairs["states"][1], f"states of {what}")
         for label, (label_node, state_node) in states.items():
+            self.budget.count_state(self.file, label_node.start_mark.line + 1)
             path = child_path(cpath, label)
             self.mark((cpath, label, None, None), label_node)
             self.mark((cpath, label, "label", label), label_node)
@@ -489,6 +625,7 @@ class _Loader:
             for key_name, key_node in self.names(pairs["output_keys"][1], "output_keys"):
                 self.mark((cpath, None, "key", key_name), key_node)
         for label, (label_node, state_node) in self.pairs(pairs["states"][1], f"states of {what}").items():
+            self.budget.count_state(self.file, label_node.start_mark.line + 1)
             self.mark((cpath, label, None, None), label_node)
             self.mark((cpath, label, "label", label), label_node)
             entry = self.pairs(state_node, f"state {label!r}")
@@ -650,9 +787,15 @@ def _kind(node: Optional[Node]) -> str:
 
 __all__ = [
     "BEHAVIOR_PATH_ENV",
+    "DEFAULT_LIMITS",
+    "BehaviorSource",
+    "LoadLimits",
+    "check_behavior_name",
+    "declared_parameter_names",
     "default_search_path",
     "find_behavior",
     "list_behaviors",
     "load_behavior",
     "load_behavior_text",
+    "load_named_behavior",
 ]
