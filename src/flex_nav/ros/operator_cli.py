@@ -12,13 +12,15 @@ Usage::
 
 ``--runner`` is the runner node's name (default ``behavior_runner``, resolved in the current namespace).
 Exit status: 0 when the command was applied, 1 when the runner refused it, 2 when no answer came in time.
+``start`` prints the runner's first answer ("ok: loading NAME ...") and waits for the final one (started or
+refused), at most ``--timeout`` plus the runner's load bound (LOAD_TIMEOUT_S, 10 s).
 """
 
 from __future__ import annotations
 
 import argparse
+import queue
 import sys
-import threading
 import time
 from typing import Any, List, Optional
 
@@ -32,7 +34,7 @@ from flex_nav.msg import (
     BehaviorStatus,
     BehaviorTransition,
 )
-from flex_nav.ros.behavior_runner import BehaviorRunner
+from flex_nav.ros.behavior_runner import LOAD_TIMEOUT_S, BehaviorRunner
 from flex_nav.ros.node import init_node
 from flex_nav.ros.operator_interface import status_name
 
@@ -49,13 +51,14 @@ def _latest(topic: str, msg_type: type, timeout_s: float) -> Optional[Any]:
 
 
 def send_command(runner: str, command: str, args: List[str], timeout_s: float) -> int:
-    answer: List[BehaviorCommandFeedback] = []
-    got = threading.Event()
+    """Send one command and print the runner's final answer. A ``start`` is answered twice: at once with
+    ``pending`` true ("loading ..."), printed as it comes, then when the load ends; after the first answer the
+    wait is extended by the runner's load bound (LOAD_TIMEOUT_S) so that the final answer is always awaited."""
+    answers: queue.Queue[BehaviorCommandFeedback] = queue.Queue()
 
     def on_feedback(msg: BehaviorCommandFeedback) -> None:
         if msg.command == command and list(msg.args) == args:
-            answer.append(msg)
-            got.set()
+            answers.put(msg)
 
     sub = rospy.Subscriber(f"{runner}/command_feedback", BehaviorCommandFeedback, on_feedback)
     pub = rospy.Publisher(f"{runner}/command", BehaviorCommand, queue_size=1)
@@ -66,10 +69,19 @@ def send_command(runner: str, command: str, args: List[str], timeout_s: float) -
             return 2
         time.sleep(0.02)
     pub.publish(BehaviorCommand(command=command, args=args))
-    if not got.wait(max(0.0, deadline - time.monotonic())):
-        print(f"no answer from {rospy.resolve_name(runner)} within {timeout_s:.1f} s", file=sys.stderr)
-        return 2
-    msg = answer[0]
+    extended = False
+    while True:
+        try:
+            msg = answers.get(timeout=max(0.0, deadline - time.monotonic()))
+        except queue.Empty:
+            print(f"no {'final ' if extended else ''}answer from {rospy.resolve_name(runner)} within "
+                  f"{timeout_s + (LOAD_TIMEOUT_S if extended else 0.0):.1f} s", file=sys.stderr)
+            return 2
+        if not msg.pending:
+            break
+        print(f"{'ok' if msg.ok else 'refused'}: {msg.message}", flush=True)
+        if not extended:  # the runner answers finally within its load bound
+            deadline, extended = deadline + LOAD_TIMEOUT_S, True
     print(f"{'ok' if msg.ok else 'refused'}: {msg.message}")
     return 0 if msg.ok else 1
 

@@ -5,7 +5,7 @@ thread turns events into messages and publishes them on the runner's topics:
 
 - ``~status`` (BehaviorStatus, latched), ``~activity`` (BehaviorActivity, latched: active states and pending
   outcome requests), ``~log`` (BehaviorLog), ``~transitions`` (BehaviorTransition),
-  ``~command_feedback`` (BehaviorCommandFeedback).
+  ``~command_feedback`` (BehaviorCommandFeedback: ``pending`` marks a first answer that a final one follows).
 """
 
 from __future__ import annotations
@@ -88,8 +88,9 @@ class OperatorPublisher:
     def publish_autonomy(self, autonomy: int) -> None:
         self._post(self._set_autonomy, autonomy)
 
-    def publish_feedback(self, command: str, args: List[str], ok: bool, message: str) -> None:
-        self._post(self._publish_feedback, command, list(args), ok, message)
+    def publish_feedback(self, command: str, args: List[str], ok: bool, message: str, pending: bool = False) -> None:
+        """Answer a command; ``pending``: accepted, still being carried out, a final answer follows."""
+        self._post(self._publish_feedback, command, list(args), ok, message, pending)
 
     def close(self, timeout_s: float = 2.0) -> None:
         with self._cv:
@@ -168,9 +169,9 @@ class OperatorPublisher:
             behavior=behavior, code=code, outcome=outcome, reason=reason, autonomy=autonomy
         )))
 
-    def _publish_feedback(self, command: str, args: List[str], ok: bool, message: str) -> None:
+    def _publish_feedback(self, command: str, args: List[str], ok: bool, message: str, pending: bool) -> None:
         self.feedback_pub.publish(self._header_now(BehaviorCommandFeedback(
-            command=command, args=args, ok=ok, message=message
+            command=command, args=args, ok=ok, message=message, pending=pending
         )))
 
 
