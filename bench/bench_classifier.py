@@ -8,7 +8,7 @@
    input measured in the same run (the reference). Also the YOLO decoder alone on a COCO-sized raw
    output (1, 84, 8400), for users who load their own detector (their network's time comes on top).
 2. Accuracy: ``--samples`` per label of freshly rendered scenes (a seed never used for training) with
-   the models seen in training and with each set of held-out models (``held_out_scenes.HELD_OUT_SETS``), against the
+   the models seen in training and with each set of held-out models (``held_out.HELD_OUT_SETS``), against the
    95 % target.
 Prints the figures, the ratios, and PASS/FAIL; the exit status is 1 on FAIL.
 """
@@ -35,7 +35,7 @@ from flex_nav.perception.yolo import decode  # noqa: E402
 from flex_nav_sim.readings import ImageReading  # noqa: E402
 from flex_nav_sim.simulation import SensorOptions, Simulation  # noqa: E402
 from flex_nav_sim.world import load_world  # noqa: E402
-from tools.perception.held_out_scenes import HELD_OUT_SETS  # noqa: E402
+from tools.perception.held_out import HELD_OUT_SETS  # noqa: E402
 from tools.perception.scenes import Renderer, plan  # noqa: E402
 
 TARGET_MS = 5.0  # [ms] per frame, one thread (issue 7)

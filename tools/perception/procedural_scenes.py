@@ -19,7 +19,7 @@ not describe any one thing; they sample the space the labels are defined over:
   a tall body (1-2 m), a stand on thin legs or a pole carrying a head, or an open rack or frame, in random
   proportions and colours (a tall body's front panels may reach below the floor, where they are not seen).
 
-The builders never name a held-out model and share no code with :mod:`tools.perception.held_out_scenes`.
+The builders never name a held-out model and share no code with :mod:`tools.perception.held_out`.
 """
 
 from __future__ import annotations

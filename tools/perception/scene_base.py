@@ -1,5 +1,5 @@
 """Parts of the classifier's dataset scenes that the training models (:mod:`tools.perception.scenes`) and the
-held-out models (:mod:`tools.perception.held_out_scenes`) share: the visual-only :class:`Scene`, the colour
+held-out models (:mod:`tools.perception.held_out`) share: the visual-only :class:`Scene`, the colour
 palettes, the rendered :class:`Sample`, and the figures and frames several models are built from (the walking
 and the seated person, a wheelchair, castor stars, legs). Changing any of them changes the stored renders.
 """

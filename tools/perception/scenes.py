@@ -10,7 +10,7 @@ the Kobuki and Create 2) with a little height and pitch jitter, rendered offscre
 ER_TINY_RENDERER exactly as :class:`flex_nav_sim.sensors.Camera` does, under varied lighting.
 
 Models are split into the ones used for training (built here) and the ones held out for evaluation
-(:mod:`tools.perception.held_out_scenes`): the held-out people, objects and furniture are never seen in
+(:mod:`tools.perception.held_out`): the held-out people, objects and furniture are never seen in
 training. What both use (the scene, colour palettes, the walking and the seated figure, wheelchairs) is in
 :mod:`tools.perception.scene_base`.
 
@@ -35,7 +35,7 @@ from flex_nav.perception.labels import CLEAR, MOVABLE, PERSON
 from flex_nav_sim.profiles import CameraSpec, load_profile
 from flex_nav_sim.sensors import depth_from_buffer
 from flex_nav_sim.world import DEFAULT_COLORS
-from tools.perception.held_out_scenes import HELD_OUT_BUILDERS, HELD_OUT_SETS
+from tools.perception.held_out import HELD_OUT_BUILDERS, HELD_OUT_SETS
 from tools.perception.procedural_scenes import (
     clear_legged_frame,
     clear_random_appliance,
@@ -1255,7 +1255,7 @@ def models_for(split: str) -> Dict[str, Tuple[str, ...]]:
     ``extra7``/``val_extra7`` (:data:`SAMPLED`, :mod:`tools.perception.procedural_scenes`), ``extra8``/``val_extra8``
     (:data:`SAMPLED2`),
     ``unseen`` .. ``unseen12`` (the held-out sets,
-    :data:`tools.perception.held_out_scenes.HELD_OUT_SETS`)."""
+    :data:`tools.perception.held_out.HELD_OUT_SETS`)."""
     if split in OWN_MODELS:
         return OWN_MODELS[split]
     if split in EXTRA_SPLITS:

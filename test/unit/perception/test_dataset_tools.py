@@ -23,7 +23,7 @@ from flex_nav.perception.labels import LABELS
 from flex_nav.perception.onnx_model import make_session
 from flex_nav.perception.preprocess import roi_patch
 from flex_nav.perception.roi import Roi
-from tools.perception import ensemble, held_out_scenes, render_dataset, scenes, train
+from tools.perception import ensemble, held_out, render_dataset, scenes, train
 
 
 def _all(models: dict[str, tuple[str, ...]]) -> set[str]:
@@ -76,8 +76,8 @@ def test_every_model_has_a_builder_and_every_builder_is_used() -> None:
 
 def test_a_held_out_model_named_like_a_training_model_stops_the_import(monkeypatch: pytest.MonkeyPatch) -> None:
     """A held-out 'pillar' once replaced the seen one in BUILDERS for two minutes of a render; it must not load."""
-    clash = {**held_out_scenes.HELD_OUT_BUILDERS, "pillar": held_out_scenes.clear_structural_pillar}
-    monkeypatch.setattr(held_out_scenes, "HELD_OUT_BUILDERS", clash)
+    clash = {**held_out.HELD_OUT_BUILDERS, "pillar": held_out.HELD_OUT_BUILDERS["structural_pillar"]}
+    monkeypatch.setattr(held_out, "HELD_OUT_BUILDERS", clash)
     try:
         with pytest.raises(ConfigError, match=r"\['pillar'\]"):
             importlib.reload(scenes)
@@ -85,6 +85,35 @@ def test_a_held_out_model_named_like_a_training_model_stops_the_import(monkeypat
         monkeypatch.undo()
         importlib.reload(scenes)
     assert scenes.BUILDERS["pillar"] is scenes.clear_pillar
+
+
+def test_the_held_out_registry_keeps_the_order_registered_and_refuses_bad_entries(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """Splits come out in the order of their number, a label's models in the order registered; a name used twice,
+    a split not named like the held-out ones, a label that is not one, a split missing a label: each stops it."""
+    monkeypatch.setattr(held_out.registry, "_MODELS", {})
+    monkeypatch.setattr(held_out.registry, "_BUILDERS", {})
+
+    def build(sc: object, x: float, y: float, yaw: float) -> None:
+        pass
+
+    for split, label, model in (("unseen10", "person", "p10"), ("unseen2", "clear", "c2b"), ("unseen", "person", "p1"),
+                                ("unseen2", "clear", "c2a"), ("unseen2", "person", "p2"), ("unseen2", "movable", "m2"),
+                                ("unseen", "movable", "m1"), ("unseen", "clear", "c1"), ("unseen10", "movable", "m10"),
+                                ("unseen10", "clear", "c10")):
+        assert held_out.held_out(split, label, model)(build) is build
+    assert list(held_out.registry.sets()) == ["unseen", "unseen2", "unseen10"]
+    assert held_out.registry.sets()["unseen2"] == {"person": ("p2",), "movable": ("m2",), "clear": ("c2b", "c2a")}
+    assert set(held_out.registry.builders()) == {"p1", "m1", "c1", "p2", "m2", "c2a", "c2b", "p10", "m10", "c10"}
+    with pytest.raises(ConfigError, match="'p2' is already registered; give the one in 'unseen3' another name"):
+        held_out.held_out("unseen3", "person", "p2")(build)
+    with pytest.raises(ConfigError, match="the split 'unseen1' is not named"):
+        held_out.held_out("unseen1", "person", "x")
+    with pytest.raises(ConfigError, match="label 'chair' is not valid"):
+        held_out.held_out("unseen3", "chair", "x")
+    held_out.held_out("unseen3", "person", "p3")(build)
+    with pytest.raises(ConfigError, match=r"'unseen3' has no model of \['movable', 'clear'\]"):
+        held_out.registry.sets()
 
 
 def test_plan_cycles_the_models_of_the_extra_split_evenly() -> None:
