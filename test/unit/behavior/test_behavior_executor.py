@@ -128,6 +128,50 @@ def test_lock_holds_the_transition_leaving_a_container_until_unlock():
     ]
 
 
+def test_a_forced_outcome_held_by_a_lock_is_still_forced_after_the_unlock():
+    """Forcing an outcome that would leave a locked container: it waits for the unlock like any other
+    (reported as a "lock" request, approval refused), and when it fires it is still the operator's:
+    the forced container is exited without handing its outputs up, the transition says forced."""
+    journal = Journal()
+
+    def write_x(userdata, n):
+        userdata.x = n
+
+    inner = StateMachine(outcomes=["finished", "failed"], output_keys=["x"])
+    inner.add(
+        "W",
+        ScriptedState(journal, script=[], output_keys=["x"], action=write_x),
+        transitions={"done": "finished", "failed": "failed"},
+    )
+    mid = StateMachine(outcomes=["finished", "failed"], output_keys=["x"])
+    mid.add("Inner", inner, transitions={"finished": "finished", "failed": "failed"})
+    outer = StateMachine(outcomes=["ok", "bad"], output_keys=["x"])
+    outer.add("Mid", mid, transitions={"finished": "ok", "failed": "bad"})
+    ex = executor(outer)
+    events = record_events(ex)
+    ex.lock("/Mid")
+    spin(ex, 3)
+    ex.force_transition("/Mid/Inner", "finished")
+    spin(ex, 2)
+    assert [(r.path, r.outcome, r.reason) for r in ex.requested_outcomes()] == [("/Mid/Inner", "finished", "lock")]
+    assert ex.active_paths() == ("/Mid/Inner/W",)
+    approval = ex.approve("/Mid/Inner")
+    ex.spin_once()
+    with pytest.raises(BehaviorCommandError, match="waits for an unlock"):
+        approval.result(timeout=0)
+    ex.unlock("/Mid")
+    result = ex.run(timeout_s=2.0)
+    assert (result.status, result.outcome) == (BehaviorStatus.FINISHED, "ok")
+    assert "x" not in result.outputs  # forced: Inner's outputs were not handed up (W wrote x)
+    assert journal.of("W")[-2:] == ["exit", "stop"]
+    fired = [(e.path, e.outcome, e.forced) for e in events["transition"]]
+    assert fired == [("/Mid/Inner", "finished", True), ("/Mid", "finished", False)]
+    assert [(e.path, e.outcome, e.reason, e.pending) for e in events["request"]] == [
+        ("/Mid/Inner", "finished", "lock", True),
+        ("/Mid/Inner", "finished", "lock", False),
+    ]
+
+
 def test_lock_of_a_leaf_and_unlock_errors():
     journal = Journal()
     ex = executor(chain(journal, ["A", "B"]))
