@@ -77,6 +77,3 @@ def project_on_segment(start: Point, end: Point, p: Point) -> Tuple[float, float
     return qx * ux + qy * uy, -qx * uy + qy * ux
 
 
-def wrap_angle(angle: float) -> float:
-    """``angle`` [rad] wrapped to (-pi, pi]."""
-    return math.atan2(math.sin(angle), math.cos(angle))

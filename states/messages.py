@@ -84,11 +84,6 @@ def twist_stamped(v: float, w: float, frame_id: str, time_s: float) -> TwistStam
     return msg
 
 
-def wrap_angle(angle: float) -> float:
-    """``angle`` [rad] wrapped into (-pi, pi]."""
-    return math.atan2(math.sin(angle), math.cos(angle))
-
-
 def describe(value: Any) -> str:
     """A short human-readable text for a log line: poses as (x, y, yaw), paths as length and size."""
     text = _describe(value)

@@ -9,8 +9,9 @@ from sensor_msgs.msg import LaserScan
 
 from flex_nav.behavior.userdata import UserDataView
 from flex_nav.exceptions import ConfigError
+from flex_nav.nav.angles import wrap_angle
 from flex_nav_states import validation
-from flex_nav_states.messages import OdomSample, message_age_s, wrap_angle
+from flex_nav_states.messages import OdomSample, message_age_s
 from flex_nav_states.motion_base import MotionBase, closed_loop_timeout, stall_watch
 from flex_nav_states.proxy_types import SubscriptionLike, proxies_of
 from flex_nav_states.rear_clearance import gap_behind_m

@@ -13,9 +13,10 @@ import math
 from typing import Optional
 
 from flex_nav.behavior.userdata import UserDataView
+from flex_nav.nav.angles import wrap_angle
 from flex_nav.perception.labels import PERSON
 from flex_nav_states import validation
-from flex_nav_states.messages import OdomSample, wrap_angle
+from flex_nav_states.messages import OdomSample
 from flex_nav_states.motion_base import MotionBase, stall_watch
 from flex_nav_states.obstacle_class_state import ClassReader
 

@@ -7,8 +7,8 @@ from typing import Optional
 
 from flex_nav.behavior.userdata import UserDataView
 from flex_nav.exceptions import ConfigError
+from flex_nav.nav.angles import wrap_angle
 from flex_nav_states import validation
-from flex_nav_states.messages import wrap_angle
 from flex_nav_states.motion_base import MotionBase, closed_loop_timeout, stall_watch
 
 SLOWDOWN_GAIN = 1.5  # [1/s] commanded yaw rate = gain x remaining angle near the end (capped)

@@ -10,8 +10,9 @@ from std_msgs.msg import Bool
 
 from flex_nav.behavior.state import State
 from flex_nav.behavior.userdata import UserDataView
+from flex_nav.nav.angles import wrap_angle
 from flex_nav_states import validation
-from flex_nav_states.messages import OdomSample, message_age_s, odom_sample, sample_is_finite, wrap_angle
+from flex_nav_states.messages import OdomSample, message_age_s, odom_sample, sample_is_finite
 from flex_nav_states.proxy_types import SubscriptionLike, proxies_of
 
 

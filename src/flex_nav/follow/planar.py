@@ -7,11 +7,6 @@ import math
 import numpy as np
 
 
-def wrap_angle(angle: float) -> float:
-    """``angle`` [rad] wrapped into (−π, π]."""
-    return math.atan2(math.sin(angle), math.cos(angle))
-
-
 def transform_poses(poses: np.ndarray, x: float, y: float, yaw: float) -> np.ndarray:
     """(N, 3) poses [x, y, yaw] (or (N, 2) points) expressed in a frame whose pose is (x, y, yaw) -> parent frame."""
     poses = np.asarray(poses, dtype=np.float64)

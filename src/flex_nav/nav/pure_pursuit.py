@@ -42,6 +42,7 @@ import numpy as np
 from numba import njit
 
 from flex_nav.exceptions import ConfigError, choices_message
+from flex_nav.nav.angles import wrap_angle
 from flex_nav.nav.costmap_grid import INSCRIBED, LETHAL, MAX_NON_OBSTACLE, NO_INFORMATION, CostmapGeometry
 from flex_nav.nav.path import PathPoint, as_path, closest_point, cumulative_lengths, lookahead_point
 from flex_nav.nav.path_obstacle import obstacle_on_path
@@ -265,7 +266,7 @@ class RegulatedPurePursuit:
         if self._xy_reached or (to_goal <= p.goal_dist_tol and remaining <= p.goal_dist_tol + 1e-9):
             self._xy_reached = True
             if p.use_final_heading and path.shape[1] == 3:
-                error = _wrap(float(path[-1, 2]) - yaw)
+                error = wrap_angle(float(path[-1, 2]) - yaw)
                 if abs(error) > p.yaw_goal_tolerance:
                     w = self._limited_rotation(math.copysign(p.rotate_to_heading_angular_vel, error), w_now, dt)
                     if abs(w) * dt > abs(error):  # do not turn past the heading in one step
@@ -479,6 +480,3 @@ def _arc_kernel(  # noqa: PLR0917 - compiled kernel
     return False, 0.0, 0.0
 
 
-def _wrap(angle: float) -> float:
-    """Angle wrapped to (-pi, pi] [rad]."""
-    return math.atan2(math.sin(angle), math.cos(angle))
