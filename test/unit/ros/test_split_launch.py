@@ -1,0 +1,65 @@
+"""flex_nav_robot.launch split over two computers (``part``), and the heartbeat parameters the launch files set.
+
+Loaded with roslaunch's own loader (no master, nothing started): which nodes each part starts and which
+parameters they get. The two-host system test (test_two_hosts_system.py) runs the split for real."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any, Dict, List, Tuple
+
+import pytest
+
+REPO_ROOT = Path(__file__).resolve().parents[3]
+ROBOT_NODES = ["bumper_relay", "follow_path_server", "follow_topic_server", "get_path_server", "pure_pursuit_path",
+               "pure_pursuit_topic"]
+
+
+def load(launch: str, *args: str) -> Tuple[List[str], Dict[str, Any]]:
+    """(sorted node names, parameters) of ``launch/<launch>`` with ``args``."""
+    import roslaunch.config  # noqa: PLC0415 - ROS import only in the tests that need it
+
+    config = roslaunch.config.load_config_default([(str(REPO_ROOT / "launch" / launch), ["roslaunch", *args])], None)
+    return sorted(n.name for n in config.nodes), {name: p.value for name, p in config.params.items()}
+
+
+@pytest.fixture(autouse=True)
+def _package_path(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("ROS_PACKAGE_PATH", f"{REPO_ROOT}:/usr/share")
+
+
+def test_all_on_one_computer_is_the_default_without_heartbeat() -> None:
+    nodes, params = load("flex_nav_robot.launch")
+    assert nodes == sorted([*ROBOT_NODES, "behavior_runner"])
+    assert params["/robot1/pure_pursuit_topic/heartbeat_timeout"] == 0.0
+
+
+def test_the_robot_part_watches_the_heartbeat_and_runs_no_runner() -> None:
+    nodes, params = load("flex_nav_robot.launch", "part:=robot", "twist_relay:=true")
+    assert nodes == sorted([*ROBOT_NODES, "twist_relay"])
+    for node in ("pure_pursuit_path", "pure_pursuit_topic", "twist_relay"):
+        assert params[f"/robot1/{node}/heartbeat_timeout"] == 0.5  # twist_relay's timeout (config)
+    assert params["/robot1/twist_relay/timeout"] == 0.5
+    assert params["/rosout_disable_topics_generation"] is True
+
+
+def test_the_operator_part_is_the_runner_alone() -> None:
+    nodes, params = load("flex_nav_robot.launch", "part:=operator", "behavior:=flex_planner")
+    assert nodes == ["behavior_runner"]
+    assert params["/robot1/behavior_runner/behavior"] == "flex_planner"
+    assert not any(name.startswith("/robot1/pure_pursuit") for name in params)  # no navigation parameters
+
+
+def test_an_unknown_part_is_refused() -> None:
+    import roslaunch.core  # noqa: PLC0415
+
+    with pytest.raises(roslaunch.core.RLException, match="robots"):
+        load("flex_nav_robot.launch", "part:=robots")
+
+
+def test_the_simulators_twist_relay_takes_a_heartbeat_timeout() -> None:
+    _nodes, params = load("sim.launch", "heartbeat_timeout:=0.5")
+    assert params["/robot1/twist_relay/heartbeat_timeout"] == 0.5
+    assert params["/rosout_disable_topics_generation"] is True
+    _nodes, params = load("sim.launch")
+    assert params["/robot1/twist_relay/heartbeat_timeout"] == 0.0
