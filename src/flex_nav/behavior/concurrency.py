@@ -180,7 +180,7 @@ class ConcurrencyContainer(Container):
                     continue
                 outcome = result
                 route = self._route(child, outcome)
-                if (ctx._lock_count or (ctx._gate and route[2] >= ctx._autonomy)) and self._must_wait(
+                if (ctx._lock_count or (ctx._gate and route.required >= ctx._autonomy)) and self._must_wait(
                     child, outcome, route, False, now
                 ):
                     continue
@@ -192,7 +192,7 @@ class ConcurrencyContainer(Container):
             else:
                 finished.append(child)
             if ctx.hooks.transition:
-                ctx._emit_transition(now, child._path, outcome, "", "", route[2], forced)
+                ctx._emit_transition(now, child._path, outcome, "", "", route.required, forced)
         if finished is not None:
             ctx._changed = True
             self._running = tuple(c for c in self._running if c not in finished)

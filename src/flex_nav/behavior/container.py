@@ -21,7 +21,7 @@ import math
 from typing import Any, Dict, FrozenSet, Iterator, List, Mapping, Optional, Sequence, Tuple
 
 from flex_nav.behavior.autonomy import Autonomy
-from flex_nav.behavior.state import Pending, Route, State
+from flex_nav.behavior.state import Pending, PendingReason, Route, State
 from flex_nav.behavior.userdata import ReadSpec, UserDataView
 from flex_nav.exceptions import (
     BehaviorConstructionError,
@@ -252,7 +252,7 @@ class Container(State):
 
     def _make_routes(self, label: str, child: State) -> Dict[str, Route]:
         levels = self._autonomy[label]
-        return {o: (None, None, levels.get(o, 0), "", "") for o in child.outcomes}
+        return {o: Route(None, None, levels.get(o, 0), "", "") for o in child.outcomes}
 
     # --- running -----------------------------------------------------------------------------------------
     def execute(self, userdata: UserDataView) -> Optional[str]:
@@ -342,26 +342,27 @@ class Container(State):
         """Lock or autonomy says ``outcome`` of ``child`` cannot fire now: mark it pending and say so."""
         ctx = self._ctx
         assert ctx is not None
-        reason = ""
         if ctx._lock_count and self._leaves_locked(child, route):
-            reason = "lock"
-        elif not by_operator and ctx._gate and route[2] >= ctx._autonomy:
-            reason = "autonomy"
-        if not reason:
+            wait = PendingReason.LOCK
+        elif not by_operator and ctx._gate and route.required >= ctx._autonomy:
+            wait = PendingReason.AUTONOMY
+        else:
             return False
         pending = child._pending
         if pending is None:
-            pending = Pending(outcome, reason, route[2])
+            pending = Pending(outcome, wait, route.required)
             child._pending = pending
-        elif pending.outcome != outcome or pending.reason != reason:
-            if pending.announced:  # withdraw what the operator saw before saying the new reason
-                ctx._emit_request(now, child._path, pending.outcome, pending.required, pending.reason, False)
-                pending.announced = False
-            pending.outcome, pending.reason, pending.required = outcome, reason, route[2]
+        elif pending.outcome != outcome or pending.announced is not wait:
+            if pending.announced is not None:  # withdraw what the operator saw before saying the new reason
+                ctx._emit_request(now, child._path, pending.outcome, pending.required, pending.announced, False)
+                pending.announced = None
+            pending.outcome, pending.required = outcome, route.required
+            if pending.reason is not PendingReason.FORCED:  # a forced outcome stays forced while a lock holds it
+                pending.reason = wait
         ctx._requests[child._path] = child
-        if not pending.announced:
-            pending.announced = True
-            ctx._emit_request(now, child._path, outcome, route[2], reason, True)
+        if pending.announced is None:
+            pending.announced = wait
+            ctx._emit_request(now, child._path, outcome, route.required, wait, True)
         child._due = math.inf
         return True
 
@@ -373,11 +374,12 @@ class Container(State):
         pending = child._pending
         assert pending is not None
         route = child._routes[pending.outcome]
-        by_operator = pending.forced or pending.approved
+        forced = pending.reason is PendingReason.FORCED
+        by_operator = forced or pending.approved
         if self._must_wait(child, pending.outcome, route, by_operator, now):
             return None
         child._drop_pending()
-        if pending.forced:
+        if forced:
             child._abort()
         else:
             child._leave()
@@ -388,13 +390,13 @@ class Container(State):
         if child._locked:
             return True
         node: Optional[State] = self
-        outcome = route[1]
+        outcome = route.container_outcome
         while outcome is not None and node is not None:  # the transition leaves ``node``
             if node._locked:
                 return True
             parent = node._parent
             if parent is None:
                 return False
-            outcome = node._routes[outcome][1] if outcome in node._routes else None
+            outcome = node._routes[outcome].container_outcome if outcome in node._routes else None
             node = parent
         return False

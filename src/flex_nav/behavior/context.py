@@ -38,7 +38,7 @@ from flex_nav.exceptions import BehaviorRuntimeError, NotReadyError
 
 if TYPE_CHECKING:
     from flex_nav.behavior.container import Container
-    from flex_nav.behavior.state import State
+    from flex_nav.behavior.state import PendingReason, State
 
 _PY_LEVELS = {
     LogLevel.INFO: logging.INFO,
@@ -163,10 +163,11 @@ class BehaviorContext:
                 raise _hook_error("transition", hook, err) from err
 
     def _emit_request(  # noqa: PLR0917  (internal)
-        self, now: float, path: str, outcome: str, required: int, reason: str, pending: bool
+        self, now: float, path: str, outcome: str, required: int, reason: PendingReason, pending: bool
     ) -> None:
+        """An outcome waits for the operator (``pending``) or stopped waiting; ``reason.value`` is sent."""
         if self.hooks.request:
-            event = RequestEvent(now, path, outcome, Autonomy(required), reason, pending)
+            event = RequestEvent(now, path, outcome, Autonomy(required), reason.value, pending)
             for hook in self.hooks.request:
                 try:
                     hook(event)

@@ -60,8 +60,9 @@ class TransitionEvent(NamedTuple):
 class RequestEvent(NamedTuple):
     """An outcome waits for the operator (``pending``) or stopped waiting (``pending`` False).
 
-    ``reason`` is ``"autonomy"`` (the required level is not below the current autonomy) or
-    ``"lock"`` (the transition would leave a locked container).
+    ``reason`` is the value of a :class:`~flex_nav.behavior.state.PendingReason`: ``"autonomy"`` (the
+    required level is not below the current autonomy) or ``"lock"`` (the transition would leave a locked
+    container).
     """
 
     time_s: float

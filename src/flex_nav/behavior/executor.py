@@ -42,7 +42,7 @@ from flex_nav.behavior.clock import Clock
 from flex_nav.behavior.container import Container
 from flex_nav.behavior.context import _CURRENT, HOLD_PAUSE, BehaviorContext, _hook_error
 from flex_nav.behavior.events import BehaviorStatus, CommandEvent, LogLevel, StatusEvent
-from flex_nav.behavior.state import Pending, State
+from flex_nav.behavior.state import Pending, PendingReason, State
 from flex_nav.behavior.userdata import UserDataView
 from flex_nav.exceptions import (
     BehaviorCommandError,
@@ -67,7 +67,7 @@ class OutcomeRequest(NamedTuple):
     path: str
     outcome: str
     required: Autonomy
-    reason: str  # "autonomy" or "lock"
+    reason: str  # what it waits for: PendingReason.AUTONOMY.value ("autonomy") or LOCK.value ("lock")
 
 
 _Command = Tuple[str, Tuple[str, ...], Callable[[float], str], "concurrent.futures.Future[str]"]
@@ -191,8 +191,9 @@ class BehaviorExecutor:
             requests = []
             for path, node in self._ctx._requests.items():
                 pending = node._pending
-                if pending is not None and pending.reason in ("autonomy", "lock"):
-                    requests.append(OutcomeRequest(path, pending.outcome, Autonomy(pending.required), pending.reason))
+                if pending is not None and pending.announced is not None:
+                    waits = pending.announced.value
+                    requests.append(OutcomeRequest(path, pending.outcome, Autonomy(pending.required), waits))
             return requests
 
     def wait(self, timeout_s: float) -> bool:
@@ -359,12 +360,12 @@ class BehaviorExecutor:
                 f"(valid: {', '.join(root.outcomes)})"
             )
         if root._locked:
-            pending = Pending(outcome, "lock", 0, False)
-            pending.announced = True
+            pending = Pending(outcome, PendingReason.LOCK, 0)
+            pending.announced = PendingReason.LOCK
             root._pending = pending
             root._due = math.inf
             self._ctx._requests[root._path] = root
-            self._ctx._emit_request(now, root._path, outcome, 0, "lock", True)
+            self._ctx._emit_request(now, root._path, outcome, 0, PendingReason.LOCK, True)
             self._ctx._sync_request_hold(now)
             return
         root._leave()
@@ -467,13 +468,13 @@ class BehaviorExecutor:
                 self._end(BehaviorStatus.FINISHED, outcome, "outcome forced by the operator", None, now)
                 return f"forced {path} -> {outcome} (behavior finished)"
             pending = node._pending
-            if pending is not None and pending.reason in ("autonomy", "lock") and pending.outcome == outcome:
-                pending.approved = True  # forcing the requested outcome approves it
+            if pending is not None and pending.announced is not None and pending.outcome == outcome:
+                pending.approved = True  # forcing the outcome the operator was asked about approves it
                 node._wake(now)
                 return f"approved {path} -> {outcome}"
             if pending is not None:
                 node._drop_pending()
-            node._pending = Pending(outcome, "forced", node._routes[outcome][2], forced=True)
+            node._pending = Pending(outcome, PendingReason.FORCED, node._routes[outcome].required)
             node._wake(now)
             return f"forced {path} -> {outcome}"
 
@@ -485,7 +486,7 @@ class BehaviorExecutor:
 
         def apply(now: float) -> str:
             pending = node._pending
-            if pending is None or pending.reason not in ("autonomy", "lock"):
+            if pending is None or pending.announced is None:
                 requested = ", ".join(
                     f"{p} ({n._pending.outcome})" for p, n in self._ctx._requests.items() if n._pending is not None
                 )
@@ -494,7 +495,7 @@ class BehaviorExecutor:
                 raise BehaviorCommandError(
                     f"state {path!r} requests {pending.outcome!r}, not {outcome!r}; use force_transition for another"
                 )
-            if pending.reason == "lock":
+            if pending.announced is PendingReason.LOCK:
                 raise BehaviorCommandError(f"outcome {pending.outcome!r} of {path!r} waits for an unlock, not approval")
             pending.approved = True
             node._wake(now)

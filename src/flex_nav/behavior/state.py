@@ -52,8 +52,9 @@ subclass must not touch them.
 
 from __future__ import annotations
 
+import enum
 import math
-from typing import TYPE_CHECKING, Any, Dict, FrozenSet, Iterable, Iterator, Optional, Sequence, Tuple
+from typing import TYPE_CHECKING, Any, Dict, FrozenSet, Iterable, Iterator, NamedTuple, Optional, Sequence, Tuple
 
 from flex_nav.behavior.events import LogLevel
 from flex_nav.behavior.userdata import UserDataView
@@ -65,33 +66,51 @@ if TYPE_CHECKING:
 
 DEFAULT_RATE_HZ = 10.0  # [Hz] FlexBE's default execution rate of a state
 
-# A route: what happens when a child returns an outcome, precomputed by its container when attached.
-# (next state or None, container outcome or None, required autonomy, target label, target path)
-Route = Tuple[Optional["State"], Optional[str], int, str, str]
+
+class PendingReason(enum.Enum):
+    """Why an outcome has not fired yet. ``.value`` is what operators see (events, ROS messages)."""
+
+    AUTONOMY = "autonomy"  # the state's outcome needs more autonomy: it waits for approval or a higher level
+    LOCK = "lock"  # the transition would leave a locked state or container: it waits for an unlock
+    FORCED = "forced"  # the operator forced this outcome: it fires at the next tick, unless a lock holds it
+
+
+class Route(NamedTuple):
+    """What happens when a child returns one outcome: precomputed by its container when attached."""
+
+    next_state: Optional[State]  # the state entered next; None when the transition leaves the container
+    container_outcome: Optional[str]  # the container's outcome when the transition leaves it, else None
+    required: int  # the Autonomy level the transition needs (it fires alone only below the current one)
+    target: str  # label of the next state, or the container outcome ("" in a concurrency container)
+    target_path: str  # path of the next state ("" when the transition leaves the container)
 
 
 class Pending:
-    """An outcome of a state that waits: for the operator (``reason`` "autonomy"), for an unlock
-    ("lock"), or an outcome forced by the operator that has not been applied yet ("forced").
+    """An outcome of a state that has not fired yet.
 
-    ``forced``: the operator chose the outcome, the state is exited without finishing (a container
-    does not hand its outputs up). ``approved``: the operator let the state's own outcome fire.
-    Both bypass the autonomy check; neither bypasses a lock.
+    ``reason``: :attr:`PendingReason.AUTONOMY` or ``LOCK``: the state's own outcome waits for the
+    operator or for an unlock. :attr:`PendingReason.FORCED`: the operator chose the outcome; the state
+    is exited without finishing (a container does not hand its outputs up) and no autonomy check
+    applies, but a lock still holds it.
+    ``announced``: what the operator was told the outcome waits for (``AUTONOMY`` or ``LOCK``, sent as a
+    ``RequestEvent`` with ``pending=True``), None while nothing is announced. A forced outcome held by a
+    lock keeps reason ``FORCED`` and is announced as ``LOCK``.
+    ``approved``: the operator let the state's own outcome fire (bypasses the autonomy check, not a lock).
     """
 
-    __slots__ = ("announced", "approved", "forced", "outcome", "reason", "required")
+    __slots__ = ("announced", "approved", "outcome", "reason", "required")
 
-    def __init__(self, outcome: str, reason: str, required: int, forced: bool = False, approved: bool = False) -> None:
+    def __init__(self, outcome: str, reason: PendingReason, required: int) -> None:
         self.outcome = outcome
         self.reason = reason
         self.required = required
-        self.forced = forced
-        self.approved = approved
-        self.announced = False  # a RequestEvent(pending=True) was sent
+        self.approved = False
+        self.announced: Optional[PendingReason] = None
 
     def __repr__(self) -> str:
-        flags = "forced" if self.forced else "approved" if self.approved else "waiting"
-        return f"Pending({self.outcome!r}, {self.reason}, required={self.required}, {flags})"
+        waits = f", announced as {self.announced.value}" if self.announced is not None else ""
+        approved = ", approved" if self.approved else ""
+        return f"Pending({self.outcome!r}, {self.reason.value}, required={self.required}{approved}{waits})"
 
 
 def _names(what: str, values: Iterable[str], owner: str) -> Tuple[str, ...]:
@@ -344,8 +363,8 @@ class State:
         if ctx is None or pending is None:
             return
         ctx._requests.pop(self._path, None)
-        if pending.announced:
-            ctx._emit_request(ctx.clock.now(), self._path, pending.outcome, pending.required, pending.reason, False)
+        if pending.announced is not None:
+            ctx._emit_request(ctx.clock.now(), self._path, pending.outcome, pending.required, pending.announced, False)
 
     def _wake(self, now: float) -> None:
         """Make this state due now, and every container above it."""

@@ -179,9 +179,9 @@ class StateMachine(Container):
         for outcome, target in self._transitions[label].items():
             nxt = self._children.get(target)
             if nxt is not None:
-                routes[outcome] = (nxt, None, levels.get(outcome, 0), target, child_path(self._path, target))
+                routes[outcome] = Route(nxt, None, levels.get(outcome, 0), target, child_path(self._path, target))
             else:
-                routes[outcome] = (None, target, levels.get(outcome, 0), target, "")
+                routes[outcome] = Route(None, target, levels.get(outcome, 0), target, "")
         return routes
 
     def _activate(self, now: float) -> None:
@@ -216,7 +216,7 @@ class StateMachine(Container):
                 route = child._routes[outcome]
             except (KeyError, TypeError):
                 route = self._route(child, outcome)  # raises with the valid outcomes
-            needs_check = ctx._lock_count or (ctx._gate and route[2] >= ctx._autonomy)
+            needs_check = ctx._lock_count or (ctx._gate and route.required >= ctx._autonomy)
             if needs_check and self._must_wait(child, outcome, route, False, now):
                 self._due = math.inf
                 return None
@@ -224,18 +224,18 @@ class StateMachine(Container):
             child._leave()
         # the transition fires
         ctx._changed = True
-        nxt = route[0]
+        nxt = route.next_state
         if nxt is not None:
             self._current = nxt
             nxt._activate(now)
             self._due = nxt._due
             if ctx.hooks.transition:
-                ctx._emit_transition(now, child._path, outcome, route[3], route[4], route[2], forced)
+                ctx._emit_transition(now, child._path, outcome, route.target, route.target_path, route.required, forced)
             return None
         self._due = math.inf
         if ctx.hooks.transition:
-            ctx._emit_transition(now, child._path, outcome, route[3], "", route[2], forced)
-        return route[1]
+            ctx._emit_transition(now, child._path, outcome, route.target, "", route.required, forced)
+        return route.container_outcome
 
 
 __all__ = ["StateMachine", "child_path"]
