@@ -27,8 +27,8 @@ from __future__ import annotations
 import math
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
-from flex_nav.behavior.container import Container, _listed
-from flex_nav.behavior.state import State
+from flex_nav.behavior.container import Container, listed
+from flex_nav.behavior.state import State, StateRuntime
 from flex_nav.exceptions import (
     BehaviorConstructionError,
     BehaviorRuntimeError,
@@ -57,7 +57,7 @@ class ConcurrencyContainer(Container):
         self._conditions: List[Tuple[str, Tuple[Tuple[str, str], ...]]] = []
         for condition in conditions:
             self.add_condition(*condition)
-        self._running: Tuple[State, ...] = ()
+        self._running: Tuple[StateRuntime, ...] = ()  # records of the children that did not finish
         self._finished: Dict[str, str] = {}
 
     def add(
@@ -78,7 +78,7 @@ class ConcurrencyContainer(Container):
         except (TypeError, ValueError) as err:
             raise BehaviorConstructionError(
                 f"{self.kind}: condition for {outcome!r} must be a list of (state, outcome) pairs, got {when!r}",
-                self._path,
+                self.path,
                 None,
                 outcome,
                 "condition",
@@ -96,7 +96,7 @@ class ConcurrencyContainer(Container):
         if not self._conditions:
             raise BehaviorConstructionError(
                 f"{self.kind} {path} has no conditions (each maps AND-ed (state, outcome) pairs to one of its "
-                f"outcomes: {_listed(self._outcomes)})",
+                f"outcomes: {listed(self.outcomes)})",
                 path,
                 None,
                 None,
@@ -104,10 +104,10 @@ class ConcurrencyContainer(Container):
             )
         labels = list(self._children)
         for outcome, pairs in self._conditions:
-            if outcome not in self._outcomes:
+            if outcome not in self.outcomes:
                 raise UnregisteredOutcomeError(
                     f"{self.kind} {path}: condition outcome {outcome!r} is not an outcome of the container "
-                    f"(valid: {_listed(self._outcomes)})",
+                    f"(valid: {listed(self.outcomes)})",
                     path,
                     None,
                     outcome,
@@ -126,7 +126,7 @@ class ConcurrencyContainer(Container):
                 if child is None:
                     raise UnknownTargetError(
                         f"{self.kind} {path}: condition for {outcome!r} names unknown state {label!r} "
-                        f"(valid: {_listed(labels)})",
+                        f"(valid: {listed(labels)})",
                         path,
                         label,
                         outcome,
@@ -135,7 +135,7 @@ class ConcurrencyContainer(Container):
                 if child_outcome not in child.outcomes:
                     raise UnregisteredOutcomeError(
                         f"{self.kind} {path}: condition for {outcome!r} names outcome {child_outcome!r} of "
-                        f"{label!r} that it does not register (valid: {_listed(child.outcomes)})",
+                        f"{label!r} that it does not register (valid: {listed(child.outcomes)})",
                         path,
                         label,
                         outcome,
@@ -148,68 +148,69 @@ class ConcurrencyContainer(Container):
     def _activate(self, now: float) -> None:
         super()._activate(now)
         self._finished = {}
-        self._running = tuple(self._children.values())
+        self._running = tuple(child.__flex_nav_runtime__ for child in self._children.values())
         for child in self._running:
-            child._activate(now)
+            child.activate(now)
 
-    def _active_children(self) -> List[State]:
-        return [child for child in self._running if child._active]
+    def _active_children(self) -> List[StateRuntime]:
+        return [child for child in self._running if child.active]
 
     def _tick(self, now: float) -> Optional[str]:  # noqa: PLR0912  (the hot path, kept in one piece)
-        ctx = self._ctx
+        rt = self.__flex_nav_runtime__
+        ctx = rt.ctx
         assert ctx is not None
-        finished: Optional[List[State]] = None
+        finished: Optional[List[StateRuntime]] = None
         due = math.inf
         # a child may be woken during this tick (a priority container finishing in a later child
-        # releases an earlier one): _wake lowers self._due, which is folded in at the end
-        self._due = math.inf
+        # releases an earlier one): its wake() lowers rt.due, which is folded in at the end
+        rt.due = math.inf
         for child in self._running:
-            if child._pending is not None:
+            if child.pending is not None:
                 resolved = self._resolve(child, now)
                 if resolved is None:
                     continue
                 outcome, route, forced = resolved
             else:
-                child_due = child._due
+                child_due = child.due
                 if child_due > now:
                     due = min(due, child_due)
                     continue
-                result = child._tick(now)
+                result = child.tick(now)
                 if result is None:
-                    due = min(due, child._due)
+                    due = min(due, child.due)
                     continue
                 outcome = result
                 route = self._route(child, outcome)
-                if (ctx._lock_count or (ctx._gate and route.required >= ctx._autonomy)) and self._must_wait(
+                if (ctx.lock_count or (ctx.gate and route.required >= ctx.autonomy)) and self._must_wait(
                     child, outcome, route, False, now
                 ):
                     continue
                 forced = False
-                child._leave()
-            self._finished[child._label] = outcome
+                child.leave()
+            self._finished[child.label] = outcome
             if finished is None:
                 finished = [child]
             else:
                 finished.append(child)
-            if ctx.hooks.transition:
-                ctx._emit_transition(now, child._path, outcome, "", "", route.required, forced)
+            if ctx.context.hooks.transition:
+                ctx.emit_transition(now, child.path, outcome, "", "", route.required, forced)
         if finished is not None:
-            ctx._changed = True
+            ctx.changed = True
             self._running = tuple(c for c in self._running if c not in finished)
             matched = self._match()
             if matched is not None:
                 for child in self._running:
-                    child._abort()
+                    child.abort()
                 self._running = ()
-                self._due = math.inf
+                rt.due = math.inf
                 return matched
             if not self._running:
                 seen = ", ".join(f"{label}={outcome}" for label, outcome in self._finished.items())
                 raise BehaviorRuntimeError(
-                    f"{self.kind} {self._path}: all states finished ({seen}) and no condition holds "
+                    f"{self.kind} {rt.path}: all states finished ({seen}) and no condition holds "
                     f"(conditions: {self._describe_conditions()})"
                 )
-        self._due = min(self._due, due)
+        rt.due = min(rt.due, due)
         return None
 
     def _match(self) -> Optional[str]:

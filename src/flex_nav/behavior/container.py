@@ -18,11 +18,11 @@ and the valid choices and carries ``container``/``label``/``item``/``field`` for
 from __future__ import annotations
 
 import math
-from typing import Any, Dict, FrozenSet, Iterator, List, Mapping, Optional, Sequence, Tuple
+from typing import TYPE_CHECKING, Any, Dict, FrozenSet, Iterator, List, Mapping, Optional, Sequence, Tuple
 
 from flex_nav.behavior.autonomy import Autonomy
-from flex_nav.behavior.state import Pending, PendingReason, Route, State
-from flex_nav.behavior.userdata import ReadSpec, UserDataView
+from flex_nav.behavior.state import Pending, PendingReason, Route, State, StateRuntime
+from flex_nav.behavior.userdata import ReadSpec, UserDataView, view_parts
 from flex_nav.exceptions import (
     BehaviorConstructionError,
     BehaviorRuntimeError,
@@ -34,13 +34,69 @@ from flex_nav.exceptions import (
     choices_message,
 )
 
+if TYPE_CHECKING:
+    from flex_nav.behavior.context import ContextRuntime
+
 
 def child_path(parent_path: str, label: str) -> str:
     return f"{parent_path.rstrip('/')}/{label}"
 
 
-def _listed(values: Sequence[str] | FrozenSet[str]) -> str:
+def listed(values: Sequence[str] | FrozenSet[str]) -> str:
+    """Names for a message: "a, b, c", or "none"."""
     return ", ".join(values) if values else "none"
+
+
+class ContainerRuntime(StateRuntime):
+    """The engine's record of a container: the calls the engine makes on every state's record reach
+    the container here, which drives its children (their records) in its own methods."""
+
+    __slots__ = ("container",)
+
+    def __init__(self, container: Container, declared: StateRuntime) -> None:
+        super().__init__(container, declared.outcomes, declared.input_keys, declared.output_keys, declared.period_s)
+        self.container = container
+
+    def copy_for(self, state: State) -> StateRuntime:
+        assert isinstance(state, Container)
+        twin = super().copy_for(state)
+        assert isinstance(twin, ContainerRuntime)
+        twin.container = state
+        return twin
+
+    def attach(self, ctx: ContextRuntime, path: str, ancestors: FrozenSet[StateRuntime]) -> None:
+        super().attach(ctx, path, ancestors)
+        self.container._attach_children(ctx, path, ancestors | {self})
+
+    def walk(self) -> Iterator[StateRuntime]:
+        yield self
+        for child in self.container._children.values():
+            yield from child.__flex_nav_runtime__.walk()
+
+    def active_leaves(self) -> Iterator[StateRuntime]:
+        for child in self.container._active_children():
+            yield from child.active_leaves()
+
+    def active_paths(self) -> Iterator[str]:
+        if not self.active:
+            return
+        children = self.container._active_children()
+        if not children:  # finished, its outcome waits in the parent
+            yield self.path
+        for child in children:
+            yield from child.active_paths()
+
+    def activate(self, now: float) -> None:
+        self.container._activate(now)
+
+    def tick(self, now: float) -> Optional[str]:
+        return self.container._tick(now)
+
+    def leave(self) -> None:
+        self.container._leave()
+
+    def abort(self) -> None:
+        self.container._abort()
 
 
 class Container(State):
@@ -56,6 +112,8 @@ class Container(State):
         userdata: Optional[Mapping[str, Any]] = None,
     ) -> None:
         super().__init__(outcomes, input_keys, output_keys)
+        # a container's record drives its children (replaces the leaf record State made)
+        self.__flex_nav_runtime__: ContainerRuntime = ContainerRuntime(self, self.__flex_nav_runtime__)
         if userdata is not None and not isinstance(userdata, Mapping):
             raise ConfigError(f"{type(self).__name__}: userdata defaults must be a mapping, got {userdata!r}")
         self._defaults: Dict[str, Any] = dict(userdata or {})
@@ -73,7 +131,7 @@ class Container(State):
         remapping: Optional[Mapping[str, str]],
         autonomy: Optional[Mapping[str, object]],
     ) -> None:
-        where = self._path or "(unattached)"
+        where = self.path or "(unattached)"
         if not isinstance(label, str) or not label or "/" in label or label != label.strip():
             raise LabelClashError(
                 f"{self.kind} {where}: state label {label!r} must be a non-empty name "
@@ -85,7 +143,7 @@ class Container(State):
             )
         if label in self._children:
             raise LabelClashError(
-                f"{self.kind} {where}: state label {label!r} is used twice (labels: {_listed(list(self._children))})",
+                f"{self.kind} {where}: state label {label!r} is used twice (labels: {listed(list(self._children))})",
                 where,
                 label,
                 label,
@@ -99,9 +157,10 @@ class Container(State):
                 None,
                 "state",
             )
-        if state._parent is not None:
+        child = state.__flex_nav_runtime__
+        if child.parent is not None:
             raise BehaviorConstructionError(
-                f"{self.kind} {where}: state instance for {label!r} was already added as {state._label!r} "
+                f"{self.kind} {where}: state instance for {label!r} was already added as {child.label!r} "
                 f"to another container; build one instance per place",
                 where,
                 label,
@@ -114,7 +173,7 @@ class Container(State):
             if key not in declared:
                 raise UndeclaredKeyError(
                     f"{self.kind} {where}: remapping of {label!r} names key {key!r} that "
-                    f"{type(state).__name__} does not declare (valid: {_listed(declared)})",
+                    f"{type(state).__name__} does not declare (valid: {listed(declared)})",
                     where,
                     label,
                     key,
@@ -134,7 +193,7 @@ class Container(State):
             if outcome not in state.outcomes:
                 raise UnregisteredOutcomeError(
                     f"{self.kind} {where}: autonomy of {label!r} names outcome {outcome!r} that "
-                    f"{type(state).__name__} does not register (valid: {_listed(state.outcomes)})",
+                    f"{type(state).__name__} does not register (valid: {listed(state.outcomes)})",
                     where,
                     label,
                     outcome,
@@ -150,8 +209,8 @@ class Container(State):
                     outcome,
                     "autonomy",
                 ) from err
-        state._parent = self
-        state._label = label
+        child.parent = self.__flex_nav_runtime__
+        child.label = label
         self._children[label] = state
         self._remapping[label] = remap
         self._autonomy[label] = levels
@@ -166,7 +225,7 @@ class Container(State):
         try:
             return self._children[label]
         except KeyError:
-            what = f"{self.kind} {self._path or ''} has no state"
+            what = f"{self.kind} {self.path or ''} has no state"
             raise KeyError(choices_message(what, label, self._children)) from None
 
     def remapping_of(self, label: str) -> Dict[str, str]:
@@ -184,7 +243,7 @@ class Container(State):
     # --- validation ----------------------------------------------------------------------------------
     def validate(self) -> None:
         """Check the whole tree below this container; raise the first BehaviorConstructionError."""
-        self._validate(self._path or "/")
+        self._validate(self.path or "/")
 
     def _validate(self, path: str) -> None:
         raise NotImplementedError
@@ -196,7 +255,7 @@ class Container(State):
 
     def _validate_keys(self, path: str) -> None:
         """Inputs of children must be provided; outputs of the container must be produced."""
-        provided: Dict[str, str] = {k: "input of the container" for k in self._input_keys}
+        provided: Dict[str, str] = {k: "input of the container" for k in self.input_keys}
         provided.update({k: "userdata default" for k in self._defaults if k not in provided})
         for label, child in self._children.items():
             remap = self._remapping[label]
@@ -211,35 +270,34 @@ class Container(State):
                     raise UndeclaredKeyError(
                         f"{self.kind} {path}: input key {key!r}{renamed} of state {label!r} is neither an input "
                         f"key nor a userdata default of the container nor an output of any of its states "
-                        f"(available: {_listed(sorted(provided))})",
+                        f"(available: {listed(sorted(provided))})",
                         path,
                         label,
                         key,
                         "key",
                     )
-        for key in self._output_keys:
+        for key in self.output_keys:
             if key not in provided:
                 raise UndeclaredKeyError(
                     f"{self.kind} {path}: output key {key!r} is produced by no state and is neither an input "
-                    f"key nor a userdata default (available: {_listed(sorted(provided))})",
+                    f"key nor a userdata default (available: {listed(sorted(provided))})",
                     path,
                     None,
                     key,
                     "key",
                 )
 
-    # --- attaching to a behavior ---------------------------------------------------------------------------
-    def _attach(self, ctx: Any, path: str, ancestors: FrozenSet[State]) -> None:
-        super()._attach(ctx, path, ancestors)
-        view = self._ud
+    # --- attaching to a behavior (called by the container's record) ------------------------------------
+    def _attach_children(self, ctx: ContextRuntime, path: str, below: FrozenSet[StateRuntime]) -> None:
+        view = self.__flex_nav_runtime__.ud
         # keys that must stay read-only inside: our input-only keys, and keys protected above us
-        self._protected = frozenset(k for k, (_, wrap) in view._ud_read.items() if wrap) if view else frozenset()
+        self._protected = frozenset(k for k, (_, wrap) in view_parts(view)[1].items() if wrap) if view else frozenset()
         self._data = {}
-        below = ancestors | {self}
-        for label, child in self._children.items():
-            child._ud = self._make_view(child, self._remapping[label])
-            child._routes = self._make_routes(label, child)
-            child._attach(ctx, child_path(path, label), below)
+        for label, state in self._children.items():
+            child = state.__flex_nav_runtime__
+            child.ud = self._make_view(state, self._remapping[label])
+            child.routes = self._make_routes(label, state)
+            child.attach(ctx, child_path(path, label), below)
 
     def _make_view(self, child: State, remap: Mapping[str, str]) -> UserDataView:
         read: ReadSpec = {}
@@ -254,17 +312,17 @@ class Container(State):
         levels = self._autonomy[label]
         return {o: Route(None, None, levels.get(o, 0), "", "") for o in child.outcomes}
 
-    # --- running -----------------------------------------------------------------------------------------
+    # --- running (the engine's calls on the container's record land here) --------------------------------
     def execute(self, userdata: UserDataView) -> Optional[str]:
-        raise BehaviorRuntimeError(f"{self.kind} {self._path}: containers are run by the engine, not executed")
+        raise BehaviorRuntimeError(f"{self.kind} {self.path}: containers are run by the engine, not executed")
 
     def _activate(self, now: float) -> None:
+        rt = self.__flex_nav_runtime__
         data = self._data
         data.clear()
         data.update(self._defaults)
-        view = self._ud
-        store = view._ud_store
-        for key, (store_key, _) in view._ud_read.items():
+        store, read, _ = view_parts(rt.ud)
+        for key, (store_key, _) in read.items():
             try:
                 data[key] = store[store_key]
             except KeyError:
@@ -272,131 +330,117 @@ class Container(State):
                     continue
                 renamed = f" (key {store_key!r} there)" if store_key != key else ""
                 raise UserDataKeyError(
-                    f"{self.kind} {self._path}: input key {key!r} has no value in its parent{renamed} "
-                    f"(keys with a value: {_listed(sorted(store))})"
+                    f"{self.kind} {rt.path}: input key {key!r} has no value in its parent{renamed} "
+                    f"(keys with a value: {listed(sorted(store))})"
                 ) from None
-        self._active = True
-        self._entering = False
-        self._entered = True
-        self._due = now
+        rt.active = True
+        rt.entering = False
+        rt.entered = True
+        rt.due = now
 
     def _write_outputs(self) -> None:
-        view = self._ud
-        store = view._ud_store
+        store, _, write = view_parts(self.__flex_nav_runtime__.ud)
         data = self._data
-        for key, store_key in view._ud_write.items():
+        for key, store_key in write.items():
             if key in data:  # an output nobody wrote (e.g. on a failure path) stays unset above
                 store[store_key] = data[key]
 
     def _leave(self) -> None:
         """Finished with an outcome that fired: hand the outputs to the parent."""
-        self._active = False
-        self._entered = False
-        self._due = math.inf
-        if self._pending is not None:
-            self._drop_pending()
+        rt = self.__flex_nav_runtime__
+        rt.active = False
+        rt.entered = False
+        rt.due = math.inf
+        if rt.pending is not None:
+            rt.drop_pending()
         self._write_outputs()
 
     def _abort(self) -> None:
         """Exit every active child (deepest first), without writing outputs."""
         for child in self._active_children():
-            child._abort()
-        self._active = False
-        self._entered = False
-        self._due = math.inf
-        if self._pending is not None:
-            self._drop_pending()
+            child.abort()
+        rt = self.__flex_nav_runtime__
+        rt.active = False
+        rt.entered = False
+        rt.due = math.inf
+        if rt.pending is not None:
+            rt.drop_pending()
 
-    def _active_children(self) -> List[State]:
+    def _tick(self, now: float) -> Optional[str]:
         raise NotImplementedError
 
-    def _walk(self) -> Iterator[State]:
-        yield self
-        for child in self._children.values():
-            yield from child._walk()
-
-    def _active_leaves(self) -> Iterator[State]:
-        for child in self._active_children():
-            yield from child._active_leaves()
-
-    def _active_paths(self) -> Iterator[str]:
-        if not self._active:
-            return
-        children = self._active_children()
-        if not children:  # finished, its outcome waits in the parent
-            yield self._path
-        for child in children:
-            yield from child._active_paths()
+    def _active_children(self) -> List[StateRuntime]:
+        raise NotImplementedError
 
     # --- gating of child outcomes (slow paths) -------------------------------------------------------------
-    def _route(self, child: State, outcome: object) -> Route:
+    def _route(self, child: StateRuntime, outcome: object) -> Route:
         try:
-            return child._routes[outcome]  # type: ignore[index]
+            return child.routes[outcome]  # type: ignore[index]
         except (KeyError, TypeError):
             raise BehaviorRuntimeError(
-                f"state {child._path!r} ({type(child).__name__}) returned outcome {outcome!r} which it does not "
-                f"register (valid: {_listed(child.outcomes)}; None keeps it running)"
+                f"state {child.path!r} ({type(child.state).__name__}) returned outcome {outcome!r} which it does not "
+                f"register (valid: {listed(child.outcomes)}; None keeps it running)"
             ) from None
 
-    def _must_wait(self, child: State, outcome: str, route: Route, by_operator: bool, now: float) -> bool:
+    def _must_wait(self, child: StateRuntime, outcome: str, route: Route, by_operator: bool, now: float) -> bool:
         """Lock or autonomy says ``outcome`` of ``child`` cannot fire now: mark it pending and say so."""
-        ctx = self._ctx
+        ctx = child.ctx
         assert ctx is not None
-        if ctx._lock_count and self._leaves_locked(child, route):
+        if ctx.lock_count and self._leaves_locked(child, route):
             wait = PendingReason.LOCK
-        elif not by_operator and ctx._gate and route.required >= ctx._autonomy:
+        elif not by_operator and ctx.gate and route.required >= ctx.autonomy:
             wait = PendingReason.AUTONOMY
         else:
             return False
-        pending = child._pending
+        pending = child.pending
         if pending is None:
             pending = Pending(outcome, wait, route.required)
-            child._pending = pending
+            child.pending = pending
         elif pending.outcome != outcome or pending.announced is not wait:
             if pending.announced is not None:  # withdraw what the operator saw before saying the new reason
-                ctx._emit_request(now, child._path, pending.outcome, pending.required, pending.announced, False)
+                ctx.emit_request(now, child.path, pending.outcome, pending.required, pending.announced, False)
                 pending.announced = None
             pending.outcome, pending.required = outcome, route.required
             if pending.reason is not PendingReason.FORCED:  # a forced outcome stays forced while a lock holds it
                 pending.reason = wait
-        ctx._requests[child._path] = child
+        ctx.requests[child.path] = child
         if pending.announced is None:
             pending.announced = wait
-            ctx._emit_request(now, child._path, outcome, route.required, wait, True)
-        child._due = math.inf
+            ctx.emit_request(now, child.path, outcome, route.required, wait, True)
+        child.due = math.inf
         return True
 
-    def _resolve(self, child: State, now: float) -> Optional[Tuple[str, Route, bool]]:
+    def _resolve(self, child: StateRuntime, now: float) -> Optional[Tuple[str, Route, bool]]:
         """A child with a pending outcome was woken: (outcome, route, by operator) if it fires now.
 
         The child is exited here: aborted if the operator forced the outcome, left normally otherwise.
         """
-        pending = child._pending
+        pending = child.pending
         assert pending is not None
-        route = child._routes[pending.outcome]
+        route = child.routes[pending.outcome]
         forced = pending.reason is PendingReason.FORCED
         by_operator = forced or pending.approved
         if self._must_wait(child, pending.outcome, route, by_operator, now):
             return None
-        child._drop_pending()
+        child.drop_pending()
         if forced:
-            child._abort()
+            child.abort()
         else:
-            child._leave()
+            child.leave()
         return pending.outcome, route, by_operator
 
-    def _leaves_locked(self, child: State, route: Route) -> bool:
+    def _leaves_locked(self, child: StateRuntime, route: Route) -> bool:
         """Would firing ``route`` of ``child`` leave a locked state or container?"""
-        if child._locked:
+        if child.locked:
             return True
-        node: Optional[State] = self
+        node: Optional[StateRuntime] = self.__flex_nav_runtime__
         outcome = route.container_outcome
         while outcome is not None and node is not None:  # the transition leaves ``node``
-            if node._locked:
+            if node.locked:
                 return True
-            parent = node._parent
+            parent = node.parent
             if parent is None:
                 return False
-            outcome = node._routes[outcome].container_outcome if outcome in node._routes else None
+            outcome = node.routes[outcome].container_outcome if outcome in node.routes else None
             node = parent
         return False

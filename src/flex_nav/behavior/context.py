@@ -9,8 +9,10 @@ What is injected: the name, the clock (:mod:`flex_nav.behavior.clock`), the prox
 runner provides: the ROS adapter passes its per-behavior proxy set; pure tests pass a fake or None)
 and a Python logger. What it carries: the current autonomy, whether autonomy is enforced
 (``supervised``), the preemption flag, the event :class:`~flex_nav.behavior.events.Hooks`, and the
-engine's bookkeeping (outcome requests, locks, priority containers). The executor is the only writer
-of the mutable parts, from its own thread; operator commands reach it through the executor.
+engine's bookkeeping (outcome requests, locks, priority containers) in one record,
+:class:`ContextRuntime`, held as ``context.__flex_nav_runtime__`` like a state's
+:class:`~flex_nav.behavior.state.StateRuntime`. The engine (executor and containers) is the only writer
+of the mutable parts, from the executor's thread; operator commands reach it through the executor.
 
 :func:`current_context` returns the context whose states are being run by the executor in this
 thread (a ``contextvars`` variable, set around each tick): compatibility layers use it to route
@@ -37,8 +39,8 @@ from flex_nav.behavior.events import (
 from flex_nav.exceptions import BehaviorRuntimeError, NotReadyError
 
 if TYPE_CHECKING:
-    from flex_nav.behavior.container import Container
-    from flex_nav.behavior.state import PendingReason, State
+    from flex_nav.behavior.container import ContainerRuntime
+    from flex_nav.behavior.state import PendingReason, State, StateRuntime
 
 _PY_LEVELS = {
     LogLevel.INFO: logging.INFO,
@@ -48,32 +50,34 @@ _PY_LEVELS = {
     LogLevel.DEBUG: logging.DEBUG,
 }
 
-# Why a leaf is not being executed (bit mask on State._hold_mask).
+# Why a leaf is not being executed (bit mask on StateRuntime.hold_mask).
 HOLD_PAUSE = 1  # the operator paused the behavior
 HOLD_PRIORITY = 2  # a priority container outside this state is active
 HOLD_REQUEST = 4  # an outcome waits for the operator: everything holds still until none does
 
-_CURRENT: contextvars.ContextVar[Optional[BehaviorContext]] = contextvars.ContextVar(
+# The context being ticked in this thread: the executor sets it around each tick (and on_start, commands).
+CURRENT_CONTEXT: contextvars.ContextVar[Optional[BehaviorContext]] = contextvars.ContextVar(
     "flex_nav_behavior_context", default=None
 )
 
 
 def current_context() -> Optional[BehaviorContext]:
     """The context of the behavior being ticked in this thread, or None outside a tick."""
-    return _CURRENT.get()
+    return CURRENT_CONTEXT.get()
 
 
 @contextlib.contextmanager
 def using_context(context: BehaviorContext) -> Iterator[BehaviorContext]:
     """Make ``context`` the current one for the ``with`` block (e.g. while constructing states)."""
-    token = _CURRENT.set(context)
+    token = CURRENT_CONTEXT.set(context)
     try:
         yield context
     finally:
-        _CURRENT.reset(token)
+        CURRENT_CONTEXT.reset(token)
 
 
-def _hook_error(kind: str, hook: object, err: Exception) -> BehaviorRuntimeError:
+def hook_error(kind: str, hook: object, err: Exception) -> BehaviorRuntimeError:
+    """The error that fails the behavior when one of its hooks raised ``err``."""
     name = getattr(hook, "__qualname__", None) or repr(hook)
     return BehaviorRuntimeError(f"{kind} hook {name} raised {type(err).__name__}: {err}")
 
@@ -96,35 +100,26 @@ class BehaviorContext:
         self.proxies = proxies
         self.hooks = Hooks()
         self.logger = logger if logger is not None else logging.getLogger(f"flex_nav.behavior.{name}")
-        self._autonomy = int(Autonomy.parse(autonomy))
-        self._gate = bool(supervised)  # enforce autonomy levels (False: every transition fires)
-        self._preempt_requested = False
-        self._priority: List[Container] = []  # stack of active priority containers, innermost last
-        self._held: List[State] = []  # leaves held by a priority container
-        self._requests: Dict[str, State] = {}  # path -> state whose outcome waits for the operator
-        self._request_held: List[State] = []  # leaves held (HOLD_REQUEST) while an outcome waits
-        self._lock_count = 0  # number of locked nodes (0: skip lock checks on the hot path)
-        self._changed = False  # the active set changed during this tick
-        self._root: Optional[State] = None
-        self._finished = False
+        self.__flex_nav_runtime__ = ContextRuntime(self, int(Autonomy.parse(autonomy)), bool(supervised))
 
     # --- what states read ----------------------------------------------------------------------
     @property
     def autonomy(self) -> Autonomy:
-        return Autonomy(self._autonomy)
+        return Autonomy(self.__flex_nav_runtime__.autonomy)
 
     @property
     def supervised(self) -> bool:
         """True if transitions wait for the operator when their level is not below the autonomy."""
-        return self._gate
+        return self.__flex_nav_runtime__.gate
 
     @property
     def preempt_requested(self) -> bool:
-        return self._preempt_requested
+        return self.__flex_nav_runtime__.preempt_requested
 
     @property
     def root(self) -> Optional[State]:
-        return self._root
+        root = self.__flex_nav_runtime__.root
+        return root.state if root is not None else None
 
     def now(self) -> float:
         """Current time [s] on this behavior's clock."""
@@ -149,100 +144,152 @@ class BehaviorContext:
                 try:
                     hook(event)
                 except Exception as err:
-                    raise _hook_error("log", hook, err) from err
+                    raise hook_error("log", hook, err) from err
 
-    # --- engine side (called by containers and the executor, in the executor's thread) ----------
-    def _emit_transition(  # noqa: PLR0917  (internal, hot path: no kwargs packing)
+
+class ContextRuntime:
+    """The engine's bookkeeping of one behavior: held as ``context.__flex_nav_runtime__``.
+
+    Written by the engine only (executor and containers, in the executor's thread). Fields:
+    ``context`` (the public :class:`BehaviorContext`), ``autonomy`` (the current level, an int),
+    ``gate`` (enforce autonomy levels; False: every transition fires), ``preempt_requested``,
+    ``priority`` (records of the active priority containers, innermost last), ``held`` (leaves held by
+    a priority container), ``requests`` (path -> record of a state whose outcome waits for the
+    operator), ``request_held`` (leaves held while an outcome waits), ``lock_count`` (locked nodes; 0:
+    the hot path skips lock checks), ``changed`` (the active set changed during this tick), ``root``
+    (the root state's record), ``finished`` (the behavior ended: its states may join another one).
+    """
+
+    __slots__ = (
+        "autonomy",
+        "changed",
+        "context",
+        "finished",
+        "gate",
+        "held",
+        "lock_count",
+        "preempt_requested",
+        "priority",
+        "request_held",
+        "requests",
+        "root",
+    )
+
+    def __init__(self, context: BehaviorContext, autonomy: int, gate: bool) -> None:
+        self.context = context
+        self.autonomy = autonomy
+        self.gate = gate
+        self.preempt_requested = False
+        self.priority: List[ContainerRuntime] = []
+        self.held: List[StateRuntime] = []
+        self.requests: Dict[str, StateRuntime] = {}
+        self.request_held: List[StateRuntime] = []
+        self.lock_count = 0
+        self.changed = False
+        self.root: Optional[StateRuntime] = None
+        self.finished = False
+
+    def now(self) -> float:
+        """[s] current time on the behavior's clock."""
+        return self.context.clock.now()
+
+    # --- events -----------------------------------------------------------------------------------
+    def emit_transition(  # noqa: PLR0917  (hot path: no kwargs packing)
         self, now: float, path: str, outcome: str, target: str, target_path: str, required: int, forced: bool
     ) -> None:
         event = TransitionEvent(now, path, outcome, target, target_path, Autonomy(required), forced)
-        for hook in self.hooks.transition:
+        for hook in self.context.hooks.transition:
             try:
                 hook(event)
             except Exception as err:
-                raise _hook_error("transition", hook, err) from err
+                raise hook_error("transition", hook, err) from err
 
-    def _emit_request(  # noqa: PLR0917  (internal)
+    def emit_request(  # noqa: PLR0917
         self, now: float, path: str, outcome: str, required: int, reason: PendingReason, pending: bool
     ) -> None:
         """An outcome waits for the operator (``pending``) or stopped waiting; ``reason.value`` is sent."""
-        if self.hooks.request:
+        hooks = self.context.hooks
+        if hooks.request:
             event = RequestEvent(now, path, outcome, Autonomy(required), reason.value, pending)
-            for hook in self.hooks.request:
+            for hook in hooks.request:
                 try:
                     hook(event)
                 except Exception as err:
-                    raise _hook_error("request", hook, err) from err
+                    raise hook_error("request", hook, err) from err
 
-    def _emit_active(self, now: float, paths: tuple[str, ...]) -> None:
+    def emit_active(self, now: float, paths: tuple[str, ...]) -> None:
         event = ActiveStatesEvent(now, paths)
-        for hook in self.hooks.active:
+        for hook in self.context.hooks.active:
             try:
                 hook(event)
             except Exception as err:
-                raise _hook_error("active", hook, err) from err
+                raise hook_error("active", hook, err) from err
 
-    def _claim_priority(self, owner: Container) -> None:
+    # --- holding leaves still ---------------------------------------------------------------------
+    def claim_priority(self, owner: ContainerRuntime) -> None:
         """``owner`` (a priority container) became active: hold every active leaf outside it."""
-        self._priority.append(owner)
-        if self._root is None:
+        self.priority.append(owner)
+        if self.root is None:
             return
-        for leaf in list(self._root._active_leaves()):
-            if owner not in leaf._ancestors:
-                self._hold_leaf(leaf, HOLD_PRIORITY)
+        for leaf in list(self.root.active_leaves()):
+            if owner not in leaf.ancestors:
+                self.hold_leaf(leaf, HOLD_PRIORITY)
 
-    def _release_priority(self, owner: Container, now: float) -> None:
+    def release_priority(self, owner: ContainerRuntime, now: float) -> None:
         """``owner`` left: give the held leaves back unless another priority container still excludes them."""
-        if owner in self._priority:
-            self._priority.remove(owner)
-        inner = self._priority[-1] if self._priority else None
-        still: List[State] = []
-        for leaf in self._held:
-            if not leaf._active:
+        if owner in self.priority:
+            self.priority.remove(owner)
+        inner = self.priority[-1] if self.priority else None
+        still: List[StateRuntime] = []
+        for leaf in self.held:
+            if not leaf.active:
                 continue
-            if inner is not None and inner not in leaf._ancestors:
+            if inner is not None and inner not in leaf.ancestors:
                 still.append(leaf)
                 continue
-            self._release_leaf(leaf, HOLD_PRIORITY, now)
-        self._held = still
+            self.release_leaf(leaf, HOLD_PRIORITY, now)
+        self.held = still
 
-    def _sync_request_hold(self, now: float) -> None:
+    def sync_request_hold(self, now: float) -> None:
         """While any outcome waits for the operator, hold every active leaf (on_pause: motion states stop,
         action states cancel their goals) — a monitor's outcome held for approval must not leave the
         controller beside it driving, nor a motion state its last command. Released (on_resume) when no
         outcome waits any more; leaves that were left meanwhile are simply dropped."""
-        if self._requests:
-            if self._root is not None:
-                for leaf in list(self._root._active_leaves()):
-                    if not leaf._hold_mask & HOLD_REQUEST:
-                        self._hold_leaf(leaf, HOLD_REQUEST)
-                        self._request_held.append(leaf)
+        if self.requests:
+            if self.root is not None:
+                for leaf in list(self.root.active_leaves()):
+                    if not leaf.hold_mask & HOLD_REQUEST:
+                        self.hold_leaf(leaf, HOLD_REQUEST)
+                        self.request_held.append(leaf)
             return
-        held, self._request_held = self._request_held, []
+        held, self.request_held = self.request_held, []
         for leaf in held:
-            if leaf._active:
-                self._release_leaf(leaf, HOLD_REQUEST, now)
+            if leaf.active:
+                self.release_leaf(leaf, HOLD_REQUEST, now)
 
-    def _outside_priority(self, leaf: State) -> bool:
-        return bool(self._priority) and self._priority[-1] not in leaf._ancestors
+    def outside_priority(self, leaf: StateRuntime) -> bool:
+        """An active priority container does not contain ``leaf``."""
+        return bool(self.priority) and self.priority[-1] not in leaf.ancestors
 
-    def _hold_leaf(self, leaf: State, reason: int) -> None:
-        if leaf._hold_mask & reason:
+    def hold_leaf(self, leaf: StateRuntime, reason: int) -> None:
+        """Stop executing ``leaf`` for ``reason`` (a HOLD_* bit); on_pause when it is the first one."""
+        if leaf.hold_mask & reason:
             return
-        first = leaf._hold_mask == 0
-        leaf._hold_mask |= reason
-        leaf._due = float("inf")
+        first = leaf.hold_mask == 0
+        leaf.hold_mask |= reason
+        leaf.due = float("inf")
         if reason == HOLD_PRIORITY:
-            self._held.append(leaf)
-        if first and leaf._entered:
-            leaf._call_pause()
+            self.held.append(leaf)
+        if first and leaf.entered:
+            leaf.call_pause()
 
-    def _release_leaf(self, leaf: State, reason: int, now: float) -> None:
-        if not leaf._hold_mask & reason:
+    def release_leaf(self, leaf: StateRuntime, reason: int, now: float) -> None:
+        """Drop ``reason``; on_resume and due now when no reason is left."""
+        if not leaf.hold_mask & reason:
             return
-        leaf._hold_mask &= ~reason
-        if leaf._hold_mask:
+        leaf.hold_mask &= ~reason
+        if leaf.hold_mask:
             return
-        if leaf._entered:
-            leaf._call_resume()
-        leaf._wake(now)
+        if leaf.entered:
+            leaf.call_resume()
+        leaf.wake(now)

@@ -40,9 +40,9 @@ from flex_nav.behavior.autonomy import Autonomy
 from flex_nav.behavior.behavior import Behavior
 from flex_nav.behavior.clock import Clock
 from flex_nav.behavior.container import Container
-from flex_nav.behavior.context import _CURRENT, HOLD_PAUSE, BehaviorContext, _hook_error
+from flex_nav.behavior.context import CURRENT_CONTEXT, HOLD_PAUSE, BehaviorContext, hook_error
 from flex_nav.behavior.events import BehaviorStatus, CommandEvent, LogLevel, StatusEvent
-from flex_nav.behavior.state import Pending, PendingReason, State
+from flex_nav.behavior.state import Pending, PendingReason, State, StateRuntime
 from flex_nav.behavior.userdata import UserDataView
 from flex_nav.exceptions import (
     BehaviorCommandError,
@@ -109,6 +109,8 @@ class BehaviorExecutor:
             raise ConfigError(f"idle_wait_s must be > 0 [s], got {idle_wait_s!r}")
         self._ctx = context
         self._root = root
+        self._book = context.__flex_nav_runtime__  # the engine's bookkeeping of this behavior
+        self._rt = root.__flex_nav_runtime__  # the root's record
         self._should_stop = should_stop
         self._idle_wait_s = float(idle_wait_s)
         self._lock = threading.RLock()  # held by the executor thread while it ticks or applies commands
@@ -136,18 +138,19 @@ class BehaviorExecutor:
                 f"(given: {', '.join(self._io) or 'none'})"
             )
         outputs = set(root.output_keys)
-        root._ud = UserDataView(
+        rt = self._rt
+        rt.ud = UserDataView(
             self._io,
             {k: (k, k not in outputs) for k in root.input_keys if k in self._io},
             {k: k for k in root.output_keys},
             root,
         )
-        root._routes = {}
-        root._label = root._label or name
-        context._root = root
-        context._finished = False
-        root._attach(context, "/", frozenset())
-        self._nodes: Dict[str, State] = {node._path: node for node in root._walk()}
+        rt.routes = {}
+        rt.label = rt.label or name
+        self._book.root = rt
+        self._book.finished = False
+        rt.attach(self._book, "/", frozenset())
+        self._nodes: Dict[str, StateRuntime] = {node.path: node for node in rt.walk()}
 
     # --- properties and queries (any thread) --------------------------------------------------------
     @property
@@ -167,6 +170,12 @@ class BehaviorExecutor:
         return self._ctx.autonomy
 
     @property
+    def due_s(self) -> float:
+        """[s] clock time at which the behavior next needs a tick (inf: none until a command or an event
+        wakes a state). For driving it with ``spin_once`` from a manual clock."""
+        return self._rt.due
+
+    @property
     def state_paths(self) -> Tuple[str, ...]:
         """Every state path of the behavior (static)."""
         return tuple(self._nodes)
@@ -183,14 +192,14 @@ class BehaviorExecutor:
         with self._lock:
             if self._terminal or self._status is BehaviorStatus.READY:
                 return ()
-            return tuple(self._root._active_paths())
+            return tuple(self._rt.active_paths())
 
     def requested_outcomes(self) -> List[OutcomeRequest]:
         """Outcomes that wait for the operator (approval, more autonomy, or an unlock)."""
         with self._lock:
             requests = []
-            for path, node in self._ctx._requests.items():
-                pending = node._pending
+            for path, node in self._book.requests.items():
+                pending = node.pending
                 if pending is not None and pending.announced is not None:
                     waits = pending.announced.value
                     requests.append(OutcomeRequest(path, pending.outcome, Autonomy(pending.required), waits))
@@ -206,21 +215,21 @@ class BehaviorExecutor:
         with self._lock:
             if self._status is not BehaviorStatus.READY:
                 raise BehaviorRuntimeError(f"behavior {self._ctx.name!r} was already started ({self._status.value})")
-            token = _CURRENT.set(self._ctx)
+            token = CURRENT_CONTEXT.set(self._ctx)
             try:
                 now = self._ctx.clock.now()
                 self._status = BehaviorStatus.RUNNING
                 try:
-                    for node in self._root._walk():
-                        node._user_call("on_start", node.on_start)
-                    self._root._activate(now)
+                    for node in self._rt.walk():
+                        node.user_call("on_start", node.state.on_start)
+                    self._rt.activate(now)
                 except Exception as err:
                     self._fail(err, now)
                     return
-                self._ctx._changed = True  # the first tick reports the initial active states
+                self._book.changed = True  # the first tick reports the initial active states
                 self._emit_status(now, None, "started")
             finally:
-                _CURRENT.reset(token)
+                CURRENT_CONTEXT.reset(token)
 
     def spin_once(self) -> bool:
         """Apply queued commands and tick the root if it is due now; True if it ticked. Never waits."""
@@ -243,14 +252,14 @@ class BehaviorExecutor:
         if self._status is BehaviorStatus.READY:
             self.start()
         with self._lock:
-            token = _CURRENT.set(self._ctx)
+            token = CURRENT_CONTEXT.set(self._ctx)
             try:
                 if self._commands:
                     self._apply_commands()
                 if self._terminal or self._paused:
                     return False
                 now = self._ctx.clock.now()
-                if self._root._due > now:
+                if self._rt.due > now:
                     return False
                 self._tick(now)
                 return True
@@ -258,7 +267,7 @@ class BehaviorExecutor:
                 self._interrupted(err)
                 raise
             finally:
-                _CURRENT.reset(token)
+                CURRENT_CONTEXT.reset(token)
 
     def run(self, timeout_s: Optional[float] = None, *, stop_on_timeout: bool = True) -> BehaviorResult:
         """Tick until the behavior ends, or ``timeout_s`` [s] of clock time pass.
@@ -274,7 +283,7 @@ class BehaviorExecutor:
             self.start()
         ctx = self._ctx
         clock = ctx.clock
-        root = self._root
+        root = self._rt
         wake = self._wake
         lock = self._lock
         commands = self._commands
@@ -282,7 +291,7 @@ class BehaviorExecutor:
         idle_wait_s = self._idle_wait_s
         deadline = math.inf if timeout_s is None else clock.now() + timeout_s
         ticks = 0
-        token = _CURRENT.set(ctx)
+        token = CURRENT_CONTEXT.set(ctx)
         try:
             while True:
                 if commands:
@@ -296,7 +305,7 @@ class BehaviorExecutor:
                         with lock:
                             self._preempt(f"run() timed out after {timeout_s} s", now)
                     break
-                if self._paused or root._due > now:
+                if self._paused or root.due > now:
                     if should_stop is not None and should_stop():
                         with lock:
                             self._preempt("stopped: shutdown requested", now)
@@ -304,7 +313,7 @@ class BehaviorExecutor:
                     wake.clear()
                     if commands:
                         continue
-                    due = math.inf if self._paused else root._due
+                    due = math.inf if self._paused else root.due
                     clock.wait_until(min(due, deadline, now + idle_wait_s), wake)
                     continue
                 lock.acquire()
@@ -320,7 +329,7 @@ class BehaviorExecutor:
             self._interrupted(err)
             raise
         finally:
-            _CURRENT.reset(token)
+            CURRENT_CONTEXT.reset(token)
         return self.result()
 
     def _interrupted(self, err: BaseException) -> None:
@@ -329,46 +338,46 @@ class BehaviorExecutor:
                 self._preempt(f"interrupted by {type(err).__name__}", self._ctx.clock.now())
 
     def _tick(self, now: float) -> None:
-        ctx = self._ctx
-        root = self._root
+        book = self._book
+        root = self._rt
         try:
-            pending = root._pending
+            pending = root.pending
             if pending is not None:  # the root's outcome waits for an unlock
-                if root._locked:
-                    root._due = math.inf
+                if root.locked:
+                    root.due = math.inf
                     return
-                root._drop_pending()
+                root.drop_pending()
                 outcome: Optional[str] = pending.outcome
             else:
-                outcome = root._tick(now)
+                outcome = root.tick(now)
             if outcome is not None:
                 self._finish(outcome, now)
             else:
-                if ctx._requests or ctx._request_held:
-                    ctx._sync_request_hold(now)
-                if ctx._changed and ctx.hooks.active:
-                    ctx._changed = False
-                    ctx._emit_active(now, tuple(root._active_paths()))
+                if book.requests or book.request_held:
+                    book.sync_request_hold(now)
+                if book.changed and self._ctx.hooks.active:
+                    book.changed = False
+                    book.emit_active(now, tuple(root.active_paths()))
         except Exception as err:
             self._fail(err, now)
 
     def _finish(self, outcome: str, now: float) -> None:
-        root = self._root
+        root = self._rt
         if outcome not in root.outcomes:
             raise BehaviorRuntimeError(
-                f"root state {root._path!r} returned outcome {outcome!r} which it does not register "
+                f"root state {root.path!r} returned outcome {outcome!r} which it does not register "
                 f"(valid: {', '.join(root.outcomes)})"
             )
-        if root._locked:
+        if root.locked:
             pending = Pending(outcome, PendingReason.LOCK, 0)
             pending.announced = PendingReason.LOCK
-            root._pending = pending
-            root._due = math.inf
-            self._ctx._requests[root._path] = root
-            self._ctx._emit_request(now, root._path, outcome, 0, PendingReason.LOCK, True)
-            self._ctx._sync_request_hold(now)
+            root.pending = pending
+            root.due = math.inf
+            self._book.requests[root.path] = root
+            self._book.emit_request(now, root.path, outcome, 0, PendingReason.LOCK, True)
+            self._book.sync_request_hold(now)
             return
-        root._leave()
+        root.leave()
         self._end(BehaviorStatus.FINISHED, outcome, "", None, now)
 
     def _fail(self, err: BaseException, now: float) -> None:
@@ -383,7 +392,7 @@ class BehaviorExecutor:
     def _preempt(self, reason: str, now: float) -> None:
         if self._terminal:
             return
-        self._ctx._preempt_requested = True
+        self._book.preempt_requested = True
         errors = self._safe_abort()
         if errors:
             reason += "; while exiting states: " + "; ".join(str(e) for e in errors)
@@ -396,7 +405,7 @@ class BehaviorExecutor:
         errors: List[BaseException] = []
         for _ in range(len(self._nodes) + 1):
             try:
-                self._root._abort()
+                self._rt.abort()
                 break
             except Exception as err:
                 errors.append(err)
@@ -406,22 +415,23 @@ class BehaviorExecutor:
         self, status: BehaviorStatus, outcome: Optional[str], reason: str, error: Optional[BaseException], now: float
     ) -> None:
         ctx = self._ctx
-        for node in self._root._walk():
+        for node in self._rt.walk():
             try:
-                node._user_call("on_stop", node.on_stop)
+                node.user_call("on_stop", node.state.on_stop)
             except Exception as err:
                 reason = f"{reason}; {err}" if reason else str(err)
                 with contextlib.suppress(Exception):  # keep stopping the other states
-                    ctx.log(LogLevel.ERROR, str(err), node._path)
+                    ctx.log(LogLevel.ERROR, str(err), node.path)
         outputs = {k: self._io[k] for k in self._root.output_keys if k in self._io}
         self._result = BehaviorResult(status, outcome, reason, outputs, error)
         self._status = status
         self._terminal = True
         self._paused = False
-        ctx._finished = True
-        for node in list(ctx._requests.values()):
-            node._pending = None
-        ctx._requests.clear()
+        book = self._book
+        book.finished = True
+        for node in list(book.requests.values()):
+            node.pending = None
+        book.requests.clear()
         try:
             self._emit_status(now, outcome, reason)
         except Exception as err:  # the behavior has ended: report the hook's failure, do not re-fail
@@ -437,7 +447,7 @@ class BehaviorExecutor:
                 try:
                     hook(event)
                 except Exception as err:
-                    raise _hook_error("status", hook, err) from err
+                    raise hook_error("status", hook, err) from err
 
     # --- commands (any thread) ---------------------------------------------------------------------------
     def set_autonomy(self, level: object) -> concurrent.futures.Future[str]:
@@ -448,9 +458,9 @@ class BehaviorExecutor:
             raise BehaviorCommandError(str(err)) from err
 
         def apply(now: float) -> str:
-            self._ctx._autonomy = int(value)
-            for node in list(self._ctx._requests.values()):
-                node._wake(now)
+            self._book.autonomy = int(value)
+            for node in list(self._book.requests.values()):
+                node.wake(now)
             return f"autonomy set to {value.name}"
 
         return self._submit("set_autonomy", (value.name,), apply)
@@ -463,19 +473,19 @@ class BehaviorExecutor:
 
         def apply(now: float) -> str:
             self._require_active(node)
-            if node is self._root:
-                self._root._abort()
+            if node is self._rt:
+                node.abort()
                 self._end(BehaviorStatus.FINISHED, outcome, "outcome forced by the operator", None, now)
                 return f"forced {path} -> {outcome} (behavior finished)"
-            pending = node._pending
+            pending = node.pending
             if pending is not None and pending.announced is not None and pending.outcome == outcome:
                 pending.approved = True  # forcing the outcome the operator was asked about approves it
-                node._wake(now)
+                node.wake(now)
                 return f"approved {path} -> {outcome}"
             if pending is not None:
-                node._drop_pending()
-            node._pending = Pending(outcome, PendingReason.FORCED, node._routes[outcome].required)
-            node._wake(now)
+                node.drop_pending()
+            node.pending = Pending(outcome, PendingReason.FORCED, node.routes[outcome].required)
+            node.wake(now)
             return f"forced {path} -> {outcome}"
 
         return self._submit("force_transition", (path, outcome), apply)
@@ -485,10 +495,10 @@ class BehaviorExecutor:
         node = self._node(path)
 
         def apply(now: float) -> str:
-            pending = node._pending
+            pending = node.pending
             if pending is None or pending.announced is None:
                 requested = ", ".join(
-                    f"{p} ({n._pending.outcome})" for p, n in self._ctx._requests.items() if n._pending is not None
+                    f"{p} ({n.pending.outcome})" for p, n in self._book.requests.items() if n.pending is not None
                 )
                 raise BehaviorCommandError(f"state {path!r} requests no outcome (requests: {requested or 'none'})")
             if outcome is not None and outcome != pending.outcome:
@@ -498,7 +508,7 @@ class BehaviorExecutor:
             if pending.announced is PendingReason.LOCK:
                 raise BehaviorCommandError(f"outcome {pending.outcome!r} of {path!r} waits for an unlock, not approval")
             pending.approved = True
-            node._wake(now)
+            node.wake(now)
             return f"approved {path} -> {pending.outcome}"
 
         return self._submit("approve", (path,) if outcome is None else (path, outcome), apply)
@@ -509,8 +519,8 @@ class BehaviorExecutor:
         def apply(now: float) -> str:
             if self._paused:
                 return "already paused"
-            for leaf in list(self._root._active_leaves()):
-                self._ctx._hold_leaf(leaf, HOLD_PAUSE)
+            for leaf in list(self._rt.active_leaves()):
+                self._book.hold_leaf(leaf, HOLD_PAUSE)
             self._paused = True
             self._status = BehaviorStatus.PAUSED
             self._emit_status(now, None, "paused by the operator")
@@ -526,8 +536,8 @@ class BehaviorExecutor:
                 return "not paused"
             self._paused = False
             self._status = BehaviorStatus.RUNNING
-            for leaf in list(self._root._active_leaves()):
-                self._ctx._release_leaf(leaf, HOLD_PAUSE, now)
+            for leaf in list(self._rt.active_leaves()):
+                self._book.release_leaf(leaf, HOLD_PAUSE, now)
             self._emit_status(now, None, "resumed by the operator")
             return "resumed"
 
@@ -547,9 +557,9 @@ class BehaviorExecutor:
         node = self._node(path)
 
         def apply(now: float) -> str:
-            if not node._locked:
-                node._locked = True
-                self._ctx._lock_count += 1
+            if not node.locked:
+                node.locked = True
+                self._book.lock_count += 1
             return f"locked {path}"
 
         return self._submit("lock", (path,), apply)
@@ -558,27 +568,27 @@ class BehaviorExecutor:
         node = self._node(path)
 
         def apply(now: float) -> str:
-            if not node._locked:
+            if not node.locked:
                 raise BehaviorCommandError(f"state {path!r} is not locked")
-            node._locked = False
-            self._ctx._lock_count -= 1
-            for waiting in list(self._ctx._requests.values()):
-                waiting._wake(now)
+            node.locked = False
+            self._book.lock_count -= 1
+            for waiting in list(self._book.requests.values()):
+                waiting.wake(now)
             return f"unlocked {path}"
 
         return self._submit("unlock", (path,), apply)
 
     # --- command plumbing ----------------------------------------------------------------------------------
-    def _node(self, path: str) -> State:
+    def _node(self, path: str) -> StateRuntime:
         node = self._nodes.get(path)
         if node is None:
             raise BehaviorCommandError(choices_message("state path", path, self._nodes))
         return node
 
-    def _require_active(self, node: State) -> None:
-        if not node._active:
-            active = ", ".join(self._root._active_paths()) or "none"
-            raise BehaviorCommandError(f"state {node._path!r} is not active (active: {active})")
+    def _require_active(self, node: StateRuntime) -> None:
+        if not node.active:
+            active = ", ".join(self._rt.active_paths()) or "none"
+            raise BehaviorCommandError(f"state {node.path!r} is not active (active: {active})")
 
     def _submit(
         self, name: str, args: Tuple[str, ...], apply: Callable[[float], str]
@@ -619,4 +629,4 @@ class BehaviorExecutor:
                 try:
                     hook(event)
                 except Exception as err:
-                    raise _hook_error("command", hook, err) from err
+                    raise hook_error("command", hook, err) from err

@@ -19,8 +19,9 @@ class PriorityContainer(StateMachine):
 
     def _activate(self, now: float) -> None:
         super()._activate(now)
-        assert self._ctx is not None
-        self._ctx._claim_priority(self)
+        rt = self.__flex_nav_runtime__
+        assert rt.ctx is not None
+        rt.ctx.claim_priority(rt)
 
     def _leave(self) -> None:
         super()._leave()
@@ -31,6 +32,7 @@ class PriorityContainer(StateMachine):
         self._release()
 
     def _release(self) -> None:
-        ctx = self._ctx
-        if ctx is not None and self in ctx._priority:
-            ctx._release_priority(self, ctx.clock.now())
+        rt = self.__flex_nav_runtime__
+        ctx = rt.ctx
+        if ctx is not None and rt in ctx.priority:
+            ctx.release_priority(rt, ctx.now())

@@ -46,23 +46,29 @@ outcome waiting for approval does not leave the controller beside it driving —
 (``on_resume``) when none waits. Parameters, keys and outcomes are documented in the class docstring (see
 :mod:`flex_nav.behavior.docstring`).
 
-Engine internals (names starting with ``_``) are shared with the containers in this package; a
-subclass must not touch them.
+The engine's bookkeeping of a state (its place in the behavior, whether it is active, when it is
+due, a pending outcome, ...) is kept in ONE record, :class:`StateRuntime`, held in the one attribute
+``__flex_nav_runtime__``. A subclass owns every other name: ``self._path``, ``self._active``,
+``self._pending``, ``self._tick()`` or ``self._abort()`` are its own and the engine never reads them.
+The engine modules (state, containers, context, executor) talk to a state through that record's
+documented fields and methods, nothing else.
 """
 
 from __future__ import annotations
 
+import copy
 import enum
 import math
 from typing import TYPE_CHECKING, Any, Dict, FrozenSet, Iterable, Iterator, NamedTuple, Optional, Sequence, Tuple
 
+from flex_nav.behavior.context import HOLD_PRIORITY
 from flex_nav.behavior.events import LogLevel
 from flex_nav.behavior.userdata import UserDataView
 from flex_nav.exceptions import BehaviorConstructionError, BehaviorError, BehaviorRuntimeError, ConfigError
 
 if TYPE_CHECKING:
-    from flex_nav.behavior.container import Container
-    from flex_nav.behavior.context import BehaviorContext
+    from flex_nav.behavior.container import Container, ContainerRuntime
+    from flex_nav.behavior.context import BehaviorContext, ContextRuntime
 
 DEFAULT_RATE_HZ = 10.0  # [Hz] FlexBE's default execution rate of a state
 
@@ -78,7 +84,7 @@ class PendingReason(enum.Enum):
 class Route(NamedTuple):
     """What happens when a child returns one outcome: precomputed by its container when attached."""
 
-    next_state: Optional[State]  # the state entered next; None when the transition leaves the container
+    next_state: Optional[StateRuntime]  # the state entered next; None when the transition leaves the container
     container_outcome: Optional[str]  # the container's outcome when the transition leaves it, else None
     required: int  # the Autonomy level the transition needs (it fires alone only below the current one)
     target: str  # label of the next state, or the container outcome ("" in a concurrency container)
@@ -126,6 +132,226 @@ def _names(what: str, values: Iterable[str], owner: str) -> Tuple[str, ...]:
     return names
 
 
+class StateRuntime:
+    """The engine's record of one state: everything the engine keeps about it, in one place.
+
+    Held as ``state.__flex_nav_runtime__``; a state's own code never touches it. The engine modules
+    read and write these fields and call these methods; this is their interface to a state (a
+    container's record, :class:`~flex_nav.behavior.container.ContainerRuntime`, drives its children).
+
+    Declaration (from the constructor): ``outcomes``, ``input_keys``, ``output_keys`` (tuples in
+    declaration order), ``period_s`` [s] (1 / rate_hz; 0 for every tick).
+
+    Place in the behavior (set when added to a container and attached): ``label`` (in its container),
+    ``path`` (``/A/B``), ``parent`` (the container's record), ``ctx`` (the behavior's
+    :class:`~flex_nav.behavior.context.ContextRuntime`), ``ancestors`` (records of the containers
+    above), ``routes`` (outcome -> :class:`Route`, set by the parent), ``ud`` (its userdata view, set by
+    the parent), ``locked`` (by the operator).
+
+    Run state: ``active``; ``entering`` (on_enter is due at the next tick); ``entered`` (on_enter was
+    called, on_exit not yet); ``due`` [s] (next tick; inf: nothing to do until woken); ``next_s`` [s]
+    (earliest next execute: the rate limit, kept across re-entries); ``pending`` (a :class:`Pending`
+    outcome); ``hold_mask`` (``context.HOLD_*`` bits: why it is held still); ``calls_enter`` /
+    ``calls_exit`` (the state overrides on_enter / on_exit).
+    """
+
+    __slots__ = (
+        "active",
+        "ancestors",
+        "calls_enter",
+        "calls_exit",
+        "ctx",
+        "due",
+        "entered",
+        "entering",
+        "hold_mask",
+        "input_keys",
+        "label",
+        "locked",
+        "next_s",
+        "outcomes",
+        "output_keys",
+        "parent",
+        "path",
+        "pending",
+        "period_s",
+        "routes",
+        "state",
+        "ud",
+    )
+
+    def __init__(
+        self,
+        state: State,
+        outcomes: Tuple[str, ...],
+        input_keys: Tuple[str, ...],
+        output_keys: Tuple[str, ...],
+        period_s: float = 0.0,
+    ) -> None:
+        self.state = state  # the user's object: its hooks are called from here
+        self.outcomes = outcomes
+        self.input_keys = input_keys
+        self.output_keys = output_keys
+        self.period_s = period_s
+        self.label = ""
+        self.path = ""
+        self.parent: Optional[ContainerRuntime] = None
+        self.ctx: Optional[ContextRuntime] = None
+        self.ancestors: FrozenSet[StateRuntime] = frozenset()
+        self.routes: Dict[str, Route] = {}
+        self.ud: UserDataView = None  # type: ignore[assignment]  # set by the parent before attach
+        self.locked = False
+        self.active = False
+        self.entering = False
+        self.entered = False
+        self.due = math.inf
+        self.next_s = -math.inf
+        self.pending: Optional[Pending] = None
+        self.hold_mask = 0
+        self.calls_enter = True
+        self.calls_exit = True
+
+    # --- the engine's calls (a container's record overrides those marked *) --------------------------
+    def attach(self, ctx: ContextRuntime, path: str, ancestors: FrozenSet[StateRuntime]) -> None:
+        """* Bind to a behavior (recursive in containers). The parent set ``ud`` and ``routes`` before."""
+        owner = self.ctx
+        if owner is not None and owner is not ctx and not owner.finished:
+            raise BehaviorConstructionError(
+                f"state {self.path!r} ({type(self.state).__name__}) already belongs to running behavior "
+                f"{owner.context.name!r}; build a new state instance for each behavior",
+                field="state",
+            )
+        self.ctx = ctx
+        self.path = path
+        self.ancestors = ancestors
+        self.locked = False
+        self.reset()
+        state = self.state
+        cls = type(state)
+        self.calls_enter = cls.on_enter is not State.on_enter or "on_enter" in state.__dict__
+        self.calls_exit = cls.on_exit is not State.on_exit or "on_exit" in state.__dict__
+
+    def reset(self) -> None:
+        """Forget the run state of an earlier behavior."""
+        self.next_s = -math.inf
+        self.active = False
+        self.entering = False
+        self.entered = False
+        self.due = math.inf
+        self.pending = None
+        self.hold_mask = 0
+
+    def walk(self) -> Iterator[StateRuntime]:
+        """* This state and everything below it, depth first, parents before children."""
+        yield self
+
+    def active_leaves(self) -> Iterator[StateRuntime]:
+        """* The active states that are not containers, at and below this one."""
+        if self.active:
+            yield self
+
+    def active_paths(self) -> Iterator[str]:
+        """* Paths of the deepest active states (a container whose outcome waits counts itself)."""
+        if self.active:
+            yield self.path
+
+    def activate(self, now: float) -> None:
+        """* Become active: on_enter and the first execute happen at the next tick."""
+        self.active = True
+        self.entering = True
+        # a state never executes faster than its rate, even when it is re-entered at once (loops)
+        self.due = now if self.next_s <= now else self.next_s
+        ctx = self.ctx
+        if ctx is not None and ctx.priority and ctx.outside_priority(self):
+            ctx.hold_leaf(self, HOLD_PRIORITY)
+
+    def tick(self, now: float) -> Optional[str]:
+        """* Run one step (the caller checked that it is due and not pending); return the outcome or None."""
+        state = self.state
+        phase = "execute"
+        try:
+            if self.entering:
+                self.entering = False
+                self.entered = True
+                if self.calls_enter:
+                    phase = "on_enter"
+                    state.on_enter(self.ud)
+                    phase = "execute"
+            outcome = state.execute(self.ud)
+        except BehaviorError:
+            raise
+        except Exception as err:
+            raise BehaviorRuntimeError(
+                f"state {self.path!r} ({type(state).__name__}) raised {type(err).__name__} in {phase}: {err}"
+            ) from err
+        self.next_s = now + self.period_s
+        if outcome is None:
+            self.due = self.next_s
+        return outcome
+
+    def leave(self) -> None:
+        """* Normal exit after one of its outcomes fired: on_exit (if entered)."""
+        self.active = False
+        self.due = math.inf
+        if self.pending is not None:
+            self.drop_pending()
+        if self.hold_mask:
+            self.hold_mask = 0
+        if self.entered:
+            self.entered = False
+            if self.calls_exit:
+                self.user_call("on_exit", self.state.on_exit, self.ud)
+
+    def abort(self) -> None:
+        """* Exit without an outcome (preempt, forced transition, end of a concurrency, failure)."""
+        self.leave()
+
+    def drop_pending(self) -> None:
+        """Forget the pending outcome; withdraw it from the operator if it was announced."""
+        pending = self.pending
+        self.pending = None
+        ctx = self.ctx
+        if ctx is None or pending is None:
+            return
+        ctx.requests.pop(self.path, None)
+        if pending.announced is not None:
+            ctx.emit_request(ctx.now(), self.path, pending.outcome, pending.required, pending.announced, False)
+
+    def wake(self, now: float) -> None:
+        """Make this state due now, and every container above it."""
+        self.due = now
+        node = self.parent
+        while node is not None:
+            node.due = min(node.due, now)
+            node = node.parent
+
+    def call_pause(self) -> None:
+        self.user_call("on_pause", self.state.on_pause)
+
+    def call_resume(self) -> None:
+        self.user_call("on_resume", self.state.on_resume, self.ud)
+
+    def user_call(self, what: str, fn: Any, *args: Any) -> None:
+        """Call a hook of the state; an error other than a BehaviorError is wrapped with the state's path."""
+        try:
+            fn(*args)
+        except BehaviorError:
+            raise
+        except Exception as err:
+            raise BehaviorRuntimeError(
+                f"state {self.path!r} ({type(self.state).__name__}) raised {type(err).__name__} in {what}: {err}"
+            ) from err
+
+    def copy_for(self, state: State) -> StateRuntime:
+        """This record, copied for ``state``, a shallow copy of this record's state."""
+        twin = copy.copy(self)
+        twin.state = state
+        return twin
+
+    def __repr__(self) -> str:
+        return f"<runtime of {self.state!r}>"
+
+
 class State:
     """A leaf state (and the base of every container). See the module docstring for the lifecycle."""
 
@@ -137,90 +363,75 @@ class State:
         rate_hz: float = DEFAULT_RATE_HZ,
     ) -> None:
         owner = type(self).__name__
-        self._outcomes: Tuple[str, ...] = _names("outcomes", outcomes, owner)
-        if not self._outcomes:
+        declared = _names("outcomes", outcomes, owner)
+        if not declared:
             raise ConfigError(f"{owner}: a state needs at least one outcome")
-        self._input_keys: Tuple[str, ...] = _names("input_keys", input_keys, owner)
-        self._output_keys: Tuple[str, ...] = _names("output_keys", output_keys, owner)
-        self._period_s = 0.0
+        self.__flex_nav_runtime__: StateRuntime = StateRuntime(
+            self, declared, _names("input_keys", input_keys, owner), _names("output_keys", output_keys, owner)
+        )
         self.rate_hz = rate_hz
-        # structure (set when added to a container / attached to a behavior)
-        self._label = ""
-        self._path = ""
-        self._parent: Optional[Container] = None
-        self._ctx: Optional[BehaviorContext] = None
-        self._ancestors: FrozenSet[State] = frozenset()
-        self._routes: Dict[str, Route] = {}
-        self._ud: UserDataView = None  # type: ignore[assignment]  # set by attach
-        self._locked = False
-        # run state
-        self._active = False
-        self._entering = False  # on_enter is due at the next tick
-        self._entered = False  # on_enter was called, on_exit not yet
-        self._due = math.inf  # [s] next tick time; inf: nothing to do until woken
-        self._next_s = -math.inf  # [s] earliest next execute (rate limit, kept across re-entries)
-        self._pending: Optional[Pending] = None
-        self._hold_mask = 0  # context.HOLD_* bits: paused by the operator / held by a priority container
-        self._calls_enter = True
-        self._calls_exit = True
 
     # --- declaration ----------------------------------------------------------------------------
     @property
     def outcomes(self) -> Tuple[str, ...]:
         """Registered outcomes, in declaration order."""
-        return self._outcomes
+        return self.__flex_nav_runtime__.outcomes
 
     @property
     def input_keys(self) -> Tuple[str, ...]:
-        return self._input_keys
+        return self.__flex_nav_runtime__.input_keys
 
     @property
     def output_keys(self) -> Tuple[str, ...]:
-        return self._output_keys
+        return self.__flex_nav_runtime__.output_keys
 
     @property
     def rate_hz(self) -> float:
         """[Hz] how often ``execute`` is called while the state is active."""
-        return 1.0 / self._period_s if self._period_s > 0.0 else math.inf
+        period_s = self.__flex_nav_runtime__.period_s
+        return 1.0 / period_s if period_s > 0.0 else math.inf
 
     @rate_hz.setter
     def rate_hz(self, value: float) -> None:
         if isinstance(value, bool) or not isinstance(value, (int, float)) or not value > 0.0:
             raise ConfigError(f"{type(self).__name__}: rate_hz must be a number > 0 [Hz], got {value!r}")
-        self._period_s = 0.0 if math.isinf(value) else 1.0 / float(value)
+        self.__flex_nav_runtime__.period_s = 0.0 if math.isinf(value) else 1.0 / float(value)
 
     # --- place in the behavior -------------------------------------------------------------------
     @property
     def name(self) -> str:
         """The label of this state in its container ("" before it is added)."""
-        return self._label
+        return self.__flex_nav_runtime__.label
 
     @property
     def path(self) -> str:
         """``/Label/Inner`` path in the running behavior ("/" for the root, "" before attach)."""
-        return self._path
+        return self.__flex_nav_runtime__.path
 
     @property
     def parent(self) -> Optional[Container]:
-        return self._parent
+        parent = self.__flex_nav_runtime__.parent
+        return parent.container if parent is not None else None
 
     @property
     def context(self) -> BehaviorContext:
         """The behavior this state runs in (raises before the behavior is attached)."""
-        if self._ctx is None:
+        rt = self.__flex_nav_runtime__
+        if rt.ctx is None:
             raise BehaviorRuntimeError(
-                f"{type(self).__name__} {self._label or '(unnamed)'} is not attached to a running behavior yet: "
+                f"{type(self).__name__} {rt.label or '(unnamed)'} is not attached to a running behavior yet: "
                 "use self.context from on_start() on, not in the constructor"
             )
-        return self._ctx
+        return rt.ctx.context
 
     @property
     def is_active(self) -> bool:
-        return self._active
+        return self.__flex_nav_runtime__.active
 
     @property
     def preempt_requested(self) -> bool:
-        return self._ctx is not None and self._ctx._preempt_requested
+        ctx = self.__flex_nav_runtime__.ctx
+        return ctx is not None and ctx.preempt_requested
 
     def now_s(self) -> float:
         """[s] current time on the behavior's clock."""
@@ -228,19 +439,19 @@ class State:
 
     # --- logging for the operator ----------------------------------------------------------------
     def log(self, level: LogLevel, message: str) -> None:
-        self.context.log(level, message, self._path)
+        self.context.log(level, message, self.__flex_nav_runtime__.path)
 
     def log_info(self, message: str) -> None:
-        self.context.log(LogLevel.INFO, message, self._path)
+        self.context.log(LogLevel.INFO, message, self.__flex_nav_runtime__.path)
 
     def log_warn(self, message: str) -> None:
-        self.context.log(LogLevel.WARN, message, self._path)
+        self.context.log(LogLevel.WARN, message, self.__flex_nav_runtime__.path)
 
     def log_hint(self, message: str) -> None:
-        self.context.log(LogLevel.HINT, message, self._path)
+        self.context.log(LogLevel.HINT, message, self.__flex_nav_runtime__.path)
 
     def log_error(self, message: str) -> None:
-        self.context.log(LogLevel.ERROR, message, self._path)
+        self.context.log(LogLevel.ERROR, message, self.__flex_nav_runtime__.path)
 
     # --- lifecycle hooks (override) -----------------------------------------------------------------
     def on_start(self) -> None:
@@ -265,131 +476,16 @@ class State:
     def on_stop(self) -> None:
         """Called once for every state when the behavior ends."""
 
-    # --- engine internals ------------------------------------------------------------------------
-    def _attach(self, ctx: BehaviorContext, path: str, ancestors: FrozenSet[State]) -> None:
-        """Bind to a behavior context (recursive in containers). The parent sets _ud and _routes."""
-        owner = self._ctx
-        if owner is not None and owner is not ctx and not owner._finished:
-            raise BehaviorConstructionError(
-                f"state {self._path!r} ({type(self).__name__}) already belongs to running behavior {owner.name!r}; "
-                "build a new state instance for each behavior",
-                field="state",
-            )
-        self._ctx = ctx
-        self._path = path
-        self._ancestors = ancestors
-        self._locked = False
-        self._reset_run_state()
+    def __copy__(self) -> State:
+        """A shallow copy with its own engine record (as when the bookkeeping was plain attributes), so the
+        copy can be added to a container of its own."""
         cls = type(self)
-        self._calls_enter = cls.on_enter is not State.on_enter or "on_enter" in self.__dict__
-        self._calls_exit = cls.on_exit is not State.on_exit or "on_exit" in self.__dict__
-
-    def _reset_run_state(self) -> None:
-        self._next_s = -math.inf
-        self._active = False
-        self._entering = False
-        self._entered = False
-        self._due = math.inf
-        self._pending = None
-        self._hold_mask = 0
-
-    def _walk(self) -> Iterator[State]:
-        """This state and everything below it, depth first, parents before children."""
-        yield self
-
-    def _active_leaves(self) -> Iterator[State]:
-        if self._active:
-            yield self
-
-    def _active_paths(self) -> Iterator[str]:
-        if self._active:
-            yield self._path
-
-    def _activate(self, now: float) -> None:
-        self._active = True
-        self._entering = True
-        # a state never executes faster than its rate, even when it is re-entered at once (loops)
-        self._due = now if self._next_s <= now else self._next_s
-        ctx = self._ctx
-        if ctx is not None and ctx._priority and ctx._outside_priority(self):
-            from flex_nav.behavior.context import HOLD_PRIORITY  # noqa: PLC0415  (cycle; rare path)
-
-            ctx._hold_leaf(self, HOLD_PRIORITY)
-
-    def _tick(self, now: float) -> Optional[str]:
-        """Run one step (the caller checked that it is due and not pending); return the outcome or None."""
-        phase = "execute"
-        try:
-            if self._entering:
-                self._entering = False
-                self._entered = True
-                if self._calls_enter:
-                    phase = "on_enter"
-                    self.on_enter(self._ud)
-                    phase = "execute"
-            outcome = self.execute(self._ud)
-        except BehaviorError:
-            raise
-        except Exception as err:
-            raise BehaviorRuntimeError(
-                f"state {self._path!r} ({type(self).__name__}) raised {type(err).__name__} in {phase}: {err}"
-            ) from err
-        self._next_s = now + self._period_s
-        if outcome is None:
-            self._due = self._next_s
-        return outcome
-
-    def _leave(self) -> None:
-        """Normal exit after one of its outcomes fired: on_exit (if entered)."""
-        self._active = False
-        self._due = math.inf
-        if self._pending is not None:
-            self._drop_pending()
-        if self._hold_mask:
-            self._hold_mask = 0
-        if self._entered:
-            self._entered = False
-            if self._calls_exit:
-                self._user_call("on_exit", self.on_exit, self._ud)
-
-    def _abort(self) -> None:
-        """Exit without an outcome (preempt, forced transition, end of a concurrency, failure)."""
-        self._leave()
-
-    def _drop_pending(self) -> None:
-        pending = self._pending
-        self._pending = None
-        ctx = self._ctx
-        if ctx is None or pending is None:
-            return
-        ctx._requests.pop(self._path, None)
-        if pending.announced is not None:
-            ctx._emit_request(ctx.clock.now(), self._path, pending.outcome, pending.required, pending.announced, False)
-
-    def _wake(self, now: float) -> None:
-        """Make this state due now, and every container above it."""
-        self._due = now
-        node = self._parent
-        while node is not None:
-            node._due = min(node._due, now)
-            node = node._parent
-
-    def _call_pause(self) -> None:
-        self._user_call("on_pause", self.on_pause)
-
-    def _call_resume(self) -> None:
-        self._user_call("on_resume", self.on_resume, self._ud)
-
-    def _user_call(self, what: str, fn: Any, *args: Any) -> None:
-        try:
-            fn(*args)
-        except BehaviorError:
-            raise
-        except Exception as err:
-            raise BehaviorRuntimeError(
-                f"state {self._path!r} ({type(self).__name__}) raised {type(err).__name__} in {what}: {err}"
-            ) from err
+        twin = cls.__new__(cls)
+        twin.__dict__.update(self.__dict__)
+        twin.__flex_nav_runtime__ = self.__flex_nav_runtime__.copy_for(twin)
+        return twin
 
     def __repr__(self) -> str:
-        where = self._path or self._label or "unattached"
+        rt = self.__flex_nav_runtime__
+        where = rt.path or rt.label or "unattached"
         return f"<{type(self).__name__} {where}>"

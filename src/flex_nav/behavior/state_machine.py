@@ -19,13 +19,10 @@ parent (through its own remapping) and hands its output keys back when it finish
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any, Dict, List, Mapping, Optional, Sequence
+from typing import Any, Dict, List, Mapping, Optional, Sequence
 
-from flex_nav.behavior.container import Container, _listed, child_path
-from flex_nav.behavior.state import Route, State
-
-if TYPE_CHECKING:
-    from flex_nav.behavior.context import BehaviorContext
+from flex_nav.behavior.container import Container, child_path, listed
+from flex_nav.behavior.state import Route, State, StateRuntime
 from flex_nav.exceptions import (
     LabelClashError,
     MissingInitialStateError,
@@ -51,7 +48,7 @@ class StateMachine(Container):
         super().__init__(outcomes, input_keys, output_keys, userdata)
         self._transitions: Dict[str, Dict[str, str]] = {}
         self._initial: Optional[str] = None
-        self._current: Optional[State] = None
+        self._current: Optional[StateRuntime] = None  # the record of the active child
 
     def add(
         self,
@@ -66,18 +63,18 @@ class StateMachine(Container):
         for outcome, target in transitions.items():
             if outcome not in state.outcomes:
                 raise UnregisteredOutcomeError(
-                    f"{self.kind} {self._path or '(unattached)'}: transition of {label!r} names outcome {outcome!r} "
-                    f"that {type(state).__name__} does not register (valid: {_listed(state.outcomes)})",
-                    self._path,
+                    f"{self.kind} {self.path or '(unattached)'}: transition of {label!r} names outcome {outcome!r} "
+                    f"that {type(state).__name__} does not register (valid: {listed(state.outcomes)})",
+                    self.path,
                     label,
                     outcome,
                     "transition",
                 )
             if not isinstance(target, str) or not target:
                 raise UnknownTargetError(
-                    f"{self.kind} {self._path or '(unattached)'}: transition {label!r}.{outcome} goes to {target!r}, "
+                    f"{self.kind} {self.path or '(unattached)'}: transition {label!r}.{outcome} goes to {target!r}, "
                     "not a state label or outcome name",
-                    self._path,
+                    self.path,
                     label,
                     outcome,
                     "transition",
@@ -103,7 +100,7 @@ class StateMachine(Container):
     def current_state(self) -> Optional[State]:
         """The active child (None when the machine is not running)."""
         current = self._current
-        return current if current is not None and current._active else None
+        return current.state if current is not None and current.active else None
 
     # --- validation ------------------------------------------------------------------------------
     def _validate(self, path: str) -> None:  # noqa: PLR0912  (one check per construction error kind)
@@ -113,40 +110,40 @@ class StateMachine(Container):
         initial = self.initial_state
         if initial not in self._children:
             raise MissingInitialStateError(
-                f"{self.kind} {path}: initial state {initial!r} is not one of its states (valid: {_listed(labels)})",
+                f"{self.kind} {path}: initial state {initial!r} is not one of its states (valid: {listed(labels)})",
                 path,
                 None,
                 initial,
                 "initial",
             )
         for label in labels:
-            if label in self._outcomes:
+            if label in self.outcomes:
                 raise LabelClashError(
                     f"{self.kind} {path}: state label {label!r} is also an outcome of the machine "
-                    f"(outcomes: {_listed(self._outcomes)}); rename one",
+                    f"(outcomes: {listed(self.outcomes)}); rename one",
                     path,
                     label,
                     label,
                     "label",
                 )
-        targets = [*labels, *self._outcomes]
+        targets = [*labels, *self.outcomes]
         for label, child in self._children.items():
             transitions = self._transitions[label]
             for outcome in child.outcomes:
                 if outcome not in transitions:
                     raise MissingTransitionError(
                         f"{self.kind} {path}: outcome {outcome!r} of state {label!r} has no transition "
-                        f"(valid targets: {_listed(targets)})",
+                        f"(valid targets: {listed(targets)})",
                         path,
                         label,
                         outcome,
                         "transition",
                     )
             for outcome, target in transitions.items():
-                if target not in self._children and target not in self._outcomes:
+                if target not in self._children and target not in self.outcomes:
                     raise UnknownTargetError(
                         f"{self.kind} {path}: transition {label!r}.{outcome} goes to unknown target {target!r} "
-                        f"(valid: {_listed(targets)})",
+                        f"(valid: {listed(targets)})",
                         path,
                         label,
                         outcome,
@@ -163,7 +160,7 @@ class StateMachine(Container):
             if label not in reached:
                 raise UnreachableStateError(
                     f"{self.kind} {path}: state {label!r} cannot be reached from the initial state {initial!r} "
-                    f"(reachable: {_listed([lb for lb in labels if lb in reached])})",
+                    f"(reachable: {listed([lb for lb in labels if lb in reached])})",
                     path,
                     label,
                     label,
@@ -179,62 +176,66 @@ class StateMachine(Container):
         for outcome, target in self._transitions[label].items():
             nxt = self._children.get(target)
             if nxt is not None:
-                routes[outcome] = Route(nxt, None, levels.get(outcome, 0), target, child_path(self._path, target))
+                path = child_path(self.path, target)
+                routes[outcome] = Route(nxt.__flex_nav_runtime__, None, levels.get(outcome, 0), target, path)
             else:
                 routes[outcome] = Route(None, target, levels.get(outcome, 0), target, "")
         return routes
 
     def _activate(self, now: float) -> None:
         super()._activate(now)
-        initial = self._children[self.initial_state or ""]
+        initial = self._children[self.initial_state or ""].__flex_nav_runtime__
         self._current = initial
-        initial._activate(now)
+        initial.activate(now)
 
-    def _active_children(self) -> List[State]:
+    def _active_children(self) -> List[StateRuntime]:
         current = self._current
-        return [current] if current is not None and current._active else []
+        return [current] if current is not None and current.active else []
 
     def _tick(self, now: float) -> Optional[str]:
-        ctx: BehaviorContext = self._ctx  # type: ignore[assignment]  # attached before any tick
-        child: State = self._current  # type: ignore[assignment]  # activated before any tick
+        rt = self.__flex_nav_runtime__
+        ctx = rt.ctx
+        assert ctx is not None  # attached before any tick
+        child = self._current
+        assert child is not None  # activated before any tick
         outcome: Optional[str]
-        if child._pending is not None:  # an outcome waits (autonomy, lock) or was forced
+        if child.pending is not None:  # an outcome waits (autonomy, lock) or was forced
             resolved = self._resolve(child, now)
             if resolved is None:
-                self._due = math.inf
+                rt.due = math.inf
                 return None
             outcome, route, forced = resolved
         else:
-            if child._due > now:
-                self._due = child._due
+            if child.due > now:
+                rt.due = child.due
                 return None
-            outcome = child._tick(now)
+            outcome = child.tick(now)
             if outcome is None:
-                self._due = child._due
+                rt.due = child.due
                 return None
             try:
-                route = child._routes[outcome]
+                route = child.routes[outcome]
             except (KeyError, TypeError):
                 route = self._route(child, outcome)  # raises with the valid outcomes
-            needs_check = ctx._lock_count or (ctx._gate and route.required >= ctx._autonomy)
+            needs_check = ctx.lock_count or (ctx.gate and route.required >= ctx.autonomy)
             if needs_check and self._must_wait(child, outcome, route, False, now):
-                self._due = math.inf
+                rt.due = math.inf
                 return None
             forced = False
-            child._leave()
+            child.leave()
         # the transition fires
-        ctx._changed = True
+        ctx.changed = True
         nxt = route.next_state
         if nxt is not None:
             self._current = nxt
-            nxt._activate(now)
-            self._due = nxt._due
-            if ctx.hooks.transition:
-                ctx._emit_transition(now, child._path, outcome, route.target, route.target_path, route.required, forced)
+            nxt.activate(now)
+            rt.due = nxt.due
+            if ctx.context.hooks.transition:
+                ctx.emit_transition(now, child.path, outcome, route.target, route.target_path, route.required, forced)
             return None
-        self._due = math.inf
-        if ctx.hooks.transition:
-            ctx._emit_transition(now, child._path, outcome, route.target, "", route.required, forced)
+        rt.due = math.inf
+        if ctx.context.hooks.transition:
+            ctx.emit_transition(now, child.path, outcome, route.target, "", route.required, forced)
         return route.container_outcome
 
 

@@ -395,3 +395,10 @@ class UserDataView:
 
     def __repr__(self) -> str:
         return f"<UserDataView of {self._ud_owner.path!r}: {', '.join(self.keys())}>"
+
+
+def view_parts(view: UserDataView) -> Tuple[Dict[str, Any], ReadSpec, Dict[str, str]]:
+    """(store, read spec, write spec) of ``view``: for the containers, which copy a container's inputs
+    in from its parent's store when it is entered and its outputs back when it finishes. (A function,
+    not a method: a method name on the view would hide the userdata key of that name.)"""
+    return view._ud_store, view._ud_read, view._ud_write

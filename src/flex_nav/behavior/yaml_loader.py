@@ -572,7 +572,7 @@ class _Loader:
             sm = cls(**head)
         except ConfigError as err:
             self.fail(node, f"{what}: {err}")
-        sm._path = cpath  # for add-time messages; attach sets it again
+        sm.__flex_nav_runtime__.path = cpath  # for add-time messages; attach sets it again
         for key in ("output_keys",):
             if key in pairs:
                 for key_name, key_node in self.names(pairs[key][1], key):
@@ -620,7 +620,7 @@ class _Loader:
             cc = ConcurrencyContainer(**head)
         except ConfigError as err:
             self.fail(node, f"{what}: {err}")
-        cc._path = cpath  # for add-time messages; attach sets it again
+        cc.__flex_nav_runtime__.path = cpath  # for add-time messages; attach sets it again
         if "output_keys" in pairs:
             for key_name, key_node in self.names(pairs["output_keys"][1], "output_keys"):
                 self.mark((cpath, None, "key", key_name), key_node)

@@ -111,7 +111,7 @@ def spin(ex: BehaviorExecutor, times: int) -> None:
     assert isinstance(clock, ManualClock)
     for _ in range(times):
         ex.spin_once()
-        due = ex.root._due
+        due = ex.due_s
         if due != float("inf") and due > clock.now():
             clock.advance(due - clock.now())
 

@@ -176,7 +176,7 @@ def test_priority_container_release_on_preempt_exits_paused_states():
     result = ex.run(timeout_s=1.0)
     assert result.status is BehaviorStatus.PREEMPTED
     assert journal.of("Follow")[-3:] == ["pause", "exit", "stop"]
-    assert ex.context._priority == []
+    assert ex.context.__flex_nav_runtime__.priority == []
 
 
 @pytest.mark.parametrize("guard_first", [True, False])

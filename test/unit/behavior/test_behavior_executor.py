@@ -329,10 +329,11 @@ def test_two_behaviors_in_one_process_never_interfere():
         clock.advance(0.1)
     assert ex1.requested_outcomes() == []
     assert [r.path for r in ex2.requested_outcomes()] == ["/A"]
-    assert ex1.context._priority and not ex2.context._priority  # only behavior 1 entered its priority container
+    book1, book2 = ex1.context.__flex_nav_runtime__, ex2.context.__flex_nav_runtime__
+    assert book1.priority and not book2.priority  # only behavior 1 entered its priority container
     # behavior 2's A is held by its own waiting outcome, never by behavior 1's priority container
-    a2 = ex2.context._requests["/A"]
-    assert a2._hold_mask == HOLD_REQUEST and j2.calls.count(("A", "pause")) == 1
+    a2 = book2.requests["/A"]
+    assert a2.hold_mask == HOLD_REQUEST and j2.calls.count(("A", "pause")) == 1
     ex2.pause()
     ex2.spin_once()
     ex1.preempt()

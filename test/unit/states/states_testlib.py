@@ -52,7 +52,7 @@ class Harness:
         while self.clock.now() <= end:
             if self.tick():
                 return self.executor.result()
-            due = self.executor.root._due
+            due = self.executor.due_s
             if step_s is not None:
                 dt = step_s
             else:

@@ -109,7 +109,7 @@ def _engine_attributes() -> set:
 @pytest.mark.parametrize("module", sorted(STATES_DIR.glob("*.py")), ids=lambda p: p.name)
 def test_states_never_assign_engine_internal_attributes(module):
     engine = _engine_attributes()
-    assert "_pending" in engine  # the probe sees the engine's bookkeeping
+    assert engine == {"__flex_nav_runtime__"}  # the probe sees the engine's bookkeeping: one record
     tree = ast.parse(module.read_text(), str(module))
     assigned = set()
     for node in ast.walk(tree):

@@ -16,8 +16,9 @@ userdata view.
 
 Two engine internals are written here and nowhere else, until the engine offers public setters:
 the userdata defaults of a container (:func:`set_userdata_default`) and the input keys of a
-sub-behavior's machine whose defaults must win (:func:`drop_input_keys`, FlexBE's ``default_keys``).
-Both happen while the behavior is built, before it is validated and attached.
+sub-behavior's machine whose defaults must win (:func:`drop_input_keys`, FlexBE's ``default_keys``;
+they are declared in the container's engine record, ``__flex_nav_runtime__``). Both happen while the
+behavior is built, before it is validated and attached.
 """
 
 from __future__ import annotations
@@ -46,7 +47,7 @@ def drop_input_keys(container: Container, keys: Collection[str]) -> None:
             f"default_keys {unknown} are not input keys of the sub-behavior (input keys: "
             f"{', '.join(container.input_keys) or 'none'})"
         )
-    container._input_keys = tuple(k for k in container.input_keys if k not in keys)
+    container.__flex_nav_runtime__.input_keys = tuple(k for k in container.input_keys if k not in keys)
 
 
 class UserDataDefaults:
