@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import threading
 import time
+from typing import Callable, Dict, List, Optional, Tuple
 
 import rospy
 from geometry_msgs.msg import Twist, TwistStamped
@@ -34,6 +35,7 @@ from flex_nav.ros.heartbeat import HeartbeatListener
 from flex_nav.ros.params import param_float, reject_unknown
 from flex_nav.ros.proxies import SHUTDOWN_DRAIN_S, drain_publisher
 
+LOG_THROTTLE_S = 1.0  # [s] wall: repeated messages of one kind are logged at most this often
 CHECK_PERIOD_MIN_S = 0.01  # [s] wall: fastest check
 CHECK_PERIOD_MAX_S = 0.05  # [s] wall: slowest check (a timeout of 0.5 s of ROS time is 0.25 s of wall at rtf 2)
 FUTURE_STAMP_TOLERANCE_S = 1.0  # [s] commands stamped further ahead of this node's clock are not forwarded
@@ -51,6 +53,8 @@ class TwistRelay:
         self._heartbeat = HeartbeatListener(param_float("~heartbeat_timeout", 0.0, 0.0, 3600.0))
         self._link_lost = self._heartbeat.link.enabled  # nothing is forwarded before the first heartbeat
         self._shut_down = False
+        self._logs: List[Tuple[Callable[[str], None], str]] = []  # written after the lock is released
+        self._logged_at: Dict[str, float] = {}  # [s] wall: when a throttled kind of message was last logged
         self._last_now_s = rospy.get_time()
         self._clock.observe(self._last_now_s, time.monotonic())
         rospy.on_shutdown(self._on_shutdown)
@@ -63,40 +67,65 @@ class TwistRelay:
         self._checker = threading.Thread(target=self._check_loop, name="twist_relay checks", daemon=True)
         self._checker.start()
 
+    def _log(self, log: Callable[[str], None], message: str, throttle: Optional[str] = None) -> None:
+        """Log ``message`` once the lock is released (lock held): a log call can block (see _look_at_clock).
+        With ``throttle``, messages of that kind are logged at most every LOG_THROTTLE_S."""
+        if throttle is not None:
+            now_s = time.monotonic()
+            if now_s - self._logged_at.get(throttle, -LOG_THROTTLE_S) < LOG_THROTTLE_S:
+                return
+            self._logged_at[throttle] = now_s
+        self._logs.append((log, message))
+
+    def _write_logs(self) -> None:
+        with self._lock:
+            logs, self._logs = self._logs, []
+        for log, message in logs:
+            log(message)
+
     def _stop_base(self) -> None:
         """One zero Twist; no timeout is due after it until the next forwarded command (lock held)."""
         self._timeout.stopped()
         self.publisher.publish(Twist())
 
     def _look_at_clock(self) -> None:
-        """Read ROS time into ``_last_now_s`` and act on a jump back, a stall or a resume (lock held)."""
+        """Read ROS time into ``_last_now_s`` and act on a jump back, a stall or a resume (lock held). Every stop is
+        published before it is logged: a log call can block (rospy asks the master when it logs, unless
+        /rosout_disable_topics_generation is set, and the master may be across a dropped link)."""
         self._last_now_s = rospy.get_time()
         change = self._clock.observe(self._last_now_s, time.monotonic())
         if change is ClockChange.JUMPED_BACK:
-            rospy.logwarn(f"twist_relay: ROS time moved backwards by {self._clock.jump_s:.2f} s; publishing a zero "
-                          "Twist and forgetting the stamps of the old timeline")
             self._order.reset()
             self._stop_base()
+            self._log(rospy.logwarn, f"twist_relay: ROS time moved backwards by {self._clock.jump_s:.2f} s; "
+                      "published a zero Twist and forgot the stamps of the old timeline")
         elif change is ClockChange.STALLED:
-            rospy.logerr(f"twist_relay: ROS time has not advanced for {self._clock.stall_timeout_s:.2f} s of wall "
-                         "time (simulator paused or gone?); publishing a zero Twist and forwarding nothing until "
-                         "it moves again")
             self._stop_base()
+            self._log(rospy.logerr, f"twist_relay: ROS time has not advanced for {self._clock.stall_timeout_s:.2f} s "
+                      "of wall time (simulator paused or gone?); published a zero Twist, forwarding nothing until it "
+                      "moves again")
         elif change is ClockChange.RESUMED:
-            rospy.logwarn("twist_relay: ROS time moves again; forwarding commands")
+            self._log(rospy.logwarn, "twist_relay: ROS time moves again; forwarding commands")
 
     def _look_at_link(self) -> None:
         """Stop the base once when the operator's heartbeat is lost; forward again when it is back (lock held)."""
         lost = self._heartbeat.lost()
         if lost and not self._link_lost:
-            rospy.logerr(f"twist_relay: {self._heartbeat.why_lost()}; publishing a zero Twist and forwarding "
-                         "nothing until it is back")
             self._stop_base()
+            self._log(rospy.logerr, f"twist_relay: {self._heartbeat.why_lost()}; published a zero Twist, "
+                      "forwarding nothing until it is back")
         elif not lost and self._link_lost:
-            rospy.logwarn(f"twist_relay: operator heartbeat on {self._heartbeat.topic} heard; forwarding commands")
+            self._log(rospy.logwarn, f"twist_relay: operator heartbeat on {self._heartbeat.topic} heard; "
+                      "forwarding commands")
         self._link_lost = lost
 
     def _on_command(self, msg: TwistStamped) -> None:
+        try:
+            self._relay(msg)
+        finally:
+            self._write_logs()
+
+    def _relay(self, msg: TwistStamped) -> None:
         lin, ang = msg.twist.linear, msg.twist.angular
         problem = twist_problem((lin.x, lin.y, lin.z), (ang.x, ang.y, ang.z))
         with self._lock:
@@ -104,22 +133,23 @@ class TwistRelay:
                 return
             self._look_at_clock()
             if problem is not None:
-                rospy.logerr_throttle(1.0, f"twist_relay: {problem}; dropped, publishing a zero Twist instead")
+                self._log(rospy.logerr, f"twist_relay: {problem}; dropped, publishing a zero Twist instead",
+                          throttle="non-finite")
                 self._stop_base()
                 return
             if self._clock.stalled or self._link_lost:
                 why = "ROS time stands still" if self._clock.stalled else "the operator's heartbeat is lost"
-                rospy.logwarn_throttle(1.0, f"twist_relay: dropped a command: {why}")
+                self._log(rospy.logwarn, f"twist_relay: dropped a command: {why}", throttle="dropped")
                 return
             moving = any(v != 0.0 for v in (lin.x, lin.y, lin.z, ang.x, ang.y, ang.z))
             stamp_s = msg.header.stamp.to_sec()
             if stamp_s > self._last_now_s + FUTURE_STAMP_TOLERANCE_S:  # an old timeline's, or a skewed clock
                 ahead_s = stamp_s - self._last_now_s
-                rospy.logwarn_throttle(1.0, f"twist_relay: dropped a command stamped {ahead_s:.1f} s ahead of this "
-                                            "node's clock (time moved backwards, or clocks differ)")
+                self._log(rospy.logwarn, f"twist_relay: dropped a command stamped {ahead_s:.1f} s ahead of this "
+                                         "node's clock (time moved backwards, or clocks differ)", throttle="ahead")
                 return
             if not self._order.admit(stamp_s, moving):
-                rospy.logdebug("twist_relay: dropped a command stamped before one already forwarded")
+                self._log(rospy.logdebug, "twist_relay: dropped a command stamped before one already forwarded")
                 return
             self._timeout.command(self._last_now_s)
             self.publisher.publish(msg.twist)
@@ -133,6 +163,7 @@ class TwistRelay:
                     if self._shut_down:
                         return
                     self._check()
+                self._write_logs()
             except Exception as err:  # the checks must go on
                 rospy.logerr_throttle(5.0, f"twist_relay: check failed: {err!r}")
 
@@ -140,8 +171,9 @@ class TwistRelay:
         self._look_at_clock()
         self._look_at_link()
         if self._timeout.due(self._last_now_s):
-            rospy.logwarn(f"twist_relay: no command for {self._timeout.timeout_s:.2f} s; publishing a zero Twist")
             self.publisher.publish(Twist())
+            self._log(rospy.logwarn,
+                      f"twist_relay: no command for {self._timeout.timeout_s:.2f} s; published a zero Twist")
 
     def _on_shutdown(self) -> None:
         """The node is stopping (Ctrl-C, roslaunch ending, rosnode kill): the base gets a zero Twist, not the
