@@ -5,7 +5,24 @@ perception), ``flex_nav_states`` (a link to the top-level ``states/``) and ``fle
 (a link to the top-level ``sim/``).
 """
 
+from pathlib import Path
+
 from setuptools import find_packages, setup
+
+HERE = Path(__file__).resolve().parent
+
+
+def share_files(*folders: str) -> list:
+    """(install dir, files) pairs: each folder's files under share/flex_nav/<folder>, found there at run time by
+    flex_nav.resources (catkin's install rules in CMakeLists.txt put the same folders in the same place)."""
+    pairs = []
+    for folder in folders:
+        for directory in sorted(p for p in [HERE / folder, *(HERE / folder).rglob("*")] if p.is_dir()):
+            files = sorted(str(f.relative_to(HERE)) for f in directory.iterdir() if f.is_file())
+            if files:
+                pairs.append((str(Path("share/flex_nav") / directory.relative_to(HERE)), files))
+    return pairs
+
 
 setup(
     name="flex_nav",
@@ -20,4 +37,5 @@ setup(
         "flex_nav_states": ["py.typed"],
         "flex_nav_sim": ["py.typed", "worlds/*.yaml", "worlds/maps/*", "robots/*", "models/*"],
     },
+    data_files=share_files("behaviors", "models", "config", "launch"),
 )

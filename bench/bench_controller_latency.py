@@ -36,12 +36,12 @@ from geometry_msgs.msg import PoseStamped, TransformStamped, TwistStamped  # noq
 from nav_msgs.msg import Odometry  # noqa: E402
 from nav_msgs.msg import Path as PathMsg  # noqa: E402
 
-from flex_nav.follow.controller import Pose2D, SafeFollower  # noqa: E402
 from flex_nav.msg import FollowPathAction, FollowPathGoal  # noqa: E402
-from flex_nav.nav.costmap_grid import CostmapGeometry  # noqa: E402
-from flex_nav.nav.pure_pursuit import PurePursuitParams  # noqa: E402
-from flex_nav.private_master import PrivateMaster  # noqa: E402
+from flex_nav.nav.control.controller import Pose2D, SafeFollower  # noqa: E402
+from flex_nav.nav.control.pure_pursuit import PurePursuitParams  # noqa: E402
+from flex_nav.nav.costmap.costmap_grid import CostmapGeometry  # noqa: E402
 from flex_nav.ros.proxies import ActionClientProxy  # noqa: E402
+from flex_nav.testing.private_master import PrivateMaster  # noqa: E402
 
 SAMPLES = 200  # odometry messages timed per node
 ODOM_PERIOD_S = 0.07  # [s] between odometry messages (> control period: each one starts a tick)

@@ -47,11 +47,11 @@ try:
 except ImportError as err:  # bench-only references
     sys.exit(f"{err}: install the bench references first: bench/run.sh planner")
 
-from flex_nav.nav.costmap import Costmap  # noqa: E402
-from flex_nav.nav.costmap_grid import CostmapGeometry  # noqa: E402
-from flex_nav.nav.inflation import InflationParams  # noqa: E402
-from flex_nav.nav.map_io import load_map  # noqa: E402
-from flex_nav.nav.planner import GridPlanner, PlannerParams  # noqa: E402
+from flex_nav.nav.costmap.costmap_grid import CostmapGeometry  # noqa: E402
+from flex_nav.nav.costmap.inflation import InflationParams  # noqa: E402
+from flex_nav.nav.costmap.layered import Costmap  # noqa: E402
+from flex_nav.nav.costmap.map_io import load_map  # noqa: E402
+from flex_nav.nav.planning.planner import GridPlanner, PlannerParams  # noqa: E402
 
 MAPS_DIR = Path(os.environ.get("FLEX_NAV_BENCH_MAPS", REPO.parent / "shared" / "maps"))
 INFLATION = InflationParams(inscribed_radius=0.22, inflation_radius=0.55, cost_scaling_factor=3.0)

@@ -24,11 +24,11 @@ sys.path.insert(0, str(REPO / "bench"))
 
 from bench_costmap import INFLATION, simulate_scans  # noqa: E402
 
-from flex_nav.nav.costmap import Costmap  # noqa: E402
-from flex_nav.nav.map_io import load_map  # noqa: E402
-from flex_nav.nav.obstacle_layer import ObstacleLayerParams  # noqa: E402
-from flex_nav.nav.planner import GridPlanner, PlannerParams  # noqa: E402
-from flex_nav.nav.pure_pursuit import PurePursuitParams, PursuitStatus, RegulatedPurePursuit  # noqa: E402
+from flex_nav.nav.control.pure_pursuit import PurePursuitParams, PursuitStatus, RegulatedPurePursuit  # noqa: E402
+from flex_nav.nav.costmap.layered import Costmap  # noqa: E402
+from flex_nav.nav.costmap.map_io import load_map  # noqa: E402
+from flex_nav.nav.costmap.obstacle_layer import ObstacleLayerParams  # noqa: E402
+from flex_nav.nav.planning.planner import GridPlanner, PlannerParams  # noqa: E402
 
 MAPS_DIR = Path(os.environ.get("FLEX_NAV_BENCH_MAPS", REPO.parent / "shared" / "maps"))
 DT = 0.05  # [s] 20 Hz controller

@@ -109,8 +109,8 @@ def run_core() -> dict:
 
 
 def run_node(camera: bool) -> dict:
-    from flex_nav.private_master import PrivateMaster  # noqa: PLC0415
-    from flex_nav.process import ManagedProcess  # noqa: PLC0415
+    from flex_nav.testing.private_master import PrivateMaster  # noqa: PLC0415
+    from flex_nav.testing.process import ManagedProcess  # noqa: PLC0415
 
     with tempfile.TemporaryDirectory() as tmp_name:
         tmp = Path(tmp_name)

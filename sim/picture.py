@@ -24,7 +24,7 @@ import cv2
 import numpy as np
 
 from flex_nav.exceptions import ConfigError
-from flex_nav.nav.grid_map import GridMap
+from flex_nav.nav.costmap.grid_map import GridMap
 from flex_nav_sim.readings import Pose2D, ScanReading
 from flex_nav_sim.simulation import SensorOptions, Simulation
 from flex_nav_sim.spawn_spec import resolve_spawns

@@ -2,7 +2,7 @@
 
 Pure Python + pybullet, no ROS: :meth:`Simulation.step` advances the physics by one fixed step and
 returns the readings that fell due (odometry, scans, bumpers, images, contacts, world events,
-command notices). The ROS bridge (``flex_nav.ros.sim_bridge``) and the tests drive it the same way.
+command notices). The ROS bridge (``flex_nav.nodes.sim_bridge``) and the tests drive it the same way.
 
 Determinism: the same world, spawns, seed, physics rate and command sequence (by step) give the
 same trajectory, because all randomness comes from generators spawned from the one seeded

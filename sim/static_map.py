@@ -21,8 +21,8 @@ from typing import List, Optional
 import numpy as np
 
 from flex_nav.exceptions import ConfigError
-from flex_nav.nav.grid_map import FREE, OCCUPIED, GridMap
-from flex_nav.nav.map_io import save_map
+from flex_nav.nav.costmap.grid_map import FREE, OCCUPIED, GridMap
+from flex_nav.nav.costmap.map_io import save_map
 from flex_nav_sim.geometry2d import Footprint
 from flex_nav_sim.world import WORLD_DIR, Solid, WorldSpec, available_worlds, load_world
 

@@ -29,7 +29,7 @@ import cv2
 import numpy as np
 
 from flex_nav.exceptions import ConfigError, choices_message
-from flex_nav.nav.map_io import image_to_occupancy
+from flex_nav.nav.costmap.map_io import image_to_occupancy
 from flex_nav_sim.geometry2d import Footprint, Point, project_on_segment, segment_footprint
 from flex_nav_sim.profiles import PROFILE_DIR
 from flex_nav_sim.yaml_fields import (

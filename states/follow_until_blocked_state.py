@@ -9,7 +9,7 @@ from actionlib_msgs.msg import GoalStatus
 from flex_nav.behavior.userdata import UserDataView
 from flex_nav_states.follow_path_state import FollowPathState
 
-BLOCKED_PREFIX = "blocked"  # reason prefix of flex_nav.follow.blocked's abort
+BLOCKED_PREFIX = "blocked"  # reason prefix of flex_nav.nav.control.blocked's abort
 
 
 class FollowUntilBlockedState(FollowPathState):

@@ -11,8 +11,8 @@ from nav_msgs.msg import Odometry
 
 from flex_nav.behavior.userdata import UserDataView, unwrap
 from flex_nav.exceptions import ConfigError
+from flex_nav.nav.control.pure_pursuit import PurePursuitParams, PursuitStatus, RegulatedPurePursuit
 from flex_nav.nav.pose_checks import yaw_of_quaternion
-from flex_nav.nav.pure_pursuit import PurePursuitParams, PursuitStatus, RegulatedPurePursuit
 from flex_nav_states import validation
 from flex_nav_states.messages import describe, message_age_s
 from flex_nav_states.motion_base import MotionBase
@@ -46,7 +46,7 @@ def _pose_of(msg: Any) -> Tuple[float, float, float]:
 class PurePursuitState(MotionBase):
     """Drives along the plan in userdata with regulated pure pursuit (no controller server needed).
 
-    Runs :class:`flex_nav.nav.pure_pursuit.RegulatedPurePursuit` at the state's rate (20 Hz by default)
+    Runs :class:`flex_nav.nav.control.pure_pursuit.RegulatedPurePursuit` at the state's rate (20 Hz by default)
     without a costmap, so it does not avoid obstacles: run it beside a bumper/stuck monitor. The robot pose
     must be in the plan's frame: from ``pose_topic`` (e.g. a localization output in map), or from the
     odometry when ``pose_topic`` is empty (then the plan must be in the odometry frame). A frame mismatch

@@ -10,7 +10,7 @@ import math
 from typing import Any, Collection, List, Optional
 
 from flex_nav.exceptions import ConfigError, choices_message
-from flex_nav.follow.topic_name import topic_name_problem
+from flex_nav.nav.control.topic_name import topic_name_problem
 
 # Sanity bounds of the motion states' speed parameters: far above what the supported bases drive (0.3-0.7 m/s,
 # 1.5-2 rad/s in config/), so a value beyond them is a unit mistake (cm/s, deg/s), refused at load time.

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from flex_nav.private_master import PrivateMaster
+from flex_nav.testing.private_master import PrivateMaster
 
 
 @pytest.fixture

@@ -12,7 +12,7 @@ from xml.etree import ElementTree
 
 import pytest
 
-from flex_nav.private_master import PrivateMaster
+from flex_nav.testing.private_master import PrivateMaster
 
 REPO_ROOT = Path(__file__).resolve().parent.parent
 ROSTEST_DIR = REPO_ROOT / "test" / "rostest"

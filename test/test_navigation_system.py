@@ -1,5 +1,5 @@
 """System tests of Flexible Navigation end to end: simulator + map server + servers + controllers + behavior
-runner against a real master on simulated time, driven by the demo runner (``python -m flex_nav.ros.nav_demo``)
+runner against a real master on simulated time, driven by the demo runner (``python -m flex_nav.apps.nav_demo``)
 or by the operator scenario script. Each test starts and stops its own private master and every process."""
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ RUN_TIMEOUT_S = 420.0  # [s] wall bound of one system run (a lap takes ~45-80 s 
 
 def run_demo(out: Path, *args: str) -> Tuple[int, str, re.Match]:
     outcome = run_command_bounded(
-        [sys.executable, "-m", "flex_nav.ros.nav_demo", "--out", str(out), "--timeout", "300", *args],
+        [sys.executable, "-m", "flex_nav.apps.nav_demo", "--out", str(out), "--timeout", "300", *args],
         env=system_env(), timeout_s=RUN_TIMEOUT_S,
     )
     match = SUMMARY.search(outcome.output)

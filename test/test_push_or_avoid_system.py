@@ -1,6 +1,6 @@
 """System tests of obstacle-aware navigation end to end (issue 7): simulator with camera + obstacle classifier +
 map server + servers + controllers + behavior runner on simulated time, one scenario run each
-(``python -m flex_nav.ros.scenario_run``, its own private master), for scenarios S1, S3 and S5 with the
+(``python -m flex_nav.apps.scenario_run``, its own private master), for scenarios S1, S3 and S5 with the
 move_base-like baseline and push_or_avoid, and S6 (people walking across) with push_or_avoid. Speeds are not
 asserted here (the evaluation command measures them)."""
 
@@ -19,7 +19,7 @@ SIM_LIMIT_S = 100.0  # [s] simulated time bound of the goal
 
 def scenario(out: Path, world: str, behavior: str, sim_limit_s: float = SIM_LIMIT_S) -> dict:
     outcome = run_command_bounded(
-        [sys.executable, "-m", "flex_nav.ros.scenario_run", "--world", world, "--behavior", behavior,
+        [sys.executable, "-m", "flex_nav.apps.scenario_run", "--world", world, "--behavior", behavior,
          "--rtf", "2.0", "--sim-limit", str(sim_limit_s), "--timeout", str(RUN_TIMEOUT_S - 30.0), "--out", str(out)],
         env=system_env(), timeout_s=RUN_TIMEOUT_S,
     )

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 from harness import ROSTEST_DIR, run_rostest
 
-from flex_nav.private_master import PrivateMaster
+from flex_nav.testing.private_master import PrivateMaster
 
 ROSTEST_FILES = sorted(p.name for p in ROSTEST_DIR.glob("*.test"))
 

@@ -30,6 +30,14 @@ def test_mypy_clean(targets: list[str]) -> None:
     assert "Success" in outcome.output
 
 
+def test_layers_kept() -> None:
+    # the contracts in pyproject.toml ([tool.importlinter]): the pure core imports no rospy and nothing of the ROS
+    # side; applications, test harness, nodes and adapters only import downwards
+    outcome = run_command_bounded([str(VENV_BIN / "lint-imports"), "--no-cache"], env=_env(), timeout_s=300)
+    assert outcome.returncode == 0, f"import-linter found a layer violation:\n{outcome.output[-8000:]}"
+    assert "0 broken" in outcome.output
+
+
 def _env() -> dict[str, str]:
     env = dict(os.environ)
     env["MYPYPATH"] = str(REPO_ROOT / "src")

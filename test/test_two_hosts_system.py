@@ -1,7 +1,7 @@
 """System test of a deployment split over two computers, and of what stops the robot when the link drops.
 
 Two network namespaces joined by a veth pair stand in for the robot's computer and the operator's
-(:class:`flex_nav.netns.NetnsPair`, private 10.231.X.1/.2 addresses). Each side's processes run with that side's
+(:class:`flex_nav.testing.netns.NetnsPair`, private 10.231.X.1/.2 addresses). Each side's processes run with that side's
 address in ``ROS_IP`` and ``ROS_MASTER_URI`` pointing at the one master, started the way a user would:
 
 robot's computer     roslaunch flex_nav sim.launch world:=two_rooms heartbeat_timeout:=0.5   (base, map, twist_relay)
@@ -35,9 +35,9 @@ from typing import Callable, Dict, List, Optional, Tuple
 import pytest
 from harness import REPO_ROOT, run_command_bounded
 
-from flex_nav.netns import Host, NetnsPair, netns_unavailable_reason
-from flex_nav.private_master import ros_environment
-from flex_nav.process import ManagedProcess
+from flex_nav.testing.netns import Host, NetnsPair, netns_unavailable_reason
+from flex_nav.testing.private_master import ros_environment
+from flex_nav.testing.process import ManagedProcess
 from flex_nav_sim.profiles import load_profile
 
 ROBOT = "robot1"
@@ -88,7 +88,7 @@ def side(host: Host, master_uri: str, out: Path, name: str) -> Side:
 
 def wait_for_master(sides: List[Side], uri: str) -> None:
     """Until the master at ``uri`` answers from every side (over the link for one of them)."""
-    probe = ("import sys; from flex_nav.private_master import master_is_up; "
+    probe = ("import sys; from flex_nav.ros.master_probe import master_is_up; "
              "sys.exit(0 if master_is_up(sys.argv[1]) else 1)")
     deadline = time.monotonic() + STARTUP_TIMEOUT_S
     for one in sides:
@@ -262,7 +262,7 @@ def test_robot_stops_when_the_link_to_the_operator_drops(tmp_path: Path, request
               f"longest ground-truth gap {stop.truth_gap_s:.3f} s", flush=True)
         assert interrupted.popen.returncode in (0, 1), \
             f"interrupted goal not ended by the runner:\n{outcome}{diagnosis(tmp_path)}"
-        code, output = operator.run([sys.executable, "-m", "flex_nav.ros.operator_cli", "--runner",
+        code, output = operator.run([sys.executable, "-m", "flex_nav.apps.operator_cli", "--runner",
                                      f"/{ROBOT}/behavior_runner", "status"], COMMAND_TIMEOUT_S)
         assert code == 0, f"operator status ({code}):\n{output[-3000:]}{diagnosis(tmp_path)}"
         code, output = operator.run(goal_argv("after"), GOAL_TIMEOUT_S + COMMAND_TIMEOUT_S)

@@ -8,4 +8,4 @@ export PATH="$REPO/.venv/bin:$PATH"
 export ROS_PACKAGE_PATH="$REPO${ROS_PACKAGE_PATH:+:$ROS_PACKAGE_PATH}"
 export ROS_IP=127.0.0.1
 cd "$REPO"
-exec "$REPO/.venv/bin/python" -m flex_nav.ros.nav_demo "$@"
+exec "$REPO/.venv/bin/python" -m flex_nav.apps.nav_demo "$@"

@@ -143,7 +143,8 @@ generate_messages() {
 warm_numba_cache() {
   # Compile the numba kernels once now, not in every planner/controller node started afterwards.
   local stamp="$VENV/.flex_nav-numba.sha256" want
-  want="$(cat "$REPO"/src/flex_nav/nav/*.py "$REPO"/src/flex_nav/follow/*.py "$REPO/requirements.txt" | sha256sum | cut -d' ' -f1)"
+  want="$({ find "$REPO/src/flex_nav/nav" -name '*.py' | LC_ALL=C sort | xargs cat; cat "$REPO/requirements.txt"; } |
+    sha256sum | cut -d' ' -f1)"
   if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$want" ]; then say "numba: compiled kernels cached"; return; fi
   "$VENV/bin/python" -m flex_nav.nav.warm_cache || die "compiling the numba kernels failed (see above)."
   printf '%s\n' "$want" >"$stamp"

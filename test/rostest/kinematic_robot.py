@@ -19,7 +19,7 @@ from geometry_msgs.msg import TransformStamped, Twist
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import LaserScan
 
-from flex_nav.nav.map_io import load_map
+from flex_nav.nav.costmap.map_io import load_map
 from flex_nav.ros.node import init_node
 
 

@@ -17,7 +17,7 @@ from readiness import wait_until_goal_succeeds
 
 from flex_nav.msg import ClearCostmapAction, ClearCostmapGoal, ClearCostmapResult, GetPathAction, GetPathGoal
 from flex_nav.msg import GetPathResult as R
-from flex_nav.nav.map_io import load_map
+from flex_nav.nav.costmap.map_io import load_map
 from flex_nav.ros.node import init_node
 from flex_nav.ros.proxies import ActionClientProxy
 

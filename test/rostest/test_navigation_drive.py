@@ -28,7 +28,7 @@ from flex_nav.msg import (
     GetPathAction,
     GetPathGoal,
 )
-from flex_nav.nav.map_io import load_map
+from flex_nav.nav.costmap.map_io import load_map
 from flex_nav.ros.conversions import path_msg
 from flex_nav.ros.node import init_node
 from flex_nav.ros.proxies import ActionClientProxy

@@ -22,8 +22,8 @@ from nav_msgs.srv import GetMap
 from sensor_msgs.msg import LaserScan
 
 from flex_nav.msg import ClearCostmapAction, ClearCostmapGoal, ClearCostmapResult
-from flex_nav.nav.costmap_grid import FREE, LETHAL
-from flex_nav.nav.map_io import load_map
+from flex_nav.nav.costmap.costmap_grid import FREE, LETHAL
+from flex_nav.nav.costmap.map_io import load_map
 from flex_nav.ros.conversions import grid_map_of
 from flex_nav.ros.costmap_ros import CostmapROS
 from flex_nav.ros.node import init_node

@@ -12,7 +12,7 @@ from geometry_msgs.msg import TwistStamped
 from nav_msgs.msg import OccupancyGrid, Odometry
 from sensor_msgs.msg import CameraInfo, Image
 
-from flex_nav.nav.map_io import load_map
+from flex_nav.nav.costmap.map_io import load_map
 from flex_nav.ros.node import init_node
 from flex_nav_sim.static_map import shipped_map_path
 

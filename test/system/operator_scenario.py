@@ -20,8 +20,8 @@ import rospy
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 
+from flex_nav.apps import nav_demo
 from flex_nav.msg import BehaviorActivity, BehaviorCommandFeedback, BehaviorStatus
-from flex_nav.ros import nav_demo
 from flex_nav.ros.node import init_node
 from flex_nav_sim.world import load_world
 

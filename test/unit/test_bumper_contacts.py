@@ -4,8 +4,8 @@ import math
 
 import pytest
 
-from flex_nav.bumper_contacts import BumperContacts
 from flex_nav.exceptions import ConfigError
+from flex_nav.nav.costmap.bumper_contacts import BumperContacts
 from flex_nav_sim.profiles import load_profile
 
 

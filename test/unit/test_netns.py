@@ -1,4 +1,4 @@
-"""flex_nav.netns: two network namespaces joined by a veth pair (the two-host system test's machines).
+"""flex_nav.testing.netns: two network namespaces joined by a veth pair (the two-host system test's machines).
 
 The names and the reasons to skip need nothing; the pair itself needs root and ``ip`` (skipped otherwise)."""
 
@@ -9,8 +9,8 @@ import sys
 
 import pytest
 
-from flex_nav import netns
-from flex_nav.netns import NetnsPair, netns_unavailable_reason
+from flex_nav.testing import netns
+from flex_nav.testing.netns import NetnsPair, netns_unavailable_reason
 
 SERVER = ("import socket, sys; s = socket.socket(); s.bind((sys.argv[1], 5555)); s.listen()\n"
           "while True: s.accept()[0].close()")

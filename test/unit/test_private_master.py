@@ -12,8 +12,9 @@ from pathlib import Path
 import pytest
 
 from flex_nav.exceptions import NotReadyError
-from flex_nav.private_master import PrivateMaster, free_port, master_is_up, master_pid, node_pid
-from flex_nav.process import ManagedProcess, wait_until
+from flex_nav.ros.master_probe import master_is_up, master_pid, node_pid
+from flex_nav.testing.private_master import PrivateMaster, free_port
+from flex_nav.testing.process import ManagedProcess, wait_until
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 

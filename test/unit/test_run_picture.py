@@ -6,9 +6,9 @@ import cv2
 import numpy as np
 import pytest
 
+from flex_nav.apps.run_picture import HIT_COLOUR, RobotTrack, draw_run, write_png
 from flex_nav.exceptions import ConfigError
-from flex_nav.nav.grid_map import GridMap
-from flex_nav.run_picture import HIT_COLOUR, RobotTrack, draw_run, write_png
+from flex_nav.nav.costmap.grid_map import GridMap
 
 
 def _grid() -> GridMap:

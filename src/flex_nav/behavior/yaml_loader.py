@@ -84,9 +84,10 @@ from flex_nav.exceptions import (
     FlexNavError,
     choices_message,
 )
+from flex_nav.resources import behaviors_dir
 
 BEHAVIOR_PATH_ENV = "FLEX_NAV_BEHAVIOR_PATH"
-PACKAGE_BEHAVIORS_DIR = Path(__file__).resolve().parents[3] / "behaviors"
+PACKAGE_BEHAVIORS_DIR = behaviors_dir()
 _NAME_RE = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_\-]*$")
 _STR_TAG = "tag:yaml.org,2002:str"
 

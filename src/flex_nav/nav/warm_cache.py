@@ -12,13 +12,13 @@ import time
 
 import numpy as np
 
-from flex_nav.follow.controller import warm_up as warm_up_controller
-from flex_nav.nav.costmap import Costmap
-from flex_nav.nav.costmap_grid import CostmapGeometry
-from flex_nav.nav.inflation import InflationParams
-from flex_nav.nav.obstacle_layer import LaserScan, ObstacleLayerParams
-from flex_nav.nav.planner import GridPlanner
-from flex_nav.nav.pure_pursuit import PurePursuitParams
+from flex_nav.nav.control.controller import warm_up as warm_up_controller
+from flex_nav.nav.control.pure_pursuit import PurePursuitParams
+from flex_nav.nav.costmap.costmap_grid import CostmapGeometry
+from flex_nav.nav.costmap.inflation import InflationParams
+from flex_nav.nav.costmap.layered import Costmap
+from flex_nav.nav.costmap.obstacle_layer import LaserScan, ObstacleLayerParams
+from flex_nav.nav.planning.planner import GridPlanner
 
 
 def warm() -> float:

@@ -1,7 +1,7 @@
 """Perception for obstacle-aware navigation: is the region in front of the robot a person, a movable object or clear?
 And what moves around the robot (laser tracks)?
 
-ROS-free core (never imports rospy); the node is :mod:`flex_nav.ros.obstacle_classifier_node`.
+ROS-free core (never imports rospy); the node is :mod:`flex_nav.nodes.obstacle_classifier`.
 
 | module | what |
 | --- | --- |

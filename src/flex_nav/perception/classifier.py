@@ -32,10 +32,11 @@ from flex_nav.perception.labels import LABELS, Prediction, class_roles, label_of
 from flex_nav.perception.onnx_model import image_input, make_session, static_size
 from flex_nav.perception.preprocess import DepthScaling, Normaliser, depth_patch, roi_patch
 from flex_nav.perception.roi import Roi
+from flex_nav.resources import models_dir
 
 FORMAT = "flex_nav_obstacle_classifier/1"
 OUTPUTS = ("probabilities", "logits")
-MODELS_DIR = Path(__file__).resolve().parents[3] / "models"  # the repository's models/ (source or editable install)
+MODELS_DIR = models_dir()  # the package's models/ (flex_nav.resources)
 DEFAULT_MODEL = MODELS_DIR / "obstacle_classifier.onnx"
 PathLike = Union[str, Path]
 

@@ -4,7 +4,7 @@ A moving-obstacle tracker must not follow walls: a wall broken up by the shadow 
 front of it leaves short wall pieces whose ends move with the shadow and look like something walking.
 Points within ``tolerance_m`` [m] of an occupied map cell are dropped before clustering.
 
-Pure numpy on a :class:`~flex_nav.nav.grid_map.GridMap` (no ROS).
+Pure numpy on a :class:`~flex_nav.nav.costmap.grid_map.GridMap` (no ROS).
 """
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 from flex_nav.exceptions import ConfigError
-from flex_nav.nav.grid_map import GridMap
+from flex_nav.nav.costmap.grid_map import GridMap
 
 OCCUPIED_THRESHOLD = 65  # occupancy >= this is an obstacle (map_server's occupied_thresh 0.65)
 

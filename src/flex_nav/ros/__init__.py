@@ -1,1 +1,2 @@
-"""ROS adapters: the only part of ``flex_nav`` that imports rospy. Nodes are thin wrappers over pure modules."""
+"""ROS adapters: proxies, parameters, frames, conversions, the goal server, topic paths, the costmap's ROS glue,
+clocks. With :mod:`flex_nav.nodes` the only part of ``flex_nav`` that imports rospy; adapters import no node."""

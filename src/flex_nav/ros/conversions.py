@@ -13,7 +13,7 @@ from geometry_msgs.msg import Pose, PoseStamped
 from nav_msgs.msg import OccupancyGrid, Path
 
 from flex_nav.exceptions import ConfigError
-from flex_nav.nav.grid_map import GridMap
+from flex_nav.nav.costmap.grid_map import GridMap
 from flex_nav.nav.pose_checks import quaternion_of_yaw, yaw_of_quaternion
 
 

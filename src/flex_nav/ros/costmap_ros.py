@@ -39,11 +39,11 @@ from sensor_msgs.msg import LaserScan as LaserScanMsg
 
 from flex_nav.exceptions import ConfigError, NotReadyError
 from flex_nav.msg import ClearCostmapAction, ClearCostmapResult
-from flex_nav.nav.costmap import Costmap
-from flex_nav.nav.costmap_grid import CostmapGeometry
-from flex_nav.nav.grid_map import GridMap
-from flex_nav.nav.inflation import InflationParams
-from flex_nav.nav.obstacle_layer import LaserScan, ObstacleLayerParams
+from flex_nav.nav.costmap.costmap_grid import CostmapGeometry
+from flex_nav.nav.costmap.grid_map import GridMap
+from flex_nav.nav.costmap.inflation import InflationParams
+from flex_nav.nav.costmap.layered import Costmap
+from flex_nav.nav.costmap.obstacle_layer import LaserScan, ObstacleLayerParams
 from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.ros.conversions import grid_map_of, occupancy_grid_msg
 from flex_nav.ros.params import param_bool, param_float, param_str, reject_unknown

@@ -9,7 +9,7 @@ from geometry_msgs.msg import PoseStamped, Quaternion
 from nav_msgs.msg import Path
 
 from flex_nav.exceptions import ConfigError, NotReadyError
-from flex_nav.follow.planar import heading_along, transform_poses
+from flex_nav.nav.planar import heading_along, transform_poses
 from flex_nav.nav.pose_checks import pose_problem, yaw_of_quaternion
 
 

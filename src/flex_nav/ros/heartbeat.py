@@ -3,7 +3,7 @@
 ``HEARTBEAT_TOPIC`` (std_msgs/Header, a relative name: the runner's namespace, which is the robot's) carries a
 message every ``HEARTBEAT_PERIOD_S`` of wall time (stamp: the sender's ROS time; seq: a counter; frame_id: the
 sender's node name). twist_relay and the controllers take ``~heartbeat_timeout`` [s of wall time] (0: off, the
-default): with it set, no heartbeat for that long stops the robot (see :mod:`flex_nav.follow.operator_link`).
+default): with it set, no heartbeat for that long stops the robot (see :mod:`flex_nav.nav.control.operator_link`).
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ from typing import Callable, Optional
 import rospy
 from std_msgs.msg import Header
 
-from flex_nav.follow.operator_link import OperatorLink
+from flex_nav.nav.control.operator_link import OperatorLink
 
 HEARTBEAT_TOPIC = "operator_heartbeat"
 HEARTBEAT_PERIOD_S = 0.1  # [s] wall time between two heartbeats (a timeout of 0.5 s tolerates four lost ones)

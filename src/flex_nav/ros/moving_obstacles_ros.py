@@ -5,7 +5,7 @@ scan (``~people_tracker/scan_topic``, "scan") and, unless ``~people_tracker/map_
 (latched OccupancyGrid, "map"): scan points within ``~people_tracker/static_tolerance`` [m] (0.15) of a mapped
 obstacle are not tracked. Scan points are carried into the controller's global frame by tf at the scan's
 stamp, then tracked by :class:`flex_nav.perception.moving_obstacles.MovingObstacleTracker` (its parameters by
-name under ``~people_tracker/``). The yield rule's parameters are :class:`flex_nav.follow.yielding.YieldParams`
+name under ``~people_tracker/``). The yield rule's parameters are :class:`flex_nav.nav.control.yielding.YieldParams`
 by name under ``~yielding/``; ``robot_radius_m`` defaults to the local costmap's inscribed radius and
 ``speed_mps`` to pure pursuit's ``desired_linear_vel``. Publishes std_msgs/Bool ``~yielding``: True on every
 control tick spent giving way, False once when that ends (for a progress monitor, see ``StuckMonitorState``).
@@ -25,7 +25,7 @@ from sensor_msgs.msg import LaserScan as LaserScanMsg
 from std_msgs.msg import Bool
 
 from flex_nav.exceptions import ConfigError
-from flex_nav.follow.yielding import YieldDecision, YieldMode, YieldParams, YieldRule
+from flex_nav.nav.control.yielding import YieldDecision, YieldMode, YieldParams, YieldRule
 from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.perception.moving_obstacles import MovingObstacleTracker, Track, TrackerParams
 from flex_nav.perception.static_mask import StaticMask

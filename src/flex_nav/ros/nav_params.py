@@ -5,7 +5,7 @@ from __future__ import annotations
 import dataclasses
 
 from flex_nav.exceptions import ConfigError
-from flex_nav.nav.planner import PlannerParams
+from flex_nav.nav.planning.planner import PlannerParams
 from flex_nav.ros.params import param_bool, param_float, param_int, reject_unknown
 
 

@@ -10,7 +10,7 @@ from typing import Callable
 import rospy
 
 from flex_nav.exceptions import ConfigError, NotReadyError
-from flex_nav.private_master import master_is_up
+from flex_nav.ros.master_probe import master_is_up
 
 MASTER_WAIT_S = 10.0  # [s] default bound on waiting for the master before a node gives up
 

@@ -2,7 +2,7 @@
 
 One clock for the behavior executor, the controllers and the follow servers: deadlines are in ROS time; a wait
 for one is a bounded wall-time wait (on simulated time the wall duration of a sim interval is unknown, so such a
-wait polls). Whether ROS time itself still runs is watched with :class:`flex_nav.follow.clock_watch.ClockWatch`.
+wait polls). Whether ROS time itself still runs is watched with :class:`flex_nav.nav.control.clock_watch.ClockWatch`.
 """
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ import time
 
 import rospy
 
-from flex_nav.follow.clock_watch import ClockChange, ClockWatch
+from flex_nav.nav.control.clock_watch import ClockChange, ClockWatch
 
 SIM_TIME_POLL_S = 0.002  # [s] wall period at which a wait on simulated time re-reads the clock
 IDLE_WAIT_S = 0.1  # [s] wall bound of a wait with no finite deadline

@@ -1,4 +1,4 @@
-"""The evaluation driver (``python -m flex_nav.eval.scenarios``) without a simulator: its plan of runs, the
+"""The evaluation driver (``python -m flex_nav.apps.eval.scenarios``) without a simulator: its plan of runs, the
 result each run leaves behind, ``--resume`` and bad arguments. ``run_one`` is replaced by a function that
 writes what ``scenario_run`` would print, so no master is needed."""
 
@@ -6,8 +6,8 @@ import json
 
 import pytest
 
-from flex_nav.eval import scenarios
-from flex_nav.eval.metrics import RunResult
+from flex_nav.apps.eval import scenarios
+from flex_nav.apps.eval.metrics import RunResult
 
 
 def fake_run_one(calls):

@@ -6,8 +6,8 @@ import math
 
 import pytest
 
-from flex_nav.eval.metrics import RunResult, people_clearance, person_position, walking_intervals
-from flex_nav.eval.table import to_csv, to_markdown
+from flex_nav.apps.eval.metrics import RunResult, people_clearance, person_position, walking_intervals
+from flex_nav.apps.eval.table import to_csv, to_markdown
 from flex_nav_sim.world import load_world
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from flex_nav.exceptions import ConfigError
-from flex_nav.follow.clock_watch import ClockChange, ClockWatch
+from flex_nav.nav.control.clock_watch import ClockChange, ClockWatch
 
 
 def test_a_clock_that_advances_is_steady() -> None:

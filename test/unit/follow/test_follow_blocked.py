@@ -4,11 +4,11 @@ import numpy as np
 import pytest
 
 from flex_nav.exceptions import ConfigError
-from flex_nav.follow.blocked import BlockedPathWatch, PathObstacle, obstacle_on_path
-from flex_nav.follow.controller import Outcome, SafeFollower
-from flex_nav.nav.costmap_grid import INSCRIBED, LETHAL, NO_INFORMATION, CostmapGeometry
+from flex_nav.nav.control.blocked import BlockedPathWatch, PathObstacle, obstacle_on_path
+from flex_nav.nav.control.controller import Outcome, SafeFollower
+from flex_nav.nav.control.pure_pursuit import PurePursuitParams
+from flex_nav.nav.costmap.costmap_grid import INSCRIBED, LETHAL, NO_INFORMATION, CostmapGeometry
 from flex_nav.nav.path import cumulative_lengths
-from flex_nav.nav.pure_pursuit import PurePursuitParams
 
 GEOMETRY = CostmapGeometry(100, 40, 0.05, -0.5, -1.0)  # x -0.5..4.5, y -1..1
 STRAIGHT = np.array([[0.0, 0.0, 0.0], [4.0, 0.0, 0.0]])  # sparse: two corners only

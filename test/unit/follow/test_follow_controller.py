@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from flex_nav.exceptions import ConfigError, NotReadyError
-from flex_nav.follow.controller import Decision, Outcome, SafeFollower
-from flex_nav.nav.costmap_grid import LETHAL, CostmapGeometry
-from flex_nav.nav.pure_pursuit import PurePursuitParams
+from flex_nav.nav.control.controller import Decision, Outcome, SafeFollower
+from flex_nav.nav.control.pure_pursuit import PurePursuitParams
+from flex_nav.nav.costmap.costmap_grid import LETHAL, CostmapGeometry
 
 STRAIGHT = np.array([[0.0, 0.0, 0.0], [3.0, 0.0, 0.0]])
 PARAMS = PurePursuitParams(desired_linear_vel=0.5, lookahead_dist=0.6, goal_dist_tol=0.1, use_final_heading=False)

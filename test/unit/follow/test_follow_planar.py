@@ -5,8 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from flex_nav.follow.planar import heading_along, transform_poses
 from flex_nav.nav.angles import wrap_angle
+from flex_nav.nav.planar import heading_along, transform_poses
 
 
 def test_wrap_angle():

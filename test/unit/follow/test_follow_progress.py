@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from flex_nav.exceptions import ConfigError
-from flex_nav.follow.progress import PathProgress
+from flex_nav.nav.control.progress import PathProgress
 
 L_PATH = np.array([[0.0, 0.0], [4.0, 0.0], [4.0, 4.0]])  # 8 m, a left turn at (4, 0)
 

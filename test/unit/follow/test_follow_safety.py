@@ -5,7 +5,7 @@ import math
 import pytest
 
 from flex_nav.exceptions import ConfigError
-from flex_nav.follow.safety import CommandOrder, CommandTimeout, SensorWatchdog, twist_problem
+from flex_nav.nav.control.safety import CommandOrder, CommandTimeout, SensorWatchdog, twist_problem
 
 
 def test_finite_twist_is_fine():

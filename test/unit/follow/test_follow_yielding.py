@@ -7,11 +7,11 @@ import numpy as np
 import pytest
 
 from flex_nav.exceptions import ConfigError
-from flex_nav.follow.controller import Outcome, SafeFollower
-from flex_nav.follow.yielding import YieldMode, YieldParams, YieldRule, arc_positions
-from flex_nav.nav.costmap_grid import LETHAL, CostmapGeometry
+from flex_nav.nav.control.controller import Outcome, SafeFollower
+from flex_nav.nav.control.pure_pursuit import PurePursuitParams
+from flex_nav.nav.control.yielding import YieldMode, YieldParams, YieldRule, arc_positions
+from flex_nav.nav.costmap.costmap_grid import LETHAL, CostmapGeometry
 from flex_nav.nav.path import cumulative_lengths
-from flex_nav.nav.pure_pursuit import PurePursuitParams
 from flex_nav.perception.moving_obstacles import Track
 
 PATH = np.array([[0.0, 0.0], [10.0, 0.0]])  # along +x

@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 from unit.perception.scan_synth import ray_scan
 
-from flex_nav.follow.controller import Outcome, SafeFollower
-from flex_nav.follow.yielding import YieldParams, YieldRule
-from flex_nav.nav.grid_map import GridMap
-from flex_nav.nav.pure_pursuit import PurePursuitParams
+from flex_nav.nav.control.controller import Outcome, SafeFollower
+from flex_nav.nav.control.pure_pursuit import PurePursuitParams
+from flex_nav.nav.control.yielding import YieldParams, YieldRule
+from flex_nav.nav.costmap.grid_map import GridMap
 from flex_nav.perception.moving_obstacles import MovingObstacleTracker
 from flex_nav.perception.static_mask import StaticMask
 

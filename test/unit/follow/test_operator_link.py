@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from flex_nav.exceptions import ConfigError
-from flex_nav.follow.operator_link import OperatorLink
+from flex_nav.nav.control.operator_link import OperatorLink
 
 
 def test_off_never_loses_the_link() -> None:

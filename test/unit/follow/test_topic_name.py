@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from flex_nav.follow.topic_name import topic_name_problem
+from flex_nav.nav.control.topic_name import topic_name_problem
 
 
 @pytest.mark.parametrize("name", ["plan", "/robot1/plan", "~plan", "follow_topic_server/plan", "a1_b2"])

@@ -6,8 +6,7 @@ import numpy as np
 import pytest
 
 from flex_nav.exceptions import ConfigError
-from flex_nav.nav.costmap import Costmap
-from flex_nav.nav.costmap_grid import (
+from flex_nav.nav.costmap.costmap_grid import (
     FREE,
     INSCRIBED,
     LETHAL,
@@ -15,11 +14,12 @@ from flex_nav.nav.costmap_grid import (
     CostmapGeometry,
     costs_to_occupancy,
 )
-from flex_nav.nav.grid_map import GridMap
-from flex_nav.nav.inflation import InflationParams, Inflator, cost_of_distance, inflate
-from flex_nav.nav.obstacle_layer import LaserScan, ObstacleLayerParams, shifted
-from flex_nav.nav.raytrace import line_cells, set_rays
-from flex_nav.nav.static_layer import StaticLayerParams, occupancy_to_costs
+from flex_nav.nav.costmap.grid_map import GridMap
+from flex_nav.nav.costmap.inflation import InflationParams, Inflator, cost_of_distance, inflate
+from flex_nav.nav.costmap.layered import Costmap
+from flex_nav.nav.costmap.obstacle_layer import LaserScan, ObstacleLayerParams, shifted
+from flex_nav.nav.costmap.raytrace import line_cells, set_rays
+from flex_nav.nav.costmap.static_layer import StaticLayerParams, occupancy_to_costs
 
 RES = 0.05
 PARAMS = InflationParams(inscribed_radius=0.12, inflation_radius=0.4, cost_scaling_factor=5.0)

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from flex_nav.exceptions import ConfigError
-from flex_nav.nav.grid_map import Cell, GridMap
+from flex_nav.nav.costmap.grid_map import Cell, GridMap
 
 
 def test_world_cell_round_trip_without_yaw():

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 from flex_nav.exceptions import ConfigError
-from flex_nav.nav.grid_map import GridMap
-from flex_nav.nav.map_io import image_to_occupancy, load_map, save_map
+from flex_nav.nav.costmap.grid_map import GridMap
+from flex_nav.nav.costmap.map_io import image_to_occupancy, load_map, save_map
 
 SHARED_MAPS = Path("/work/shared/maps")
 

@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 
 from flex_nav.exceptions import ConfigError
-from flex_nav.nav.astar import line_cost
-from flex_nav.nav.costmap_grid import INSCRIBED, LETHAL, NO_INFORMATION, CostmapGeometry
-from flex_nav.nav.planner import GridPlanner, PlannerParams, PlanStatus
+from flex_nav.nav.costmap.costmap_grid import INSCRIBED, LETHAL, NO_INFORMATION, CostmapGeometry
+from flex_nav.nav.planning.astar import line_cost
+from flex_nav.nav.planning.planner import GridPlanner, PlannerParams, PlanStatus
 
 RES = 0.1
 

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from flex_nav.exceptions import ConfigError
-from flex_nav.nav.costmap_grid import INSCRIBED, LETHAL, NO_INFORMATION, CostmapGeometry
-from flex_nav.nav.pure_pursuit import PurePursuitParams, PursuitStatus, RegulatedPurePursuit
+from flex_nav.nav.control.pure_pursuit import PurePursuitParams, PursuitStatus, RegulatedPurePursuit
+from flex_nav.nav.costmap.costmap_grid import INSCRIBED, LETHAL, NO_INFORMATION, CostmapGeometry
 
 DT = 0.05  # [s]
 

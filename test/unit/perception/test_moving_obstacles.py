@@ -7,7 +7,7 @@ import pytest
 from unit.perception.scan_synth import ray_scan
 
 from flex_nav.exceptions import ConfigError
-from flex_nav.nav.grid_map import GridMap
+from flex_nav.nav.costmap.grid_map import GridMap
 from flex_nav.perception.moving_obstacles import MovingObstacleTracker, TrackerParams
 from flex_nav.perception.scan_segments import SegmentParams, segments
 from flex_nav.perception.static_mask import StaticMask

@@ -8,7 +8,7 @@ import pytest
 
 from flex_nav.behavior.yaml_loader import declared_parameter_names
 from flex_nav.exceptions import BehaviorLoadError, ConfigError
-from flex_nav.ros.behavior_runner import PACKAGE_BEHAVIORS, with_robot_profile
+from flex_nav.nodes.behavior_runner import PACKAGE_BEHAVIORS, with_robot_profile
 
 
 def test_the_shipped_behaviors_that_watch_bumpers_declare_a_profile() -> None:

@@ -9,10 +9,11 @@ import pytest
 import yaml
 from harness import REPO_ROOT
 
-from flex_nav.nav.inflation import InflationParams
-from flex_nav.nav.planner import PlannerParams
-from flex_nav.nav.pure_pursuit import PurePursuitParams
-from flex_nav.ros import costmap_ros, follow_server, get_path_server, pure_pursuit_controller
+from flex_nav.nav.control.pure_pursuit import PurePursuitParams
+from flex_nav.nav.costmap.inflation import InflationParams
+from flex_nav.nav.planning.planner import PlannerParams
+from flex_nav.nodes import follow_server, get_path_server, pure_pursuit_controller
+from flex_nav.ros import costmap_ros
 from flex_nav_sim.profiles import load_profile
 
 PROFILES = {"create": "create2", "turtlebot2": "kobuki", "turtlebot4": "turtlebot4"}  # config -> sim profile

@@ -9,7 +9,7 @@ import pytest
 import rospy
 
 from flex_nav.exceptions import ConfigError
-from flex_nav.nav.planner import PlannerParams
+from flex_nav.nav.planning.planner import PlannerParams
 from flex_nav.ros.nav_params import planner_params
 
 MISSING = object()

@@ -7,7 +7,7 @@ import subprocess
 import pytest
 from harness import REPO_ROOT, run_command_bounded
 
-from flex_nav.private_master import PrivateMaster
+from flex_nav.testing.private_master import PrivateMaster
 
 NODE_WAIT_S = 60.0  # [s] bound on a node starting and exiting
 

@@ -11,7 +11,7 @@ from geometry_msgs.msg import PoseStamped, TransformStamped
 from nav_msgs.msg import OccupancyGrid, Path
 
 from flex_nav.exceptions import ConfigError, NotReadyError
-from flex_nav.nav.grid_map import GridMap
+from flex_nav.nav.costmap.grid_map import GridMap
 from flex_nav.ros.conversions import grid_map_of, map_msg, occupancy_grid_msg, path_msg, path_points
 from flex_nav.ros.frames import frame_pose, goal_in_frame, path_in_frame
 

@@ -6,8 +6,8 @@ from pathlib import Path
 
 import pytest
 
-from flex_nav.nav.grid_map import FREE, OCCUPIED
-from flex_nav.nav.map_io import load_map
+from flex_nav.nav.costmap.grid_map import FREE, OCCUPIED
+from flex_nav.nav.costmap.map_io import load_map
 from flex_nav_sim.static_map import shipped_map_path, static_map, write_static_map
 from flex_nav_sim.world import available_worlds, load_world
 

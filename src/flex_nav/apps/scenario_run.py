@@ -1,0 +1,190 @@
+"""One headless run of a push-or-avoid scenario: ``python -m flex_nav.apps.scenario_run --world W --behavior B``.
+
+Starts a private master (simulated time), the simulator with the robot's camera, the map server, the robot's
+navigation and behavior runner (TurtleBot 4 profile) and the ``obstacle_classifier`` in the robot's
+namespace; sets ``pure_pursuit_path``'s ``~blocked_distance`` (blocked-path detection, used by
+push_or_avoid; move_base_like drives with ``pure_pursuit_topic``, which keeps it off) and its
+``~yield_to_people`` (give way to moving people, :mod:`flex_nav.nav.control.yielding`; also push_or_avoid only)
+and, for both behaviors, a bumper memory of 5 s in the costmaps (the default 60 s would keep the contacts of a pushed
+box as obstacles in the door it was pushed through; no scenario has obstacles only the bumper finds). Sends the world's
+``goal`` once the behavior waits for one and records until the behavior is done with it or ``--sim-limit``
+seconds of simulated time pass. Prints one ``RESULT {json}`` line (see :class:`flex_nav.apps.eval.metrics.RunResult`)
+and writes ``run.png`` and logs to ``--out``. Exit 0 when the run was recorded (reached or not), 2 when the
+system could not start.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import json
+import math
+import shutil
+import signal
+import sys
+import threading
+import time
+from pathlib import Path
+from typing import Any, Dict, List, Optional, Sequence, Tuple
+
+from flex_nav.apps.eval.metrics import RunResult, people_clearance
+from flex_nav.apps.nav_demo import (
+    DemoMonitor,
+    RobotRun,
+    start_system,
+    wait_until_ready,
+    world_map,
+    write_picture,
+)
+from flex_nav.exceptions import FlexNavError
+from flex_nav.testing.process import ManagedProcess
+
+PROFILE = "turtlebot4"
+ROBOT = "robot1"
+BLOCKED_DISTANCE_M = 0.7  # [m] pure_pursuit_path's blocked-path detection distance
+STARTUP_TIMEOUT_S = 90.0  # [s] wall
+HURRY_SPEED_MPS = 0.3  # [m/s] giving way: cross a walker's way at this speed when only that clears (max 0.306)
+BUMPER_MEMORY_S = 5.0  # [s] bumper marks (both behaviors): a pushed box's contacts must not close the door
+SETTLE_S = 2.0  # [s] simulated time between the behavior waiting for a goal and sending it
+
+
+def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
+    parser = argparse.ArgumentParser(prog="python -m flex_nav.apps.scenario_run", description=__doc__.split("\n\n")[0])
+    parser.add_argument("--world", required=True, help="scenario world name in sim/worlds")
+    parser.add_argument("--behavior", required=True, help="behavior name (move_base_like, push_or_avoid, ...)")
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--rtf", type=float, default=1.0, help="simulation real-time factor")
+    parser.add_argument("--sim-limit", type=float, default=150.0, help="[s] simulated time bound of the goal")
+    parser.add_argument("--timeout", type=float, default=600.0, help="[s] wall-time bound of the whole run")
+    parser.add_argument("--out", type=Path, required=True, help="output directory")
+    parser.add_argument("--bag", action="store_true", help="record run.bag (commands, odometry, plans, ...)")
+    return parser.parse_args(argv)
+
+
+class ScenarioMonitor(DemoMonitor):
+    """The demo monitor plus what the scenario table needs: pushes and contacts with people."""
+
+    def __init__(self, runs: List[RobotRun]) -> None:
+        super().__init__(runs)
+        from flex_nav.msg import SimEvent  # noqa: PLC0415
+
+        self.pushes_tried = 0
+        self.pushes_succeeded = 0
+        self.people_contacts: List[Tuple[float, str]] = []
+        self.timed_trajectory: List[Tuple[float, float, float]] = []  # (sim s, x, y)
+        self._event_lock = threading.Lock()
+        self.subs.append(self.rospy.Subscriber(f"/{ROBOT}/sim_events", SimEvent, self._on_sim_event, queue_size=50))
+
+    def _on_odom(self, msg: Any, run: RobotRun) -> None:
+        super()._on_odom(msg, run)
+        p = msg.pose.pose.position
+        with self._event_lock:
+            self.timed_trajectory.append((msg.header.stamp.to_sec(), p.x, p.y))
+
+    def _on_transition(self, msg: Any, run: RobotRun) -> None:
+        super()._on_transition(msg, run)
+        if msg.path.endswith("/Push"):
+            with self._event_lock:
+                self.pushes_tried += 1
+                self.pushes_succeeded += msg.outcome == "done"
+
+    def _on_sim_event(self, msg: Any) -> None:
+        if msg.other_kind == "person" and msg.kind == msg.CONTACT_BEGIN:
+            with self._event_lock:
+                self.people_contacts.append((msg.header.stamp.to_sec(), msg.other))
+            print(f"[sim {self.sim_s():7.1f} s] CONTACT with person {msg.other}", flush=True)
+
+
+def start(stack: contextlib.ExitStack, args: argparse.Namespace, run: RobotRun) -> List[ManagedProcess]:
+    """The demo's system with the camera, the scenario parameters and the obstacle classifier."""
+    params: Dict[str, object] = {
+        f"/{ROBOT}/pure_pursuit_path/blocked_distance": BLOCKED_DISTANCE_M,
+        f"/{ROBOT}/pure_pursuit_path/yield_to_people": True,  # push_or_avoid's follower
+        f"/{ROBOT}/pure_pursuit_path/yielding/hurry_speed_mps": HURRY_SPEED_MPS,
+    }
+    for costmap in ("get_path_server/global_costmap", "pure_pursuit_path/local_costmap",
+                    "pure_pursuit_topic/local_costmap"):
+        params[f"/{ROBOT}/{costmap}/bumper_memory"] = BUMPER_MEMORY_S
+    system = argparse.Namespace(world=args.world, rtf=args.rtf, seed=args.seed, gui=False, autonomy="full",
+                                behavior=args.behavior)
+    processes, env = start_system(stack, system, [run], args.out, camera=True, params=params, bag=args.bag)
+    classifier = ManagedProcess(["rosrun", "flex_nav", "obstacle_classifier", f"__ns:={ROBOT}", "_max_rate:=5.0"],
+                                env=env, log_path=args.out / "logs" / "classifier.log")
+    stack.callback(classifier.stop)
+    return [*processes, classifier]
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one linear script of a run
+    args = parse_args(argv)
+    from flex_nav_sim.world import load_world  # noqa: PLC0415
+
+    try:
+        world = load_world(args.world)
+        goal = world.goals["goal"]
+    except (FlexNavError, KeyError) as err:
+        print(f"scenario_run: world {args.world!r}: {err}", file=sys.stderr)
+        return 2
+    args.out.mkdir(parents=True, exist_ok=True)
+    run = RobotRun(ROBOT, PROFILE, [("goal", goal)])
+    run.pose = world.spawns[0].pose if world.spawns else world.goals["start"]
+    started = time.monotonic()
+    result = RunResult(world=world.name, behavior=args.behavior, seed=args.seed)
+    with contextlib.ExitStack() as stack:
+        signal.signal(signal.SIGTERM, _interrupt)
+        processes = start(stack, args, run)
+        from flex_nav.ros.node import init_node  # noqa: PLC0415
+
+        init_node("scenario_run")
+        import rospy  # noqa: PLC0415
+
+        monitor = ScenarioMonitor([run])
+        problem = wait_until_ready(monitor, processes, STARTUP_TIMEOUT_S)
+        if problem is not None:
+            print(f"scenario_run: startup failed: {problem}; logs in {args.out / 'logs'}", file=sys.stderr)
+            return 2
+        wall_deadline = started + args.timeout
+        settle_until = monitor.sim_s() + SETTLE_S  # odometry, scans and the first class votes flow
+        while monitor.sim_s() < settle_until and time.monotonic() < wall_deadline:
+            time.sleep(0.1)
+        monitor.send_due_goals()
+        goal_sim_s = monitor.sim_s()
+        while not monitor.done() and not rospy.is_shutdown():
+            if monitor.sim_s() - goal_sim_s > args.sim_limit:
+                result.note = f"sim limit {args.sim_limit:g} s"
+                break
+            if time.monotonic() > wall_deadline:
+                result.note = f"wall timeout {args.timeout:g} s"
+                break
+            dead = [p for p in processes if not p.running()]
+            if dead:
+                result.note = f"{' '.join(dead[0].argv[:4])} exited"
+                break
+            time.sleep(0.1)
+        end_sim_s = monitor.sim_s()
+        monitor.stopping = True
+        with monitor.lock:
+            result.success = run.reached == 1
+            result.time_s = (end_sim_s - goal_sim_s) if result.success else math.nan
+            result.path_m = run.distance_m
+            result.pushes_tried = monitor.pushes_tried
+            result.pushes_succeeded = monitor.pushes_succeeded
+            result.people_contacts = len(monitor.people_contacts)
+            trajectory = [(t, x, y) for t, x, y in monitor.timed_trajectory if t >= goal_sim_s]
+        result.min_people_clearance_m = people_clearance(world, trajectory)
+        if not result.note and not result.success:
+            result.note = run.failed_reason or "goal given up"
+    title = (f"{args.behavior} in {world.name} (seed {args.seed}): "
+             f"{'reached' if result.success else 'NOT reached'}")
+    picture = write_picture(args.out, world_map(args.world), [run], title)
+    result.picture = str(picture)
+    shutil.rmtree(args.out / "ros_home", ignore_errors=True)
+    print("RESULT " + json.dumps(result.to_dict()), flush=True)
+    return 0
+
+
+def _interrupt(_signum: int, _frame: object) -> None:
+    raise KeyboardInterrupt
+
+
+if __name__ == "__main__":
+    sys.exit(main())

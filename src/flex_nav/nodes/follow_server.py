@@ -1,0 +1,224 @@
+"""``follow_path_server`` / ``follow_topic_server``: mid-level planners that follow a path by replanning.
+
+``follow_path_server`` serves FollowPath (the path is in the goal); ``follow_topic_server`` serves
+FollowTopic (it follows the newest nav_msgs/Path on the topic named in the goal, waiting at most
+``~topic_timeout`` [s] for the first one). Neither drives the robot: at ``~planner_frequency`` [Hz] each
+looks ``~lookahead_distance`` [m] ahead along the goal path (arc length from the robot's closest point,
+tracked monotonically; see :class:`flex_nav.nav.control.progress.PathProgress`), plans from the robot to that
+point on its own costmap ``~local_costmap/`` (rolling window with the static map and ``scan`` by default)
+and publishes the plan on ``~plan`` -- the path a ``pure_pursuit_topic`` controller follows. The lookahead
+point backs off along the path until it lies on the costmap on a passable cell.
+
+The goal succeeds within ``~goal_tolerance`` [m] of the path's end; it aborts with the reason on a bad
+path (empty, NaN, unknown frame), when no plan could be made for ``~failure_timeout`` [s] of ROS time (blocked path,
+no robot pose, no map) or when the node that sent it is gone for ``~client_timeout`` [s] (2.0; 0: off), and it
+is preempted by a cancel or replaced by a newer goal. Replanning is paced on ROS time: while ROS time stands
+still (a paused simulation) nothing is replanned; when it moves backwards (a restarted simulation) the goal
+aborts with the reason. A FollowTopic goal naming an illegal topic (empty, ``..``, blanks) aborts at once. Keep
+``lookahead_distance`` well above (controller speed / planner_frequency), or the controller reaches the
+end of a local plan before the next one arrives.
+
+Other parameters: ``global_frame`` ("map"), ``robot_base_frame`` ("base_footprint"),
+``transform_timeout`` [s] (0.2), ``planner/*`` (:func:`flex_nav.ros.nav_params.planner_params`; a local
+planner usually takes ``lethal_cost: 254`` so that a robot inside the inscribed zone can still plan out).
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+import time
+from typing import Any, Optional, Tuple
+
+import numpy as np
+import rospy
+import tf2_ros
+from nav_msgs.msg import Path
+
+from flex_nav.action_types import action_type
+from flex_nav.exceptions import ConfigError, NotReadyError
+from flex_nav.msg import FollowPathFeedback, FollowTopicFeedback
+from flex_nav.nav.control.clock_watch import ClockChange, ClockWatch
+from flex_nav.nav.control.progress import PathProgress, Progress
+from flex_nav.nav.control.topic_name import topic_name_problem
+from flex_nav.nav.costmap.costmap_grid import FREE
+from flex_nav.nav.planning.planner import GridPlanner
+from flex_nav.nodes.get_path_server import warm_up
+from flex_nav.ros.conversions import path_msg, pose_of_xy_yaw
+from flex_nav.ros.costmap_ros import CostmapROS
+from flex_nav.ros.frames import path_in_frame
+from flex_nav.ros.goal_server import RESULT_ABORTED, RESULT_SUCCEEDED, GoalServer, GoalTicket
+from flex_nav.ros.nav_params import planner_params
+from flex_nav.ros.params import param_float, reject_unknown
+from flex_nav.ros.ros_clock import RosClock
+from flex_nav.ros.topic_path import TopicPath, TopicPaths, fresh_from
+
+SOURCES = ("path", "topic")
+PARAMETERS = (
+    "global_frame", "robot_base_frame", "lookahead_distance", "planner_frequency", "goal_tolerance",
+    "failure_timeout", "topic_timeout", "transform_timeout", "local_costmap", "planner", "client_timeout",
+)
+CLOCK_POLL_S = 0.01  # [s] wall: on simulated time, how often the replanning loop reads ROS time
+
+
+class FollowServer:
+    """One follow server node; ``source`` is "path" (FollowPath) or "topic" (FollowTopic)."""
+
+    def __init__(self, source: str) -> None:
+        if source not in SOURCES:
+            raise ConfigError(f"follow server source {source!r} is not valid (valid: {', '.join(SOURCES)})")
+        self.source = source
+        self.name = rospy.get_name()
+        reject_unknown("~", PARAMETERS)
+        self.lookahead_distance = param_float("~lookahead_distance", 1.5, 0.05, 1000.0)
+        self.period_s = 1.0 / param_float("~planner_frequency", 2.0, 0.05, 100.0)
+        self.goal_tolerance = param_float("~goal_tolerance", 0.25, 0.001, 100.0)
+        self.failure_timeout_s = param_float("~failure_timeout", 3.0, 0.0, 3600.0)
+        self.topic_timeout_s = param_float("~topic_timeout", 2.0, 0.0, 600.0)
+        self.transform_timeout_s = param_float("~transform_timeout", 0.2, 0.0, 10.0)
+        self.planner = GridPlanner(planner_params())
+        warm_up(self.planner)
+        PathProgress([[0.0, 0.0], [1.0, 0.0]], 0.5, 0.1).update(0.2, 0.1)  # load its compiled kernel now
+        self.tf_buffer = tf2_ros.Buffer()
+        self.tf_listener = tf2_ros.TransformListener(self.tf_buffer)
+        self.costmap = CostmapROS("local_costmap", self.tf_buffer, rolling_default=True, static_default=True)
+        self.global_frame = self.costmap.global_frame
+        self.clock = RosClock(poll_s=CLOCK_POLL_S)
+        self._wake = threading.Condition()
+        self._topics = TopicPaths(self._wake, self.clock)
+        # not latched: a stale local plan must not steer the controller of a new goal
+        self.plan_publisher = rospy.Publisher("~plan", Path, queue_size=1)
+        self.costmap.serve_clear_costmap(self.name + "/clear_costmap")
+        spec = action_type("FollowPath" if source == "path" else "FollowTopic")
+        self.server = GoalServer(self.name, spec, self._run, on_cancel=self._on_cancel,
+                                 client_timeout_s=param_float("~client_timeout", 2.0, 0.0, 600.0))
+        self.server.start()
+        rospy.loginfo(f"{self.name}: {spec.name}, lookahead {self.lookahead_distance:.2f} m, "
+                      f"replanning at {1.0 / self.period_s:.1f} Hz in '{self.global_frame}'")
+
+    def _on_cancel(self, _ticket: GoalTicket, _replaced: bool) -> None:
+        with self._wake:
+            self._wake.notify_all()
+
+    # ------------------------------------------------------------------ goals
+    def _end(self, ticket: GoalTicket, outcome: str, reason: str, pose: Optional[Tuple[float, float, float]]) -> None:
+        code = "SUCCESS" if outcome == RESULT_SUCCEEDED else "FAILURE"
+        (rospy.loginfo if outcome == RESULT_SUCCEEDED else rospy.logwarn)(
+            f"{self.name}: goal #{ticket.number}: {code}: {reason}")
+        result_pose = pose_of_xy_yaw(*pose) if pose is not None else pose_of_xy_yaw(math.nan, math.nan, 0.0)
+        self.server.finish(ticket, outcome, self.server.result(code, reason, pose=result_pose))
+
+    def _progress_of(self, msg: Path) -> PathProgress:
+        poses = path_in_frame(self.tf_buffer, msg, self.global_frame, self.transform_timeout_s)
+        return PathProgress(poses, self.lookahead_distance, self.goal_tolerance)
+
+    def _run(self, ticket: GoalTicket) -> None:
+        source: Optional[TopicPath] = None
+        if self.source == "path":
+            try:
+                progress = self._progress_of(ticket.goal.path)
+            except (ConfigError, NotReadyError) as err:
+                self._end(ticket, RESULT_ABORTED, f"bad path: {err}", None)
+                return
+        else:
+            topic = ticket.goal.topic.data
+            problem = topic_name_problem(topic)
+            if problem is not None:
+                self._end(ticket, RESULT_ABORTED, f"bad topic in the goal: {problem}", None)
+                return
+            fresh_since = fresh_from(ticket.goal.newer_than)
+            source = self._topics.subscribe(topic)
+            if not self._topics.wait_first(source, self.topic_timeout_s, ticket.cancelled, newer_than=fresh_since):
+                if not ticket.cancelled.is_set():
+                    self._end(ticket, RESULT_ABORTED, source.no_path_reason(self.topic_timeout_s), None)
+                return
+            used = source.count
+            assert source.msg is not None
+            try:
+                progress = self._progress_of(source.msg)
+            except (ConfigError, NotReadyError) as err:
+                self._end(ticket, RESULT_ABORTED, f"bad path on {source.topic}: {err}", None)
+                return
+        self._follow(ticket, progress, source, used if source is not None else 0)
+
+    def _follow(self, ticket: GoalTicket, progress: PathProgress, source: Optional[TopicPath], used: int) -> None:
+        last_plan_s = self.clock.now()  # replanning is paced and failure_timeout counted on ROS time
+        next_due_s = last_plan_s
+        watch = ClockWatch(stall_timeout_s=0.0)  # a stopped clock just stops the replanning; a jump back ends it
+        watch.observe(last_plan_s, time.monotonic())
+        pose: Optional[Tuple[float, float, float]] = None
+        while True:
+            with self._wake:
+                while not ticket.cancelled.is_set() and not rospy.is_shutdown():
+                    now_s = self.clock.now()
+                    if self.clock.observe(watch) is ClockChange.JUMPED_BACK:
+                        self._end(ticket, RESULT_ABORTED, f"ROS time moved backwards by {watch.jump_s:.2f} s (a "
+                                                          "restarted simulation or a looped bag): goal dropped", pose)
+                        return
+                    if now_s >= next_due_s:
+                        break
+                    self._wake.wait(self.clock.wall_wait_s(next_due_s, now_s))
+            if ticket.cancelled.is_set() or rospy.is_shutdown():
+                return
+            next_due_s = max(next_due_s + self.period_s, self.clock.now())
+            if source is not None and source.count != used and source.msg is not None:
+                used = source.count
+                try:
+                    progress = self._progress_of(source.msg)
+                except (ConfigError, NotReadyError) as err:
+                    self._end(ticket, RESULT_ABORTED, f"bad path on {source.topic}: {err}", pose)
+                    return
+            try:
+                pose = self.costmap.robot_pose.pose(timeout_s=self.transform_timeout_s)
+                state, problem = self._replan(ticket, progress, pose, source)
+            except NotReadyError as err:
+                state, problem = None, f"robot pose unknown: {err}"
+            if state is not None and state.done:
+                self._end(ticket, RESULT_SUCCEEDED,
+                          f"reached the end of the path ({state.distance_to_end:.3f} m from it)", pose)
+                return
+            now_s = self.clock.now()
+            if problem is None or now_s < last_plan_s:  # (ROS time went back: start the count afresh)
+                last_plan_s = now_s
+            elif now_s - last_plan_s >= self.failure_timeout_s:
+                self._end(ticket, RESULT_ABORTED, f"no local plan for {now_s - last_plan_s:.1f} s: {problem}", pose)
+                return
+            else:
+                rospy.logwarn_throttle(1.0, f"{self.name}: {problem}")
+
+    def _replan(
+        self, ticket: GoalTicket, progress: PathProgress, pose: Tuple[float, float, float], source: Optional[TopicPath]
+    ) -> Tuple[Optional[Progress], Optional[str]]:
+        """Plan to the lookahead point and publish it; (progress, None) or (progress or None, why not)."""
+        snapshot = self.costmap.snapshot()
+        if snapshot is None:
+            return None, "no costmap yet (waiting for the map)"
+        costs, geometry = snapshot
+        def usable(x: float, y: float) -> bool:  # on the costmap and passable
+            cell = geometry.world_to_cell(x, y)
+            return geometry.in_bounds(cell) and self.planner.passable(int(costs[cell]))
+
+        state = progress.update(pose[0], pose[1], inside=usable)
+        self._feedback(ticket, pose, source)
+        if state.done:
+            return state, None
+        start_cell = geometry.world_to_cell(pose[0], pose[1])
+        if geometry.in_bounds(start_cell):
+            costs[start_cell] = FREE  # the robot's own cell (navfn's clearRobotCell): sensors may mark it
+        result = self.planner.plan(costs, geometry, pose, state.target)
+        if not result.ok:
+            return state, f"{result.status.name}: {result.reason}"
+        if ticket.cancelled.is_set():
+            return state, None
+        self.plan_publisher.publish(path_msg(np.asarray(result.path[:, :2]), self.global_frame, rospy.Time.now(),
+                                             final_yaw=float(result.path[-1, 2])))
+        return state, None
+
+    def _feedback(self, ticket: GoalTicket, pose: Tuple[float, float, float], source: Optional[TopicPath]) -> None:
+        feedback: Any
+        if source is None:
+            feedback = FollowPathFeedback(pose=pose_of_xy_yaw(*pose))
+        else:
+            feedback = FollowTopicFeedback(pose=pose_of_xy_yaw(*pose),
+                                           path=source.msg if source.msg is not None else Path())
+        self.server.feedback(ticket, feedback)

@@ -1,0 +1,365 @@
+"""``pure_pursuit_path`` / ``pure_pursuit_topic``: regulated pure pursuit controllers as action servers.
+
+``pure_pursuit_path`` serves FollowPath (the path is in the goal); ``pure_pursuit_topic`` serves FollowTopic
+(it follows the newest nav_msgs/Path on the topic named in the goal, e.g. a follow server's ``plan``).
+Both publish geometry_msgs/TwistStamped on ``cmd_vel_stamped`` (see ``twist_relay`` for a Twist driver).
+
+Control ticks are synchronised to odometry: a tick runs as soon as a new ``odom`` message has arrived and
+one period of ``~controller_frequency`` has passed since the previous tick (so the rate never exceeds it,
+and odometry slower than it is answered at once), and at the latest two periods after the previous tick
+even without odometry (so stale sensors are noticed). The robot pose is the odometry pose
+carried into ``~global_frame`` by tf (``global_frame -> odom frame``); the path is carried into
+``~global_frame`` when it arrives. The local costmap ``~local_costmap/`` (rolling window from ``scan`` by
+default, see :mod:`flex_nav.ros.costmap_ros`) feeds pure pursuit's obstacle regulation and collision check.
+
+Safety (see :class:`flex_nav.nav.control.controller.SafeFollower`): empty path, path in an unknown frame, bad
+pose, stale ``odom`` or scan (``~sensor_timeout`` [s]), a global-frame transform older than
+``~localization_timeout`` [s] (1.0; 0: off; static transforms have no age), an obstacle ahead for
+``~collision_timeout`` [s], any exception in the control loop, the node that sent the goal gone for
+``~client_timeout`` [s] (2.0; 0: off; see :mod:`flex_nav.ros.goal_server`), no heartbeat from the operator side
+for ``~heartbeat_timeout`` [s of wall time] (0: off, the default; :mod:`flex_nav.ros.heartbeat`), ROS time moving
+backwards (a restarted simulation: nothing computed on the old timeline is executed) -> zero twist and the goal
+aborted with the reason. ROS time standing still for ``~sensor_timeout`` of wall time (the simulator paused or
+crashed) -> one zero twist, then no command until ROS time moves again (the goal goes on then). Control is paced
+on ROS time (:class:`flex_nav.ros.ros_clock.RosClock`). A cancel publishes a zero twist from the cancel callback
+itself (before it returns), and no later command of that goal can follow it; a newer goal replacing the current
+one also starts from a zero twist. A FollowTopic goal naming an illegal topic (empty, ``..``, blanks) aborts at once.
+
+Parameters (private): ``global_frame`` ("map"), ``robot_base_frame`` ("base_footprint"),
+``controller_frequency`` [Hz] (20), ``sensor_timeout`` [s] (0.5), ``collision_timeout`` [s] (2.0),
+``client_timeout`` [s] (2.0), ``localization_timeout`` [s] (1.0), ``transform_timeout`` [s] (0.2),
+``topic_timeout`` [s] (2.0, FollowTopic: wait for the first Path), ``feedback_frequency`` [Hz] (5),
+``heartbeat_timeout`` [s of wall time] (0: off),
+``blocked_distance`` [m] (0: off; an obstacle on the path this far ahead aborts the goal with a reason starting
+``blocked``), ``blocked_timeout`` [s] (0.5), ``yield_to_people`` (false; true: track moving obstacles in the
+scan and give way to them, ``yielding/*`` and ``people_tracker/*``, see
+:mod:`flex_nav.ros.moving_obstacles_ros`), ``pure_pursuit/*``
+(:class:`flex_nav.nav.control.pure_pursuit.PurePursuitParams` by name; unknown names are rejected).
+"""
+
+from __future__ import annotations
+
+import enum
+import math
+import threading
+import time
+from typing import Any, Optional, Tuple
+
+import numpy as np
+import rospy
+import tf2_ros
+from geometry_msgs.msg import TwistStamped
+from nav_msgs.msg import Odometry, Path
+
+from flex_nav.action_types import action_type
+from flex_nav.exceptions import ConfigError, NotReadyError
+from flex_nav.msg import FollowPathFeedback, FollowTopicFeedback
+from flex_nav.nav.control.clock_watch import ClockChange, ClockWatch
+from flex_nav.nav.control.controller import Decision, LocalCostmap, Outcome, SafeFollower, no_tracks, warm_up
+from flex_nav.nav.control.pure_pursuit import PurePursuitParams
+from flex_nav.nav.control.topic_name import topic_name_problem
+from flex_nav.nav.planar import transform_poses
+from flex_nav.nav.pose_checks import yaw_of_quaternion
+from flex_nav.ros.conversions import pose_of_xy_yaw
+from flex_nav.ros.costmap_ros import CostmapROS
+from flex_nav.ros.frames import frame_pose, path_in_frame
+from flex_nav.ros.goal_server import RESULT_ABORTED, RESULT_SUCCEEDED, GoalServer, GoalTicket
+from flex_nav.ros.heartbeat import HeartbeatListener
+from flex_nav.ros.moving_obstacles_ros import MovingObstaclesROS, yield_rule
+from flex_nav.ros.params import param_bool, param_float, param_str, reject_unknown
+from flex_nav.ros.proxies import SHUTDOWN_DRAIN_S, drain_publisher
+from flex_nav.ros.ros_clock import RosClock
+from flex_nav.ros.topic_path import TopicPath, TopicPaths, fresh_from
+
+SOURCES = ("path", "topic")
+PARAMETERS = (
+    "global_frame", "robot_base_frame", "controller_frequency", "sensor_timeout", "collision_timeout",
+    "transform_timeout", "topic_timeout", "feedback_frequency", "local_costmap", "pure_pursuit",
+    "blocked_distance", "blocked_timeout", "yield_to_people", "yielding", "people_tracker", "client_timeout",
+    "localization_timeout", "heartbeat_timeout",
+)
+CLOCK_CHECK_PERIOD_S = 0.05  # [s] wall: longest wait in the control loop before ROS time is looked at again
+
+
+class Wake(enum.Enum):
+    """Why the control loop's wait ended."""
+
+    TICK = "tick"
+    CANCELLED = "cancelled"
+    STALLED = "stalled"
+    JUMPED_BACK = "jumped back"
+    LINK_LOST = "link lost"
+
+
+def pursuit_params(raw: dict, costmap: CostmapROS) -> PurePursuitParams:
+    """PurePursuitParams from ``~pure_pursuit``; ``inscribed_radius`` and ``inflation_cost_scaling_factor``
+    come from the local costmap (they must describe its inflation), and a different value given for
+    either is a ConfigError rather than a silently wrong obstacle regulation."""
+    name = rospy.resolve_name("~pure_pursuit")
+    values = dict(raw)
+    for key, own in (("inscribed_radius", costmap.inflation.inscribed_radius),
+                     ("inflation_cost_scaling_factor", costmap.inflation.cost_scaling_factor)):
+        given = values.setdefault(key, own)
+        if isinstance(given, (int, float)) and not isinstance(given, bool) and abs(float(given) - own) > 1e-9:
+            raise ConfigError(f"{name}/{key} = {given!r} differs from the local costmap's value {own!r}; "
+                              f"leave it out (it is taken from ~local_costmap/)")
+    try:
+        return PurePursuitParams.from_mapping(values)
+    except ConfigError as err:
+        raise ConfigError(f"{name}: {err}") from err
+
+
+class PurePursuitController:
+    """One controller node; ``source`` is "path" (FollowPath) or "topic" (FollowTopic)."""
+
+    def __init__(self, source: str) -> None:
+        if source not in SOURCES:
+            raise ConfigError(f"controller source {source!r} is not valid (valid: {', '.join(SOURCES)})")
+        self.source = source
+        self.name = rospy.get_name()
+        reject_unknown("~", PARAMETERS)
+        self.global_frame = param_str("~global_frame", "map")
+        self.robot_base_frame = param_str("~robot_base_frame", "base_footprint")
+        frequency = param_float("~controller_frequency", 20.0, 0.5, 1000.0)
+        self.period_s = 1.0 / frequency
+        self.transform_timeout_s = param_float("~transform_timeout", 0.2, 0.0, 10.0)
+        self.localization_timeout_s = param_float("~localization_timeout", 1.0, 0.0, 600.0)
+        self.topic_timeout_s = param_float("~topic_timeout", 2.0, 0.0, 600.0)
+        self.feedback_period_s = 1.0 / param_float("~feedback_frequency", 5.0, 0.1, 1000.0)
+        raw = rospy.get_param("~pure_pursuit", {})
+        if not isinstance(raw, dict):
+            raise ConfigError(f"parameter {rospy.resolve_name('~pure_pursuit')} must be a dictionary, got {raw!r}")
+        self.tf_buffer = tf2_ros.Buffer()
+        self.tf_listener = tf2_ros.TransformListener(self.tf_buffer)
+        self.costmap = CostmapROS("local_costmap", self.tf_buffer, rolling_default=True)
+        params = pursuit_params(raw, self.costmap)
+        warm_up(params)
+        sensors = ["odom", "scan"] if self.costmap.scan_topic else ["odom"]
+        yield_to_people = param_bool("~yield_to_people", False)
+        self.people = MovingObstaclesROS(self.tf_buffer, self.global_frame) if yield_to_people else None
+        yielding = (yield_rule(self.costmap.inflation.inscribed_radius, params.desired_linear_vel)
+                    if yield_to_people else None)
+        sensor_timeout_s = param_float("~sensor_timeout", 0.5, 0.01, 600.0)
+        self.clock = RosClock(poll_s=min(self.period_s / 10.0, 0.005))
+        self.clock_watch = ClockWatch(stall_timeout_s=sensor_timeout_s)  # the node's: jumps between goals count
+        self.heartbeat = HeartbeatListener(param_float("~heartbeat_timeout", 0.0, 0.0, 3600.0))
+        self.follower = SafeFollower(
+            params,
+            sensors=sensors,
+            sensor_timeout_s=sensor_timeout_s,
+            collision_timeout_s=param_float("~collision_timeout", 2.0, 0.0, 600.0),
+            nominal_period_s=self.period_s,
+            start_s=rospy.get_time(),
+            blocked_distance_m=param_float("~blocked_distance", 0.0, 0.0, 100.0),
+            blocked_timeout_s=param_float("~blocked_timeout", 0.5, 0.0, 600.0),
+            yielding=yielding,
+        )
+        self._wake = threading.Condition()  # odometry, paths and cancels wake the control loop
+        self._odom: Optional[Odometry] = None
+        self._odom_count = 0
+        self._publish_lock = threading.Lock()
+        self._topics = TopicPaths(self._wake, self.clock)
+        self.cmd_publisher = rospy.Publisher("cmd_vel_stamped", TwistStamped, queue_size=1, tcp_nodelay=True)
+        self._shut_down = False  # set by the shutdown hook: no moving command after its zero twist
+        rospy.on_shutdown(self._on_shutdown)
+        self.odom_subscriber = rospy.Subscriber("odom", Odometry, self._on_odom, queue_size=1, tcp_nodelay=True)
+        self.costmap.serve_clear_costmap(self.name + "/clear_costmap")
+        spec = action_type("FollowPath" if source == "path" else "FollowTopic")
+        self.server = GoalServer(self.name, spec, self._run, on_cancel=self._on_cancel, on_error=self._on_error,
+                                 client_timeout_s=param_float("~client_timeout", 2.0, 0.0, 600.0))
+        self.server.start()
+        rospy.loginfo(f"{self.name}: pure pursuit on {spec.name} goals at {frequency:.1f} Hz in '{self.global_frame}'")
+
+    # ------------------------------------------------------------------ inputs
+    def _on_odom(self, msg: Odometry) -> None:
+        with self._wake:
+            self._odom = msg
+            self._odom_count += 1
+            self.follower.watchdog.saw("odom", rospy.get_time())
+            self._wake.notify_all()
+
+    def _robot_pose(self) -> Tuple[float, float, float]:
+        """Odometry pose carried into the global frame (raises NotReadyError without odometry or tf)."""
+        odom = self._odom
+        if odom is None:
+            raise NotReadyError("robot pose unknown: no odometry received yet")
+        p, q = odom.pose.pose.position, odom.pose.pose.orientation
+        local = np.array([[p.x, p.y, yaw_of_quaternion(q.x, q.y, q.z, q.w)]])
+        try:
+            tx, ty, tyaw = frame_pose(self.tf_buffer, self.global_frame, odom.header.frame_id,
+                                      self.transform_timeout_s, self.localization_timeout_s)
+        except (ConfigError, NotReadyError) as err:
+            raise NotReadyError(f"robot pose unknown: odometry frame: {err}") from err
+        x, y, yaw = transform_poses(local, tx, ty, tyaw)[0]
+        return (float(x), float(y), float(yaw))
+
+    def _velocity(self) -> Tuple[float, float]:
+        odom = self._odom
+        if odom is None:
+            return (0.0, 0.0)
+        return (odom.twist.twist.linear.x, odom.twist.twist.angular.z)
+
+    def _local_costmap(self) -> LocalCostmap:
+        return self.costmap.snapshot()
+
+    # ------------------------------------------------------------------ output
+    def _publish(self, ticket: Optional[GoalTicket], v: float, w: float) -> bool:
+        """Publish (v, w); a non-zero command only while ``ticket`` is the current goal. True if published."""
+        with self._publish_lock:
+            moving = v != 0.0 or w != 0.0
+            if moving and (ticket is None or self._shut_down or not self.server.is_current(ticket)):
+                return False
+            msg = TwistStamped()
+            msg.header.stamp = rospy.Time.now()
+            msg.header.frame_id = self.robot_base_frame
+            msg.twist.linear.x, msg.twist.angular.z = v, w
+            self.cmd_publisher.publish(msg)
+            return True
+
+    def _on_shutdown(self) -> None:
+        """The node is stopping: a zero twist, sent before rospy closes the connections; nothing moves after."""
+        with self._publish_lock:
+            self._shut_down = True
+        self._publish(None, 0.0, 0.0)
+        drain_publisher(self.cmd_publisher, time.monotonic() + SHUTDOWN_DRAIN_S)
+
+    def _on_cancel(self, _ticket: GoalTicket, replaced: bool) -> None:
+        self._publish(None, 0.0, 0.0)
+        with self._wake:
+            self._wake.notify_all()
+        rospy.loginfo(f"{self.name}: {'replaced' if replaced else 'cancelled'}; zero twist published")
+
+    def _on_error(self, _ticket: GoalTicket, _error: BaseException) -> None:
+        self._publish(None, 0.0, 0.0)
+        self.follower.stop()
+
+    # ------------------------------------------------------------------ goals
+    def _end(self, ticket: GoalTicket, outcome: str, reason: str) -> None:
+        self._publish(None, 0.0, 0.0)
+        self.follower.stop()
+        try:
+            pose = pose_of_xy_yaw(*self._robot_pose())
+        except NotReadyError:
+            pose = pose_of_xy_yaw(math.nan, math.nan, 0.0)
+        code = "SUCCESS" if outcome == RESULT_SUCCEEDED else "FAILURE"
+        (rospy.loginfo if outcome == RESULT_SUCCEEDED else rospy.logwarn)(
+            f"{self.name}: goal #{ticket.number}: {code}: {reason}")
+        self.server.finish(ticket, outcome, self.server.result(code, reason, pose=pose))
+
+    def _run(self, ticket: GoalTicket) -> None:
+        if self.source == "path":
+            try:
+                self.follower.set_path(path_in_frame(self.tf_buffer, ticket.goal.path, self.global_frame,
+                                                     self.transform_timeout_s))
+            except (ConfigError, NotReadyError) as err:
+                self._end(ticket, RESULT_ABORTED, f"bad path: {err}")
+                return
+            self._control(ticket, None)
+            return
+        topic = ticket.goal.topic.data
+        problem = topic_name_problem(topic)
+        if problem is not None:
+            self._end(ticket, RESULT_ABORTED, f"bad topic in the goal: {problem}")
+            return
+        fresh_since = fresh_from(ticket.goal.newer_than)
+        source = self._topics.subscribe(topic)
+        if not self._topics.wait_first(source, self.topic_timeout_s, ticket.cancelled, newer_than=fresh_since):
+            if not ticket.cancelled.is_set():
+                self._end(ticket, RESULT_ABORTED, source.no_path_reason(self.topic_timeout_s))
+            return
+        self._control(ticket, source)
+
+    def _wait_for_tick(self, ticket: GoalTicket, next_due_s: float, used_odom: int) -> Wake:
+        """Wait until a tick is due (``next_due_s`` [s ROS time] passed and new odometry, or one period later
+        without), the goal is cancelled, or ROS time or the operator link fails."""
+        latest_by_s = next_due_s + self.period_s
+        with self._wake:
+            while True:
+                if ticket.cancelled.is_set() or rospy.is_shutdown():
+                    return Wake.CANCELLED
+                now_s = self.clock.now()
+                change = self.clock_watch.observe(now_s, time.monotonic())
+                if change in (ClockChange.JUMPED_BACK, ClockChange.STALLED):
+                    return Wake.JUMPED_BACK if change is ClockChange.JUMPED_BACK else Wake.STALLED
+                if self.heartbeat.lost():
+                    return Wake.LINK_LOST
+                if not self.clock_watch.stalled and (
+                        (now_s >= next_due_s and self._odom_count != used_odom) or now_s >= latest_by_s):
+                    return Wake.TICK
+                deadline_s = next_due_s if now_s < next_due_s else latest_by_s
+                self._wake.wait(min(self.clock.wall_wait_s(deadline_s, now_s), CLOCK_CHECK_PERIOD_S))
+
+    def _control(self, ticket: GoalTicket, source: Optional[TopicPath]) -> None:
+        used_odom = -1
+        used_path = -1
+        next_due_s = self.clock.now()
+        last_feedback_s = -math.inf
+        while True:
+            wake = self._wait_for_tick(ticket, next_due_s, used_odom)
+            if wake is Wake.CANCELLED:
+                self.follower.stop()
+                return
+            if wake is Wake.STALLED:
+                self._publish(None, 0.0, 0.0)
+                self.follower.hold()
+                rospy.logerr(f"{self.name}: goal #{ticket.number}: ROS time has not advanced for "
+                             f"{self.clock_watch.stall_timeout_s:.2f} s of wall time (simulator paused or gone?); "
+                             "zero twist published, no command until it moves again")
+                continue
+            if wake is Wake.JUMPED_BACK:
+                self.follower.watchdog.restart(self.clock.now())
+                self._end(ticket, RESULT_ABORTED, f"ROS time moved backwards by {self.clock_watch.jump_s:.2f} s "
+                                                  "(a restarted simulation or a looped bag): goal dropped")
+                return
+            if wake is Wake.LINK_LOST:
+                self._end(ticket, RESULT_ABORTED, self.heartbeat.why_lost())
+                return
+            with self._wake:
+                used_odom = self._odom_count
+                path_msg = source.msg if source is not None and source.count != used_path else None
+                if source is not None:
+                    used_path = source.count
+            now_s = self.clock.now()
+            next_due_s = now_s + self.period_s  # from the tick itself: odometry arriving later starts the next one
+            if path_msg is not None:
+                try:
+                    self.follower.set_path(path_in_frame(self.tf_buffer, path_msg, self.global_frame,
+                                                         self.transform_timeout_s))
+                except (ConfigError, NotReadyError) as err:
+                    self._end(ticket, RESULT_ABORTED, f"bad path on {source.topic if source else '?'}: {err}")
+                    return
+            decision = self._tick()
+            if decision.outcome is not Outcome.RUNNING:
+                self._end(ticket, RESULT_SUCCEEDED if decision.outcome is Outcome.SUCCEEDED else RESULT_ABORTED,
+                          decision.reason)
+                return
+            if not self._publish(ticket, decision.v, decision.w):
+                self.follower.stop()
+                return
+            if now_s - last_feedback_s >= self.feedback_period_s:
+                last_feedback_s = now_s
+                self._feedback(ticket, decision, source)
+
+    def _tick(self) -> Decision:
+        scan_s = self.costmap.last_scan_received_s
+        if scan_s is not None and self.costmap.scan_topic:
+            self.follower.watchdog.saw("scan", scan_s)
+        tracks = self.people.tracks if self.people is not None else no_tracks
+        decision = self.follower.tick(rospy.get_time(), self._robot_pose, self._velocity(), self._local_costmap,
+                                      tracks)
+        if self.people is not None:
+            self.people.report(decision.yielded)
+        return decision
+
+    def _feedback(self, ticket: GoalTicket, decision: Decision, source: Optional[TopicPath]) -> None:
+        try:
+            pose = pose_of_xy_yaw(*self._robot_pose())
+        except NotReadyError:
+            return
+        feedback: Any
+        if source is None:
+            feedback = FollowPathFeedback(pose=pose)
+            feedback.twist.linear.x, feedback.twist.angular.z = decision.v, decision.w
+        else:
+            feedback = FollowTopicFeedback(pose=pose, path=source.msg if source.msg is not None else Path())
+        self.server.feedback(ticket, feedback)
