@@ -10,6 +10,7 @@ The public API, one concept per module:
 - :mod:`~flex_nav.behavior.autonomy` -- :class:`Autonomy` levels OFF/LOW/HIGH/FULL.
 - :mod:`~flex_nav.behavior.userdata` -- declared-key views, zero-copy read-only protection.
 - :mod:`~flex_nav.behavior.context` -- :class:`BehaviorContext`: everything one behavior owns.
+- :mod:`~flex_nav.behavior.proxies` -- :class:`Proxies`: the typed port through which states reach ROS.
 - :mod:`~flex_nav.behavior.events` -- status, log levels, hook events.
 - :mod:`~flex_nav.behavior.clock` -- injected clocks (:class:`MonotonicClock`, :class:`ManualClock`).
 - :mod:`~flex_nav.behavior.executor` -- :class:`BehaviorExecutor`: ticking, commands, queries.
@@ -41,6 +42,7 @@ from flex_nav.behavior.events import (
 )
 from flex_nav.behavior.executor import BehaviorExecutor, BehaviorResult, OutcomeRequest
 from flex_nav.behavior.priority import PriorityContainer
+from flex_nav.behavior.proxies import Proxies
 from flex_nav.behavior.state import State
 from flex_nav.behavior.state_machine import StateMachine
 from flex_nav.behavior.userdata import UserDataView, readonly, unwrap
@@ -64,6 +66,7 @@ __all__ = [
     "MonotonicClock",
     "OutcomeRequest",
     "PriorityContainer",
+    "Proxies",
     "RequestEvent",
     "State",
     "StateMachine",

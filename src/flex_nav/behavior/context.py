@@ -5,12 +5,12 @@ attributes, so one process can run one behavior. Here each behavior gets one
 :class:`BehaviorContext`; states reach it as ``self.context``. Two behaviors (two robots) in one
 process have two contexts and never see each other's autonomy, preemption, pauses, hooks or proxies.
 
-What is injected: the name, the clock (:mod:`flex_nav.behavior.clock`), the proxies (whatever the
-runner provides: the ROS adapter passes its per-behavior proxy set; pure tests pass a fake or None)
-and a Python logger. What it carries: the current autonomy, whether autonomy is enforced
-(``supervised``), the preemption flag, the event :class:`~flex_nav.behavior.events.Hooks`, and the
-engine's bookkeeping (outcome requests, locks, priority containers) in one record,
-:class:`ContextRuntime`, held as ``context.__flex_nav_runtime__`` like a state's
+What is injected: the name, the clock (:mod:`flex_nav.behavior.clock`), the proxies (a
+:class:`~flex_nav.behavior.proxies.Proxies`: the ROS adapter passes its per-behavior proxy set, pure tests
+:class:`flex_nav.testing.fake_proxies.FakeProxies` or None) and a Python logger. What it carries: the current
+autonomy, whether autonomy is enforced (``supervised``), the preemption flag, the event
+:class:`~flex_nav.behavior.events.Hooks`, and the engine's bookkeeping (outcome requests, locks, priority
+containers) in one record, :class:`ContextRuntime`, held as ``context.__flex_nav_runtime__`` like a state's
 :class:`~flex_nav.behavior.state.StateRuntime`. The engine (executor and containers) is the only writer
 of the mutable parts, from the executor's thread; operator commands reach it through the executor.
 
@@ -24,7 +24,7 @@ from __future__ import annotations
 import contextlib
 import contextvars
 import logging
-from typing import TYPE_CHECKING, Any, Dict, Iterator, List, Optional
+from typing import TYPE_CHECKING, Dict, Iterator, List, Optional
 
 from flex_nav.behavior.autonomy import Autonomy
 from flex_nav.behavior.clock import Clock, MonotonicClock
@@ -36,6 +36,7 @@ from flex_nav.behavior.events import (
     RequestEvent,
     TransitionEvent,
 )
+from flex_nav.behavior.proxies import Proxies
 from flex_nav.exceptions import BehaviorRuntimeError, NotReadyError
 
 if TYPE_CHECKING:
@@ -92,12 +93,12 @@ class BehaviorContext:
         autonomy: object = Autonomy.FULL,
         supervised: bool = True,
         clock: Optional[Clock] = None,
-        proxies: Any = None,
+        proxies: Optional[Proxies] = None,
         logger: Optional[logging.Logger] = None,
     ) -> None:
         self.name = name
         self.clock: Clock = clock if clock is not None else MonotonicClock()
-        self.proxies = proxies
+        self.proxies: Optional[Proxies] = proxies
         self.hooks = Hooks()
         self.logger = logger if logger is not None else logging.getLogger(f"flex_nav.behavior.{name}")
         self.__flex_nav_runtime__ = ContextRuntime(self, int(Autonomy.parse(autonomy)), bool(supervised))
@@ -125,7 +126,7 @@ class BehaviorContext:
         """Current time [s] on this behavior's clock."""
         return self.clock.now()
 
-    def require_proxies(self) -> Any:
+    def require_proxies(self) -> Proxies:
         """The injected proxies, or NotReadyError if the runner injected none."""
         if self.proxies is None:
             raise NotReadyError(f"behavior {self.name!r} has no proxies: its runner did not inject any")

@@ -42,6 +42,7 @@ from flex_nav.behavior.clock import Clock
 from flex_nav.behavior.container import Container
 from flex_nav.behavior.context import CURRENT_CONTEXT, HOLD_PAUSE, BehaviorContext, hook_error
 from flex_nav.behavior.events import BehaviorStatus, CommandEvent, LogLevel, StatusEvent
+from flex_nav.behavior.proxies import Proxies
 from flex_nav.behavior.state import Pending, PendingReason, State, StateRuntime
 from flex_nav.behavior.userdata import UserDataView
 from flex_nav.exceptions import (
@@ -85,7 +86,7 @@ class BehaviorExecutor:
         clock: Optional[Clock] = None,
         autonomy: object = None,
         supervised: Optional[bool] = None,
-        proxies: Any = None,
+        proxies: Optional[Proxies] = None,
         should_stop: Optional[Callable[[], bool]] = None,
         idle_wait_s: float = DEFAULT_IDLE_WAIT_S,
     ) -> None:

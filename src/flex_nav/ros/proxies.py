@@ -5,14 +5,16 @@ behaviors in one process share and trample them; here each behavior owns its hub
 ends). Within a behavior, states that ask for the same topic or action share one connection. Every wait is
 bounded and fails with a typed error (:class:`NotReadyError`, :class:`TimedOutError`, :class:`ConfigError`).
 Nothing received is eval'd or unpickled: messages are genpy objects handed over as they are.
-"""
+
+:class:`RosProxies` implements :class:`flex_nav.behavior.proxies.Proxies`, the port the states and the FlexBE
+proxies use; mypy checks it (the typed assignment at the end of this module)."""
 
 from __future__ import annotations
 
 import collections
 import threading
 import time
-from typing import Any, Callable, Deque, Dict, Generic, List, Optional, Tuple, TypeVar
+from typing import TYPE_CHECKING, Any, Callable, Deque, Dict, Generic, List, Optional, Tuple, TypeVar
 
 import actionlib
 import rospy
@@ -20,6 +22,9 @@ from actionlib.action_client import ClientGoalHandle, CommState
 from actionlib_msgs.msg import GoalStatus
 
 from flex_nav.exceptions import ConfigError, NotReadyError, TimedOutError
+
+if TYPE_CHECKING:
+    from flex_nav.behavior.proxies import Proxies
 
 MsgT = TypeVar("MsgT")
 
@@ -400,3 +405,7 @@ def _check_type(kind: str, name: str, known: type, wanted: type) -> None:
             f"{kind} {name} is already used with type {known.__name__} in this behavior; cannot use it as "
             f"{wanted.__name__}"
         )
+
+
+if TYPE_CHECKING:  # mypy: RosProxies (and so its Subscription, ActionClientProxy, ServiceCallerProxy) is a Proxies
+    _CONFORMS: Proxies = RosProxies()

@@ -1,9 +1,8 @@
 """Helpers for the compatibility-layer tests: a fake per-behavior ROS hub, data paths (no ROS; fixtures: conftest).
 
-FakeHub implements the part of flex_nav.ros.proxies.RosProxies the FlexBE proxies use
-(flex_nav.compat.flexbe_core.proxy.hub.ProxyHub); test_flexbe_proxies checks, by parsing proxies.py,
-that RosProxies really has those methods. Tests drive it directly: ``sub.inject(msg)`` as if a message
-arrived, ``client.finish(state, result)`` as if the server answered.
+FakeHub implements the part of flex_nav.behavior.proxies.Proxies the FlexBE proxies use (RosProxies implements
+all of it: mypy checks it, test_states_package compares their parameters). Tests drive it directly:
+``sub.inject(msg)`` as if a message arrived, ``client.finish(state, result)`` as if the server answered.
 """
 
 from __future__ import annotations

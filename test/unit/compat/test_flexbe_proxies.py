@@ -2,10 +2,7 @@
 
 from __future__ import annotations
 
-import ast
-
 import pytest
-from harness import REPO_ROOT
 from unit.compat.compat_testlib import ABORTED, ACTIVE, PREEMPTED, SUCCEEDED, FakeHub
 
 from flex_nav.behavior import Autonomy, BehaviorContext, BehaviorExecutor, BehaviorStatus, ManualClock, using_context
@@ -26,32 +23,6 @@ def context(name="test", hub=None):
     logs = []
     ctx.hooks.log.append(logs.append)
     return ctx, logs
-
-
-# --- the hub protocol matches RosProxies (checked on the source: unit tests do not import rospy) --------------
-def _methods(tree, class_name):
-    for node in tree.body:
-        if isinstance(node, ast.ClassDef) and node.name == class_name:
-            return {item.name for item in node.body if isinstance(item, ast.FunctionDef)}
-    raise AssertionError(f"class {class_name} not found")
-
-
-@pytest.mark.parametrize(
-    ("protocol", "ros_class"),
-    [
-        ("ProxyHub", "RosProxies"),
-        ("SubscriptionLike", "Subscription"),
-        ("ActionClientLike", "ActionClientProxy"),
-        ("ServiceCallerLike", "ServiceCallerProxy"),
-    ],
-)
-def test_ros_proxies_provide_what_the_flexbe_proxies_use(protocol, ros_class):
-    ros = ast.parse((REPO_ROOT / "src" / "flex_nav" / "ros" / "proxies.py").read_text())
-    ours = ast.parse((REPO_ROOT / "src" / "flex_nav" / "compat" / "flexbe_core" / "proxy" / "hub.py").read_text())
-    needed = _methods(ours, protocol)
-    assert needed, protocol
-    missing = needed - _methods(ros, ros_class)
-    assert not missing, f"{ros_class} lacks {sorted(missing)}"
 
 
 # --- binding: which behavior a proxy belongs to -------------------------------------------------------------------

@@ -9,90 +9,18 @@ behavior the hub shares connections by name (two states asking for the same topi
 subscriber); two behaviors never share anything.
 
 The hub is what the ROS runner injects as ``BehaviorContext.proxies``:
-:class:`flex_nav.ros.proxies.RosProxies`. :class:`ProxyHub` and the ``*Like`` protocols below are the
-part of its interface the FlexBE proxies use (pure unit tests implement them with fakes).
+:class:`flex_nav.ros.proxies.RosProxies`. The FlexBE proxies use it through the same protocols as the
+state library, :class:`flex_nav.behavior.proxies.Proxies` and its ``*Like`` connections (pure unit tests
+inject fakes).
 """
 
 from __future__ import annotations
 
-from typing import Any, Callable, List, Optional, Protocol
+from typing import Callable, List, Optional
 
 from flex_nav.behavior.context import current_context
+from flex_nav.behavior.proxies import Proxies
 from flex_nav.exceptions import NotReadyError
-
-
-class PublisherLike(Protocol):
-    def publish(self, msg: Any) -> None: ...
-
-    def get_num_connections(self) -> int: ...
-
-
-class SubscriptionLike(Protocol):
-    def has_msg(self) -> bool: ...
-
-    def last(self) -> Any: ...
-
-    def remove_last(self) -> None: ...
-
-    def enable_buffer(self, size: int = ...) -> None: ...
-
-    def disable_buffer(self) -> None: ...
-
-    def has_buffered(self) -> bool: ...
-
-    def pop_buffered(self) -> Any: ...
-
-    def add_callback(self, callback: Callable[[Any], None]) -> None: ...
-
-    def remove_callback(self, callback: Callable[[Any], None]) -> None: ...
-
-
-class ActionClientLike(Protocol):
-    def is_available(self, timeout_s: float = ...) -> bool: ...
-
-    def send_goal(self, goal: Any, server_timeout_s: float = ...) -> None: ...
-
-    def has_result(self) -> bool: ...
-
-    def result(self) -> Any: ...
-
-    def state(self) -> int: ...
-
-    def feedback(self) -> Any: ...
-
-    def is_active(self) -> bool: ...
-
-    def cancel(self) -> None: ...
-
-    def forget_result(self) -> None: ...
-
-    def forget_feedback(self) -> None: ...
-
-
-class ServiceCallerLike(Protocol):
-    def is_available(self, timeout_s: float = ...) -> bool: ...
-
-    def call(self, request: Any, timeout_s: float = ...) -> Any: ...
-
-
-class ProxyHub(Protocol):
-    """The per-behavior connection hub (RosProxies) as the FlexBE proxies use it."""
-
-    def publisher(self, topic: str, msg_type: type, latch: bool = ..., queue_size: int = ...) -> Any: ...
-
-    def subscription(self, topic: str, msg_type: type, buffer_size: int = ...) -> Any: ...
-
-    def action_client(self, name: str, action_type: type) -> Any: ...
-
-    def service_caller(self, name: str, srv_type: type) -> Any: ...
-
-    def get_publisher(self, topic: str) -> Any: ...
-
-    def get_subscription(self, topic: str) -> Any: ...
-
-    def get_action_client(self, name: str) -> Any: ...
-
-    def get_service_caller(self, name: str) -> Any: ...
 
 
 class Binding:
@@ -102,11 +30,11 @@ class Binding:
 
     def __init__(self, owner: str) -> None:
         self._owner = owner
-        self._hub: Optional[ProxyHub] = self._current_hub()
-        self._pending: List[Callable[[ProxyHub], None]] = []
+        self._hub: Optional[Proxies] = self._current_hub()
+        self._pending: List[Callable[[Proxies], None]] = []
 
     @staticmethod
-    def _current_hub() -> Optional[ProxyHub]:
+    def _current_hub() -> Optional[Proxies]:
         ctx = current_context()
         return ctx.proxies if ctx is not None else None
 
@@ -114,7 +42,7 @@ class Binding:
     def bound(self) -> bool:
         return self._hub is not None
 
-    def setup(self, action: Callable[[ProxyHub], None]) -> None:
+    def setup(self, action: Callable[[Proxies], None]) -> None:
         """Run ``action(hub)`` now if a hub is known, else when the proxy is first used in a running behavior."""
         hub = self._hub if self._hub is not None else self._bind()
         if hub is None:
@@ -122,11 +50,11 @@ class Binding:
         else:
             action(hub)
 
-    def peek(self) -> Optional[ProxyHub]:
+    def peek(self) -> Optional[Proxies]:
         """The hub if one is known or a running behavior provides one now, else None (never raises)."""
         return self._hub if self._hub is not None else self._bind()
 
-    def hub(self) -> ProxyHub:
+    def hub(self) -> Proxies:
         """The hub, binding to the running behavior's on first use; NotReadyError outside any behavior."""
         hub = self._hub if self._hub is not None else self._bind()
         if hub is None:
@@ -136,7 +64,7 @@ class Binding:
             )
         return hub
 
-    def _bind(self) -> Optional[ProxyHub]:
+    def _bind(self) -> Optional[Proxies]:
         hub = self._current_hub()
         if hub is None:
             return None
@@ -147,11 +75,4 @@ class Binding:
         return hub
 
 
-__all__ = [
-    "ActionClientLike",
-    "Binding",
-    "ProxyHub",
-    "PublisherLike",
-    "ServiceCallerLike",
-    "SubscriptionLike",
-]
+__all__ = ["Binding"]

@@ -12,8 +12,9 @@ from __future__ import annotations
 
 from typing import Any, Dict, Optional
 
+from flex_nav.behavior.proxies import ActionClientLike, Proxies
 from flex_nav.compat.flexbe_core.logger import Logger
-from flex_nav.compat.flexbe_core.proxy.hub import ActionClientLike, Binding, ProxyHub
+from flex_nav.compat.flexbe_core.proxy.hub import Binding
 from flex_nav.exceptions import NotReadyError
 
 SEND_GOAL_SERVER_WAIT_S = 1.0  # [s] longest wait for the server when sending a goal (setupClient waited already)
@@ -32,7 +33,7 @@ class ProxyActionClient:
         """Create the client for ``topic``; wait at most ``wait_duration`` [s] for its server (log if absent)."""
         self._topics[topic] = msg_type
 
-        def create(hub: ProxyHub) -> None:
+        def create(hub: Proxies) -> None:
             client = hub.action_client(topic, msg_type)
             if wait_duration > 0 and not client.is_available(float(wait_duration)):
                 Logger.logerr(f"Action client {topic} timed out: no server after {float(wait_duration):.1f} s")

@@ -5,7 +5,8 @@ from __future__ import annotations
 import time
 from typing import Any, Dict, Optional
 
-from flex_nav.compat.flexbe_core.proxy.hub import Binding, ProxyHub, PublisherLike
+from flex_nav.behavior.proxies import Proxies, PublisherLike
+from flex_nav.compat.flexbe_core.proxy.hub import Binding
 from flex_nav.exceptions import NotReadyError
 
 WAIT_POLL_S = 0.01  # [s] poll period of wait_for_any
@@ -26,7 +27,7 @@ class ProxyPublisher:
         """Advertise ``topic`` for this behavior (shared with its other states)."""
         self._topics[topic] = msg_type
 
-        def create(hub: ProxyHub) -> None:
+        def create(hub: Proxies) -> None:
             hub.publisher(topic, msg_type, latch=_latch, queue_size=_queue_size)
 
         self._binding.setup(create)

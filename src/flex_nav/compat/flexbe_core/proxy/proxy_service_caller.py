@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from typing import Any, Dict, Optional
 
+from flex_nav.behavior.proxies import Proxies, ServiceCallerLike
 from flex_nav.compat.flexbe_core.logger import Logger
-from flex_nav.compat.flexbe_core.proxy.hub import Binding, ProxyHub, ServiceCallerLike
+from flex_nav.compat.flexbe_core.proxy.hub import Binding
 from flex_nav.exceptions import NotReadyError
 
 CALL_SERVICE_WAIT_S = 1.0  # [s] longest wait for the service when calling it (setupService waited already)
@@ -29,7 +30,7 @@ class ProxyServiceCaller:
         """
         self._topics[topic] = msg_type
 
-        def create(hub: ProxyHub) -> None:
+        def create(hub: Proxies) -> None:
             caller = hub.service_caller(topic, msg_type)
             if wait_duration > 0 and not caller.is_available(float(wait_duration)):
                 Logger.logerr(f"Service client {topic} timed out: no service after {float(wait_duration):.1f} s")

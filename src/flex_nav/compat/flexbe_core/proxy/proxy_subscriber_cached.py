@@ -11,7 +11,8 @@ from __future__ import annotations
 
 from typing import Any, Callable, Dict, List, Optional, Tuple
 
-from flex_nav.compat.flexbe_core.proxy.hub import Binding, ProxyHub, SubscriptionLike
+from flex_nav.behavior.proxies import Proxies, SubscriptionLike
+from flex_nav.compat.flexbe_core.proxy.hub import Binding
 from flex_nav.exceptions import NotReadyError
 
 DEFAULT_BUFFER_SIZE = 100  # messages kept per buffered topic
@@ -33,7 +34,7 @@ class ProxySubscriberCached:
         """Subscribe ``topic`` (cached; ``buffered`` keeps every message until taken); ``callback(msg)`` per message."""
         self._topics[topic] = msg_type
 
-        def create(hub: ProxyHub) -> None:
+        def create(hub: Proxies) -> None:
             sub = hub.subscription(topic, msg_type, buffer_size=DEFAULT_BUFFER_SIZE if buffered else 0)
             if callback is not None:
                 sub.add_callback(callback)
