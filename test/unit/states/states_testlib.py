@@ -1,77 +1,19 @@
-"""Helpers for the state tests: run one state in the behavior executor on a ManualClock with fake proxies,
-and a kinematic robot that turns the published twists into odometry."""
+"""Helpers for the state tests: :class:`Harness` (the package's StateHarness: one state in the behavior executor on a
+ManualClock with fake proxies), a kinematic robot that turns the published twists into odometry, message builders."""
 
 from __future__ import annotations
 
 import math
-from typing import Any, Dict, List, Optional
+from typing import List, Optional
 
 import genpy
 from geometry_msgs.msg import PoseStamped, TwistStamped
 from nav_msgs.msg import Odometry, Path
 from sensor_msgs.msg import LaserScan
-from unit.states.fake_proxies import FakeProxies
 
-from flex_nav.behavior import BehaviorExecutor, BehaviorResult, LogEvent, ManualClock, State
 from flex_nav.nav.pose_checks import quaternion_of_yaw
-
-START_S = 1000.0  # [s] clock start: stamps are clearly non-zero
-
-
-class Harness:
-    """One state (or machine) as the root of a behavior, with its clock, fake proxies and recorded logs."""
-
-    def __init__(self, root: State, inputs: Optional[Dict[str, Any]] = None, **executor_kwargs: Any) -> None:
-        self.clock = ManualClock(START_S)
-        self.proxies = FakeProxies(self.clock)
-        self.root = root
-        self.executor = BehaviorExecutor(root, inputs=inputs, clock=self.clock, proxies=self.proxies,
-                                         **executor_kwargs)
-        self.logs: List[LogEvent] = []
-        self.executor.context.hooks.log.append(self.logs.append)
-        self.robot: Optional[KinematicRobot] = None
-
-    def start(self) -> Harness:
-        self.executor.start()
-        return self
-
-    def tick(self) -> bool:
-        """Run one due tick (applying commands first); True if the behavior ended."""
-        self.executor.spin_once()
-        return self.executor.status.is_terminal
-
-    def advance(self, dt_s: float) -> None:
-        """Move time on; the robot (if any) drives the last command for that long and publishes odometry."""
-        self.clock.advance(dt_s)
-        if self.robot is not None:
-            self.robot.step(dt_s)
-
-    def run(self, max_time_s: float = 60.0, step_s: Optional[float] = None) -> BehaviorResult:
-        """Tick at the root's due times (or every ``step_s``) until the behavior ends or ``max_time_s`` pass."""
-        end = self.clock.now() + max_time_s
-        while self.clock.now() <= end:
-            if self.tick():
-                return self.executor.result()
-            due = self.executor.due_s
-            if step_s is not None:
-                dt = step_s
-            else:
-                dt = due - self.clock.now() if math.isfinite(due) and due > self.clock.now() else 0.05
-            self.advance(dt)
-        raise AssertionError(f"behavior still {self.executor.status.value} after {max_time_s} s; logs: {self.texts()}")
-
-    def run_for(self, duration_s: float, step_s: float = 0.05) -> None:
-        """Tick for ``duration_s`` (the behavior must not end)."""
-        end = self.clock.now() + duration_s - 1e-9
-        while self.clock.now() < end:
-            assert not self.tick(), f"ended early: {self.executor.result()}; logs: {self.texts()}"
-            self.advance(step_s)
-
-    def texts(self, min_level: int = 0) -> List[str]:
-        return [e.message for e in self.logs if int(e.level) >= min_level]
-
-    def log_text(self) -> str:
-        return "\n".join(f"{e.level.name}: {e.message}" for e in self.logs)
+from flex_nav.testing.state_harness import START_S
+from flex_nav.testing.state_harness import StateHarness as Harness
 
 
 class KinematicRobot:

@@ -7,11 +7,11 @@ import math
 import pytest
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import LaserScan
-from unit.states.fake_proxies import FakeProxies
 from unit.states.states_testlib import Harness, KinematicRobot, odometry, path, rear_wall_scan, twists
 
 from flex_nav.behavior import Autonomy, BehaviorStatus, LogLevel, ManualClock, StateMachine
 from flex_nav.exceptions import ConfigError
+from flex_nav.testing.fake_proxies import FakeProxies
 from flex_nav_states.messages import message_age_s
 from flex_nav_states.move_distance_state import MoveDistanceState
 from flex_nav_states.pure_pursuit_state import PurePursuitState

@@ -1,9 +1,11 @@
-"""The state library as a whole: documented exactly, no rospy, engine internals untouched, the fake mirrors
-the real proxies, and every state loads from YAML parameters."""
+"""The state library as a whole: documented exactly, no rospy, engine internals untouched, one proxies port (the
+protocols, the real proxies and the shipped fakes agree), and every state loads from YAML parameters."""
 
 from __future__ import annotations
 
 import ast
+import contextlib
+import doctest
 import inspect
 import subprocess
 import sys
@@ -11,12 +13,13 @@ from pathlib import Path
 from typing import Dict, List, Tuple
 
 import pytest
-from unit.states import fake_proxies
 
 import flex_nav_states
+from flex_nav.behavior import proxies
 from flex_nav.behavior.docstring import check_state_doc, parse_state_doc
 from flex_nav.behavior.state import State
 from flex_nav.behavior.yaml_loader import load_behavior
+from flex_nav.testing import fake_proxies
 from flex_nav_states import proxy_types
 
 REPO = Path(__file__).resolve().parents[3]
@@ -123,19 +126,43 @@ def test_states_never_assign_engine_internal_attributes(module):
     assert clash == [], f"{module.name} overwrites engine attributes {clash}"
 
 
-# --- the fake proxies mirror the real ones ------------------------------------------------------------------
+# --- one proxies port: the protocols, the real proxies and the fake ones agree ----------------------------------
+# mypy checks RosProxies and FakeProxies against flex_nav.behavior.proxies.Proxies (types, arity, which parameters
+# have defaults) but compares neither parameter names nor default values, on which a state passing keywords
+# (send_goal(goal, server_timeout_s=...)) or leaving them out relies; nor the fake's methods outside the protocol
+# (shutdown, close, wait_for_server, unregister). These tests do, on the source of ros/proxies.py (no rospy here).
+
+NO_DEFAULT = "<no default>"
 
 
-def _real_methods(class_name: str) -> Dict[str, Tuple[str, ...]]:
+def _real_methods(class_name: str) -> Dict[str, Tuple[Tuple[str, object], ...]]:
+    """Public methods of a class of ros/proxies.py: name -> ((parameter, default), ...) without self."""
     tree = ast.parse(PROXIES_SRC.read_text(), str(PROXIES_SRC))
+    constants = {}
+    for node in tree.body:
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
+            with contextlib.suppress(ValueError):  # only literal constants can be defaults here
+                constants[node.targets[0].id] = ast.literal_eval(node.value)
+
+    def value(default: ast.expr) -> object:
+        return constants[default.id] if isinstance(default, ast.Name) else ast.literal_eval(default)
+
+    def params(f: ast.FunctionDef) -> Tuple[Tuple[str, object], ...]:
+        args = f.args.args[1:]
+        defaults = [NO_DEFAULT] * (len(args) - len(f.args.defaults)) + [value(d) for d in f.args.defaults]
+        return tuple((a.arg, d) for a, d in zip(args, defaults))
+
     for node in tree.body:
         if isinstance(node, ast.ClassDef) and node.name == class_name:
             return {
-                f.name: tuple(a.arg for a in f.args.args[1:])
-                for f in node.body
-                if isinstance(f, ast.FunctionDef) and not f.name.startswith("_")
+                f.name: params(f) for f in node.body if isinstance(f, ast.FunctionDef) and not f.name.startswith("_")
             }
     raise AssertionError(f"{class_name} not found in {PROXIES_SRC}")
+
+
+def _params(function: object) -> Tuple[Tuple[str, object], ...]:
+    parameters = list(inspect.signature(function).parameters.values())[1:]
+    return tuple((p.name, NO_DEFAULT if p.default is inspect.Parameter.empty else p.default) for p in parameters)
 
 
 @pytest.mark.parametrize(
@@ -147,20 +174,21 @@ def _real_methods(class_name: str) -> Dict[str, Tuple[str, ...]]:
     ],
 )
 def test_fake_proxies_mirror_ros_proxies(real, fake):
-    for name, args in _real_methods(real).items():
+    for name, params in _real_methods(real).items():
         if name in ("wait_for_message", "wait_for_result"):  # blocking helpers, not for states
             continue
         assert hasattr(fake, name), f"{fake.__name__} lacks {name}"
-        fake_args = tuple(list(inspect.signature(getattr(fake, name)).parameters)[1:])
-        assert fake_args == args, f"{fake.__name__}.{name}{fake_args} != {real}.{name}{args}"
+        fake_params = _params(getattr(fake, name))
+        assert fake_params == params, f"{fake.__name__}.{name}{fake_params} != {real}.{name}{params}"
 
 
 @pytest.mark.parametrize(
     ("protocol", "real"),
     [
-        (proxy_types.SubscriptionLike, "Subscription"),
-        (proxy_types.ActionClientLike, "ActionClientProxy"),
-        (proxy_types.ProxiesLike, "RosProxies"),
+        (proxies.SubscriptionLike, "Subscription"),
+        (proxies.ActionClientLike, "ActionClientProxy"),
+        (proxies.ServiceCallerLike, "ServiceCallerProxy"),
+        (proxies.Proxies, "RosProxies"),
     ],
 )
 def test_proxy_protocols_match_ros_proxies(protocol, real):
@@ -169,8 +197,31 @@ def test_proxy_protocols_match_ros_proxies(protocol, real):
         if name.startswith("_") or not callable(member):
             continue
         assert name in methods, f"{protocol.__name__}.{name} is not a method of {real}"
-        args = tuple(list(inspect.signature(member).parameters)[1:])
-        assert args == methods[name], f"{protocol.__name__}.{name}{args} != {real}.{name}{methods[name]}"
+        params = _params(member)
+        assert params == methods[name], f"{protocol.__name__}.{name}{params} != {real}.{name}{methods[name]}"
+
+
+def test_state_library_proxy_types_are_the_engine_protocols():
+    for name in ("Proxies", "PublisherLike", "SubscriptionLike", "ActionClientLike", "ServiceCallerLike"):
+        assert getattr(proxy_types, name) is getattr(proxies, name), name
+    assert proxy_types.ProxiesLike is proxies.Proxies  # the former name
+
+
+def test_the_test_doubles_load_no_rospy():
+    code = (
+        "import sys, flex_nav.testing.state_harness, flex_nav.testing.fake_proxies\n"
+        "bad = sorted(m for m in sys.modules if m.split('.')[0] in ('rospy', 'actionlib', 'tf2_ros'))\n"
+        "print(bad)\n"
+        "sys.exit(1 if bad else 0)\n"
+    )
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120, check=False)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+
+
+def test_the_fake_proxies_example_runs():
+    outcome = doctest.testmod(fake_proxies, verbose=False, report=True)
+    assert outcome.attempted > 0
+    assert outcome.failed == 0, "the example in flex_nav.testing.fake_proxies' docstring fails (see the output)"
 
 
 # --- loading from a behavior file ---------------------------------------------------------------------------

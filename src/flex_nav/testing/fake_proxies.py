@@ -1,14 +1,43 @@
-"""A test double of flex_nav.ros.proxies.RosProxies: no ROS, time from an injected clock.
+"""Test doubles of the behavior's proxies (:class:`flex_nav.behavior.proxies.Proxies`): no ROS, no master,
+time from the test's clock. Test your own states with them, as the state library's tests do.
 
-- :class:`FakePublisher` records every published message with the clock time (``published``).
+- :class:`FakeProxies` is what the runner would inject (``BehaviorContext.proxies``); it keeps what the
+  states made by name: ``publishers``, ``subscriptions``, ``clients`` (``pub``/``sub`` raise KeyError naming
+  the known ones; ``client`` makes one so the test can script it before the state asks for it).
+- :class:`FakePublisher` records every published message with the clock time (``published``, ``messages``).
 - :class:`FakeSubscription` takes messages from the test (``inject``); ``last``/``age_s``/``pop_buffered``
   behave as the real one, with arrival ages on the injected clock instead of wall time.
 - :class:`FakeActionClient` is scripted: ``available_at_s`` says when its server "connects"; each sent goal
-  takes the next queued :class:`Response` (after its ``delay_s`` on the clock) or stays active until the test
-  calls ``finish``; ``cancel`` is recorded and, by default, ends the goal as PREEMPTED like a real server.
+  takes the next queued :class:`Response` (``respond``, answered after its ``delay_s`` on the clock) or stays
+  active until the test calls ``finish``; ``cancel`` is recorded and, by default, ends the goal as PREEMPTED
+  like a real server. Service callers are not faked (``service_caller`` raises NotImplementedError).
 
-Same method names and signatures as the real proxies (checked by test_fake_proxies_mirror_ros_proxies), and
-the same "one type per topic/action" rule.
+A user's state tested on a :class:`~flex_nav.behavior.ManualClock` with :class:`FakeProxies`, run by
+:class:`flex_nav.testing.state_harness.StateHarness` (which holds both)::
+
+    >>> from std_msgs.msg import Bool, String
+    >>> from flex_nav.behavior import State
+    >>> from flex_nav.testing.state_harness import StateHarness
+    >>> class Greet(State):  # says hello once "go" is True
+    ...     def __init__(self): super().__init__(outcomes=["done"])
+    ...     def on_start(self):
+    ...         p = self.context.require_proxies()
+    ...         self.go, self.out = p.subscription("go", Bool), p.publisher("out", String)
+    ...     def execute(self, userdata):
+    ...         if self.go.has_msg() and self.go.last().data:
+    ...             self.out.publish(String(data="hello"))
+    ...             return "done"
+    ...         return None
+    >>> h = StateHarness(Greet()).start()
+    >>> h.run_for(1.0)  # ticks for 1 s of the ManualClock: nothing heard, so it keeps running
+    >>> h.proxies.sub("go").inject(Bool(data=True))
+    >>> h.run().outcome, [m.data for m in h.proxies.pub("out").messages]
+    ('done', ['hello'])
+
+Same method names and signatures as :mod:`flex_nav.ros.proxies` (mypy checks :class:`FakeProxies` against
+:class:`~flex_nav.behavior.proxies.Proxies` at the end of this module; the unit tests also compare parameter
+names and defaults with ``RosProxies``), and the same "one type per topic/action" rule. Nothing here
+imports rospy: only the actionlib_msgs message module, for GoalStatus.
 """
 
 from __future__ import annotations
@@ -16,24 +45,34 @@ from __future__ import annotations
 import collections
 import math
 from dataclasses import dataclass
-from typing import Any, Callable, Deque, Dict, List, Optional, Tuple
+from typing import TYPE_CHECKING, Any, Callable, Deque, Dict, List, Optional, Tuple
 
 from actionlib_msgs.msg import GoalStatus
 
+from flex_nav.behavior.clock import Clock
+from flex_nav.behavior.proxies import ServiceCallerLike
 from flex_nav.exceptions import ConfigError, NotReadyError
+
+if TYPE_CHECKING:
+    from flex_nav.behavior.clock import ManualClock
+    from flex_nav.behavior.proxies import Proxies
 
 
 class FakePublisher:
-    def __init__(self, topic: str, msg_type: type, clock: Any) -> None:
+    def __init__(self, topic: str, msg_type: type, clock: Clock) -> None:
         self.topic = topic
         self.msg_type = msg_type
         self._clock = clock
-        self.published: List[Tuple[float, Any]] = []
+        self.published: List[Tuple[float, Any]] = []  # ([s] clock time, message) of every publish
+        self.connections = 0  # subscribers get_num_connections reports (set by the test)
 
     def publish(self, msg: Any) -> None:
         if not isinstance(msg, self.msg_type):
             raise TypeError(f"{self.topic}: published {type(msg).__name__}, expected {self.msg_type.__name__}")
         self.published.append((self._clock.now(), msg))
+
+    def get_num_connections(self) -> int:
+        return self.connections
 
     @property
     def messages(self) -> List[Any]:
@@ -47,7 +86,7 @@ class FakePublisher:
 
 
 class FakeSubscription:
-    def __init__(self, topic: str, msg_type: type, clock: Any, buffer_size: int = 0) -> None:
+    def __init__(self, topic: str, msg_type: type, clock: Clock, buffer_size: int = 0) -> None:
         self.topic = topic
         self.msg_type = msg_type
         self._clock = clock
@@ -118,7 +157,7 @@ class Response:
 
 
 class FakeActionClient:
-    def __init__(self, name: str, action_type: type, clock: Any) -> None:
+    def __init__(self, name: str, action_type: type, clock: Clock) -> None:
         self.name = name
         self.action_type = action_type
         self._clock = clock
@@ -221,7 +260,7 @@ class FakeActionClient:
 class FakeProxies:
     """The proxies of one behavior, with the test's clock; ``publishers``/``subscriptions``/``clients`` by name."""
 
-    def __init__(self, clock: Any) -> None:
+    def __init__(self, clock: Clock) -> None:
         self.clock = clock
         self.publishers: Dict[str, FakePublisher] = {}
         self.subscriptions: Dict[str, FakeSubscription] = {}
@@ -253,7 +292,7 @@ class FakeProxies:
         client = self.clients[name] = FakeActionClient(name, action_type, self.clock)
         return client
 
-    def service_caller(self, name: str, srv_type: type) -> Any:
+    def service_caller(self, name: str, srv_type: type) -> ServiceCallerLike:
         raise NotImplementedError("FakeProxies has no service callers (no flex_nav state uses one)")
 
     def get_publisher(self, topic: str) -> Optional[FakePublisher]:
@@ -265,7 +304,7 @@ class FakeProxies:
     def get_action_client(self, name: str) -> Optional[FakeActionClient]:
         return self.clients.get(name)
 
-    def get_service_caller(self, name: str) -> Any:
+    def get_service_caller(self, name: str) -> Optional[ServiceCallerLike]:
         return None
 
     def shutdown(self) -> None:
@@ -300,3 +339,7 @@ def _check_type(kind: str, name: str, known: type, wanted: type) -> None:
             f"{kind} {name} is already used with type {known.__name__} in this behavior; cannot use it as "
             f"{wanted.__name__}"
         )
+
+
+if TYPE_CHECKING:  # mypy: FakeProxies (and so its publisher, subscription, action client) is a Proxies
+    _CONFORMS: Proxies = FakeProxies(ManualClock())
