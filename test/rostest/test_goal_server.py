@@ -17,7 +17,7 @@ from readiness import wait_until_active
 
 from flex_nav.action_types import action_type
 from flex_nav.msg import FollowPathAction, FollowPathGoal, FollowPathResult
-from flex_nav.ros.goal_server import RESULT_SUCCEEDED, GoalServer
+from flex_nav.ros.goal_server import GoalOutcome, GoalServer
 from flex_nav.ros.node import init_node
 from flex_nav.ros.proxies import ActionClientProxy
 
@@ -46,7 +46,7 @@ class Script:
         behaviour = len(ticket.goal.path.poses)
         self.log("run", ticket.number, threading.current_thread().name)
         if behaviour == SUCCEED:
-            self.server.finish(ticket, RESULT_SUCCEEDED, self.server.result("SUCCESS", "done"))
+            self.server.finish(ticket, GoalOutcome.SUCCEEDED, self.server.result("SUCCESS", "done"))
         elif behaviour == RAISE:
             raise ValueError("boom")
         elif behaviour == WAIT:

@@ -47,7 +47,7 @@ from flex_nav.nodes.get_path_server import warm_up
 from flex_nav.ros.conversions import path_msg, pose_of_xy_yaw
 from flex_nav.ros.costmap_ros import CostmapROS
 from flex_nav.ros.frames import path_in_frame
-from flex_nav.ros.goal_server import RESULT_ABORTED, RESULT_SUCCEEDED, GoalServer, GoalTicket
+from flex_nav.ros.goal_server import GoalOutcome, GoalServer, GoalTicket
 from flex_nav.ros.nav_params import planner_params
 from flex_nav.ros.params import param_float, reject_unknown
 from flex_nav.ros.ros_clock import RosClock
@@ -101,9 +101,11 @@ class FollowServer:
             self._wake.notify_all()
 
     # ------------------------------------------------------------------ goals
-    def _end(self, ticket: GoalTicket, outcome: str, reason: str, pose: Optional[Tuple[float, float, float]]) -> None:
-        code = "SUCCESS" if outcome == RESULT_SUCCEEDED else "FAILURE"
-        (rospy.loginfo if outcome == RESULT_SUCCEEDED else rospy.logwarn)(
+    def _end(
+        self, ticket: GoalTicket, outcome: GoalOutcome, reason: str, pose: Optional[Tuple[float, float, float]]
+    ) -> None:
+        code = "SUCCESS" if outcome is GoalOutcome.SUCCEEDED else "FAILURE"
+        (rospy.loginfo if outcome is GoalOutcome.SUCCEEDED else rospy.logwarn)(
             f"{self.name}: goal #{ticket.number}: {code}: {reason}")
         result_pose = pose_of_xy_yaw(*pose) if pose is not None else pose_of_xy_yaw(math.nan, math.nan, 0.0)
         self.server.finish(ticket, outcome, self.server.result(code, reason, pose=result_pose))
@@ -118,26 +120,26 @@ class FollowServer:
             try:
                 progress = self._progress_of(ticket.goal.path)
             except (ConfigError, NotReadyError) as err:
-                self._end(ticket, RESULT_ABORTED, f"bad path: {err}", None)
+                self._end(ticket, GoalOutcome.ABORTED, f"bad path: {err}", None)
                 return
         else:
             topic = ticket.goal.topic.data
             problem = topic_name_problem(topic)
             if problem is not None:
-                self._end(ticket, RESULT_ABORTED, f"bad topic in the goal: {problem}", None)
+                self._end(ticket, GoalOutcome.ABORTED, f"bad topic in the goal: {problem}", None)
                 return
             fresh_since = fresh_from(ticket.goal.newer_than)
             source = self._topics.subscribe(topic)
             if not self._topics.wait_first(source, self.topic_timeout_s, ticket.cancelled, newer_than=fresh_since):
                 if not ticket.cancelled.is_set():
-                    self._end(ticket, RESULT_ABORTED, source.no_path_reason(self.topic_timeout_s), None)
+                    self._end(ticket, GoalOutcome.ABORTED, source.no_path_reason(self.topic_timeout_s), None)
                 return
             used = source.count
             assert source.msg is not None
             try:
                 progress = self._progress_of(source.msg)
             except (ConfigError, NotReadyError) as err:
-                self._end(ticket, RESULT_ABORTED, f"bad path on {source.topic}: {err}", None)
+                self._end(ticket, GoalOutcome.ABORTED, f"bad path on {source.topic}: {err}", None)
                 return
         self._follow(ticket, progress, source, used if source is not None else 0)
 
@@ -152,7 +154,7 @@ class FollowServer:
                 while not ticket.cancelled.is_set() and not rospy.is_shutdown():
                     now_s = self.clock.now()
                     if self.clock.observe(watch) is ClockChange.JUMPED_BACK:
-                        self._end(ticket, RESULT_ABORTED, f"ROS time moved backwards by {watch.jump_s:.2f} s (a "
+                        self._end(ticket, GoalOutcome.ABORTED, f"ROS time moved backwards by {watch.jump_s:.2f} s (a "
                                                           "restarted simulation or a looped bag): goal dropped", pose)
                         return
                     if now_s >= next_due_s:
@@ -166,7 +168,7 @@ class FollowServer:
                 try:
                     progress = self._progress_of(source.msg)
                 except (ConfigError, NotReadyError) as err:
-                    self._end(ticket, RESULT_ABORTED, f"bad path on {source.topic}: {err}", pose)
+                    self._end(ticket, GoalOutcome.ABORTED, f"bad path on {source.topic}: {err}", pose)
                     return
             try:
                 pose = self.costmap.robot_pose.pose(timeout_s=self.transform_timeout_s)
@@ -174,14 +176,15 @@ class FollowServer:
             except NotReadyError as err:
                 state, problem = None, f"robot pose unknown: {err}"
             if state is not None and state.done:
-                self._end(ticket, RESULT_SUCCEEDED,
+                self._end(ticket, GoalOutcome.SUCCEEDED,
                           f"reached the end of the path ({state.distance_to_end:.3f} m from it)", pose)
                 return
             now_s = self.clock.now()
             if problem is None or now_s < last_plan_s:  # (ROS time went back: start the count afresh)
                 last_plan_s = now_s
             elif now_s - last_plan_s >= self.failure_timeout_s:
-                self._end(ticket, RESULT_ABORTED, f"no local plan for {now_s - last_plan_s:.1f} s: {problem}", pose)
+                reason = f"no local plan for {now_s - last_plan_s:.1f} s: {problem}"
+                self._end(ticket, GoalOutcome.ABORTED, reason, pose)
                 return
             else:
                 rospy.logwarn_throttle(1.0, f"{self.name}: {problem}")

@@ -34,7 +34,7 @@ from flex_nav.nav.planning.planner import GridPlanner, PlanResult, PlanStatus
 from flex_nav.ros.conversions import path_msg, pose_of_xy_yaw
 from flex_nav.ros.costmap_ros import CostmapROS
 from flex_nav.ros.frames import goal_in_frame
-from flex_nav.ros.goal_server import RESULT_ABORTED, RESULT_SUCCEEDED, GoalServer, GoalTicket
+from flex_nav.ros.goal_server import GoalOutcome, GoalServer, GoalTicket
 from flex_nav.ros.nav_params import planner_params
 from flex_nav.ros.params import param_float, reject_unknown
 
@@ -85,7 +85,7 @@ class GetPathServer:
         result = self.server.result(code, message, plan=plan if plan is not None else Path())
         if plan is not None:
             self.plan_publisher.publish(plan)
-        outcome = RESULT_SUCCEEDED if code == "SUCCESS" else RESULT_ABORTED
+        outcome = GoalOutcome.SUCCEEDED if code == "SUCCESS" else GoalOutcome.ABORTED
         log = rospy.loginfo if code == "SUCCESS" else rospy.logwarn
         log(f"{self.name}: goal #{ticket.number}: {code}: {message} ({1e3 * (time.monotonic() - started):.1f} ms)")
         self.server.finish(ticket, outcome, result)

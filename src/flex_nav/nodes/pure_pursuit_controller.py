@@ -63,7 +63,7 @@ from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.ros.conversions import pose_of_xy_yaw
 from flex_nav.ros.costmap_ros import CostmapROS
 from flex_nav.ros.frames import frame_pose, path_in_frame
-from flex_nav.ros.goal_server import RESULT_ABORTED, RESULT_SUCCEEDED, GoalServer, GoalTicket
+from flex_nav.ros.goal_server import GoalOutcome, GoalServer, GoalTicket
 from flex_nav.ros.heartbeat import HeartbeatListener
 from flex_nav.ros.moving_obstacles_ros import MovingObstaclesROS, yield_rule
 from flex_nav.ros.params import param_bool, param_float, param_str, reject_unknown
@@ -234,15 +234,15 @@ class PurePursuitController:
         self.follower.stop()
 
     # ------------------------------------------------------------------ goals
-    def _end(self, ticket: GoalTicket, outcome: str, reason: str) -> None:
+    def _end(self, ticket: GoalTicket, outcome: GoalOutcome, reason: str) -> None:
         self._publish(None, 0.0, 0.0)
         self.follower.stop()
         try:
             pose = pose_of_xy_yaw(*self._robot_pose())
         except NotReadyError:
             pose = pose_of_xy_yaw(math.nan, math.nan, 0.0)
-        code = "SUCCESS" if outcome == RESULT_SUCCEEDED else "FAILURE"
-        (rospy.loginfo if outcome == RESULT_SUCCEEDED else rospy.logwarn)(
+        code = "SUCCESS" if outcome is GoalOutcome.SUCCEEDED else "FAILURE"
+        (rospy.loginfo if outcome is GoalOutcome.SUCCEEDED else rospy.logwarn)(
             f"{self.name}: goal #{ticket.number}: {code}: {reason}")
         self.server.finish(ticket, outcome, self.server.result(code, reason, pose=pose))
 
@@ -252,20 +252,20 @@ class PurePursuitController:
                 self.follower.set_path(path_in_frame(self.tf_buffer, ticket.goal.path, self.global_frame,
                                                      self.transform_timeout_s))
             except (ConfigError, NotReadyError) as err:
-                self._end(ticket, RESULT_ABORTED, f"bad path: {err}")
+                self._end(ticket, GoalOutcome.ABORTED, f"bad path: {err}")
                 return
             self._control(ticket, None)
             return
         topic = ticket.goal.topic.data
         problem = topic_name_problem(topic)
         if problem is not None:
-            self._end(ticket, RESULT_ABORTED, f"bad topic in the goal: {problem}")
+            self._end(ticket, GoalOutcome.ABORTED, f"bad topic in the goal: {problem}")
             return
         fresh_since = fresh_from(ticket.goal.newer_than)
         source = self._topics.subscribe(topic)
         if not self._topics.wait_first(source, self.topic_timeout_s, ticket.cancelled, newer_than=fresh_since):
             if not ticket.cancelled.is_set():
-                self._end(ticket, RESULT_ABORTED, source.no_path_reason(self.topic_timeout_s))
+                self._end(ticket, GoalOutcome.ABORTED, source.no_path_reason(self.topic_timeout_s))
             return
         self._control(ticket, source)
 
@@ -308,11 +308,11 @@ class PurePursuitController:
                 continue
             if wake is Wake.JUMPED_BACK:
                 self.follower.watchdog.restart(self.clock.now())
-                self._end(ticket, RESULT_ABORTED, f"ROS time moved backwards by {self.clock_watch.jump_s:.2f} s "
+                self._end(ticket, GoalOutcome.ABORTED, f"ROS time moved backwards by {self.clock_watch.jump_s:.2f} s "
                                                   "(a restarted simulation or a looped bag): goal dropped")
                 return
             if wake is Wake.LINK_LOST:
-                self._end(ticket, RESULT_ABORTED, self.heartbeat.why_lost())
+                self._end(ticket, GoalOutcome.ABORTED, self.heartbeat.why_lost())
                 return
             with self._wake:
                 used_odom = self._odom_count
@@ -326,12 +326,12 @@ class PurePursuitController:
                     self.follower.set_path(path_in_frame(self.tf_buffer, path_msg, self.global_frame,
                                                          self.transform_timeout_s))
                 except (ConfigError, NotReadyError) as err:
-                    self._end(ticket, RESULT_ABORTED, f"bad path on {source.topic if source else '?'}: {err}")
+                    self._end(ticket, GoalOutcome.ABORTED, f"bad path on {source.topic if source else '?'}: {err}")
                     return
             decision = self._tick()
             if decision.outcome is not Outcome.RUNNING:
-                self._end(ticket, RESULT_SUCCEEDED if decision.outcome is Outcome.SUCCEEDED else RESULT_ABORTED,
-                          decision.reason)
+                succeeded = decision.outcome is Outcome.SUCCEEDED
+                self._end(ticket, GoalOutcome.SUCCEEDED if succeeded else GoalOutcome.ABORTED, decision.reason)
                 return
             if not self._publish(ticket, decision.v, decision.w):
                 self.follower.stop()

@@ -31,10 +31,15 @@ moved backwards (a restarted simulation, a looped bag) it would cancel every new
 timeline's last goal is remembered. A goal stamped more than ``OLD_TIMELINE_TOLERANCE_S`` ahead of this node's
 clock is taken for the old timeline's: a newer-but-earlier goal ends it (aborted with the reason, if still
 running) and is taken.
+
+What of actionlib this needs beyond its public API (holding its two locks, a goal's sender, the status topic's
+connections, the goal handles SimpleActionServer remembers, a hook ahead of its stamp check) is gathered in
+:mod:`flex_nav.ros.actionlib_internals`, each item with the reason no public API serves.
 """
 
 from __future__ import annotations
 
+import enum
 import threading
 import time
 import traceback
@@ -45,11 +50,17 @@ import rospy
 
 from flex_nav.action_types import ActionType
 from flex_nav.exceptions import ConfigError
+from flex_nav.ros.actionlib_internals import RememberedGoal, SimpleServerInternals
 
-RESULT_SUCCEEDED = "succeeded"
-RESULT_ABORTED = "aborted"
 CLIENT_CHECK_PERIOD_S = 0.1  # [s] how often the client of the running goal is looked for
 OLD_TIMELINE_TOLERANCE_S = 1.0  # [s] a goal stamped this far ahead of the node's clock is from before a jump back
+
+
+class GoalOutcome(enum.Enum):
+    """How the worker ends a goal (:meth:`GoalServer.finish`); cancels and replacements preempt it instead."""
+
+    SUCCEEDED = "succeeded"
+    ABORTED = "aborted"
 
 
 class GoalTicket:
@@ -98,9 +109,9 @@ class GoalServer:
         self._count = 0
         self._stopping = False
         self.server = actionlib.SimpleActionServer(name, spec.action, auto_start=False)
+        self._internals = SimpleServerInternals(self.server)
         self.server.register_goal_callback(self._on_goal)
-        self._simple_goal_callback = self.server.action_server.goal_callback
-        self.server.action_server.goal_callback = self._on_goal_arrival
+        self._internals.intercept_goals(self._on_goal_arrival)
         self.server.register_preempt_callback(self._on_preempt)
         self._worker = threading.Thread(target=self._work, name=f"goals:{name}", daemon=True)
         self._client_watch = threading.Thread(target=self._watch_clients, name=f"clients:{name}", daemon=True)
@@ -126,23 +137,24 @@ class GoalServer:
             setattr(result, key, value)
         return result
 
-    def finish(self, ticket: GoalTicket, outcome: str, result: Any) -> bool:
-        """End ``ticket``'s goal as ``"succeeded"`` or ``"aborted"``; False if it is no longer the current goal."""
-        with self.server.action_server.lock, self.server.lock:  # actionlib's own order
+    def finish(self, ticket: GoalTicket, outcome: GoalOutcome, result: Any) -> bool:
+        """End ``ticket``'s goal as ``outcome``; False if it is no longer the current goal."""
+        with self._internals.locked():
             if ticket is not self._current or ticket.cancelled.is_set() or not self.server.is_active():
                 return False
-            if outcome == RESULT_SUCCEEDED:
+            if outcome is GoalOutcome.SUCCEEDED:
                 self.server.set_succeeded(result, result.message)
-            elif outcome == RESULT_ABORTED:
+            elif outcome is GoalOutcome.ABORTED:
                 self.server.set_aborted(result, result.message)
             else:
-                raise ValueError(f"outcome {outcome!r} is not valid (valid: {RESULT_SUCCEEDED}, {RESULT_ABORTED})")
+                valid = ", ".join(str(member) for member in GoalOutcome)
+                raise ValueError(f"outcome {outcome!r} is not valid (valid: {valid})")
             self._current = None
             return True
 
     def feedback(self, ticket: GoalTicket, feedback: Any) -> None:
         """Publish feedback for ``ticket``'s goal if it is still the current one."""
-        with self.server.action_server.lock, self.server.lock:
+        with self._internals.locked():
             if ticket is self._current and not ticket.cancelled.is_set() and self.server.is_active():
                 self.server.publish_feedback(feedback)
 
@@ -153,26 +165,22 @@ class GoalServer:
     def _on_goal_arrival(self, incoming: Any) -> None:
         """Every goal, before SimpleActionServer's stamp check: forget goals of an old timeline first."""
         self._forget_old_timeline(incoming.get_goal_id().stamp)
-        self._simple_goal_callback(incoming)
 
     def _forget_old_timeline(self, stamp: rospy.Time) -> None:
         ahead_of = rospy.Time.now() + rospy.Duration(OLD_TIMELINE_TOLERANCE_S)
-        for attr in ("current_goal", "next_goal"):
-            handle = getattr(self.server, attr)
-            if handle.get_goal() is None:
+        for which in RememberedGoal:
+            old_stamp = self._internals.remembered_stamp(which)
+            if old_stamp is None or not (stamp < old_stamp and old_stamp > ahead_of):
                 continue
-            old_stamp = handle.get_goal_id().stamp
-            if not (stamp < old_stamp and old_stamp > ahead_of):
-                continue
-            with self.server.lock:
-                if attr == "current_goal" and self.server.is_active():
+            with self._internals.locked():  # (the ActionServer's lock is held already: this adds the simple one)
+                if which is RememberedGoal.CURRENT and self.server.is_active():
                     reason = "ROS time moved backwards: the goal belongs to the old timeline"
                     if self._current is not None:
                         self._stop(self._current, replaced=False)
                         self._current = None
                     self.server.set_aborted(self.result("FAILURE", reason), reason)
                     rospy.logwarn(f"{self.name}: {reason}; aborted it for a new goal")
-                setattr(self.server, attr, actionlib.ServerGoalHandle())
+                self._internals.forget(which)
 
     def _on_goal(self) -> None:
         goal = self.server.accept_new_goal()
@@ -180,20 +188,13 @@ class GoalServer:
             return
         with self._cond:
             self._count += 1
-            ticket = GoalTicket(goal, self._count, self._sender_of_new_goal())
+            ticket = GoalTicket(goal, self._count, self._internals.sender_of_current_goal())
             self._current = ticket
             if self.server.is_preempt_requested():  # cancelled between arrival and acceptance
                 self._preempt(ticket, replaced=False)
                 return
             self._pending = ticket
             self._cond.notify_all()
-
-    def _sender_of_new_goal(self) -> str:
-        """The node that published the goal just accepted (rospy keeps each message's connection header)."""
-        tracker = getattr(self.server.current_goal, "status_tracker", None)
-        header = getattr(getattr(tracker, "goal", None), "_connection_header", None)
-        sender = header.get("callerid", "") if isinstance(header, dict) else ""
-        return sender if isinstance(sender, str) else ""
 
     def _on_preempt(self) -> None:
         ticket = self._current
@@ -220,11 +221,6 @@ class GoalServer:
                 rospy.logerr(f"{self.name}: error while stopping goal #{ticket.number}: {err}")
 
     # ------------------------------------------------------------------ client watch thread
-    def _status_connections(self) -> list:
-        """(connection id, caller id) of every node connected to the status topic."""
-        impl = getattr(self.server.action_server.status_pub, "impl", None)
-        return [(info[0], info[1]) for info in impl.get_stats_info()] if impl is not None else []
-
     def _watch_clients(self) -> None:
         while not self._stopping and not rospy.is_shutdown():
             time.sleep(CLIENT_CHECK_PERIOD_S)  # wall-clock polling; the timeout itself runs on ROS time
@@ -238,7 +234,7 @@ class GoalServer:
         if ticket is None or not ticket.sender or ticket.cancelled.is_set():
             return
         now_s = rospy.get_time()
-        ids = [cid for cid, caller in self._status_connections() if caller == ticket.sender]
+        ids = [cid for cid, caller in self._internals.status_connections() if caller == ticket.sender]
         if ticket.sender_connection is None:
             if ids:
                 ticket.sender_connection = ids[0]
@@ -260,7 +256,7 @@ class GoalServer:
         """Stop and abort ``ticket``'s goal: the node that sent it is gone."""
         reason = (f"the client {ticket.sender} that sent this goal is gone "
                   f"(its connection closed {self.client_timeout_s:.1f} s ago)")
-        with self.server.action_server.lock, self.server.lock:  # actionlib's own order
+        with self._internals.locked():
             if ticket is not self._current or ticket.cancelled.is_set() or not self.server.is_active():
                 return
             self._stop(ticket, replaced=False)
@@ -287,6 +283,6 @@ class GoalServer:
                         self._on_error(ticket, err)
                     except Exception as inner:
                         rospy.logerr(f"{self.name}: error handler failed too: {inner}")
-                self.finish(ticket, RESULT_ABORTED, self.result("FAILURE", f"internal error: {err!r}"))
-            if self.finish(ticket, RESULT_ABORTED, self.result("FAILURE", "the server ended without a result")):
+                self.finish(ticket, GoalOutcome.ABORTED, self.result("FAILURE", f"internal error: {err!r}"))
+            if self.finish(ticket, GoalOutcome.ABORTED, self.result("FAILURE", "the server ended without a result")):
                 rospy.logerr(f"{self.name}: goal #{ticket.number} ended without a result (a bug); aborted it")
