@@ -25,35 +25,30 @@ planner usually takes ``lethal_cost: 254`` so that a robot inside the inscribed 
 
 from __future__ import annotations
 
-import math
-import threading
 import time
-from typing import Any, Optional, Tuple
+from typing import Optional, Tuple
 
 import numpy as np
 import rospy
 import tf2_ros
 from nav_msgs.msg import Path
 
-from flex_nav.action_types import action_type
 from flex_nav.exceptions import ConfigError, NotReadyError
-from flex_nav.msg import FollowPathFeedback, FollowTopicFeedback
 from flex_nav.nav.control.clock_watch import ClockChange, ClockWatch
 from flex_nav.nav.control.progress import PathProgress, Progress
-from flex_nav.nav.control.topic_name import topic_name_problem
 from flex_nav.nav.costmap.costmap_grid import FREE
 from flex_nav.nav.planning.planner import GridPlanner
+from flex_nav.nodes.follow_base import FollowNode, GoalPath, GoalSource, Pose2D, bad_path
 from flex_nav.nodes.get_path_server import warm_up
-from flex_nav.ros.conversions import path_msg, pose_of_xy_yaw
+from flex_nav.ros.conversions import path_msg
 from flex_nav.ros.costmap_ros import CostmapROS
 from flex_nav.ros.frames import path_in_frame
-from flex_nav.ros.goal_server import GoalOutcome, GoalServer, GoalTicket
+from flex_nav.ros.goal_server import GoalOutcome, GoalTicket
 from flex_nav.ros.nav_params import planner_params
-from flex_nav.ros.params import param_float, reject_unknown
+from flex_nav.ros.params import param_float
 from flex_nav.ros.ros_clock import RosClock
-from flex_nav.ros.topic_path import TopicPath, TopicPaths, fresh_from
+from flex_nav.ros.topic_path import TopicPath, TopicPaths
 
-SOURCES = ("path", "topic")
 PARAMETERS = (
     "global_frame", "robot_base_frame", "lookahead_distance", "planner_frequency", "goal_tolerance",
     "failure_timeout", "topic_timeout", "transform_timeout", "local_costmap", "planner", "client_timeout",
@@ -61,15 +56,11 @@ PARAMETERS = (
 CLOCK_POLL_S = 0.01  # [s] wall: on simulated time, how often the replanning loop reads ROS time
 
 
-class FollowServer:
-    """One follow server node; ``source`` is "path" (FollowPath) or "topic" (FollowTopic)."""
+class FollowServer(FollowNode):
+    """One follow server node, serving FollowPath or FollowTopic as ``source`` says."""
 
-    def __init__(self, source: str) -> None:
-        if source not in SOURCES:
-            raise ConfigError(f"follow server source {source!r} is not valid (valid: {', '.join(SOURCES)})")
-        self.source = source
-        self.name = rospy.get_name()
-        reject_unknown("~", PARAMETERS)
+    def __init__(self, source: GoalSource) -> None:
+        super().__init__(source, PARAMETERS)
         self.lookahead_distance = param_float("~lookahead_distance", 1.5, 0.05, 1000.0)
         self.period_s = 1.0 / param_float("~planner_frequency", 2.0, 0.05, 100.0)
         self.goal_tolerance = param_float("~goal_tolerance", 0.25, 0.001, 100.0)
@@ -84,78 +75,40 @@ class FollowServer:
         self.costmap = CostmapROS("local_costmap", self.tf_buffer, rolling_default=True, static_default=True)
         self.global_frame = self.costmap.global_frame
         self.clock = RosClock(poll_s=CLOCK_POLL_S)
-        self._wake = threading.Condition()
         self._topics = TopicPaths(self._wake, self.clock)
         # not latched: a stale local plan must not steer the controller of a new goal
         self.plan_publisher = rospy.Publisher("~plan", Path, queue_size=1)
         self.costmap.serve_clear_costmap(self.name + "/clear_costmap")
-        spec = action_type("FollowPath" if source == "path" else "FollowTopic")
-        self.server = GoalServer(self.name, spec, self._run, on_cancel=self._on_cancel,
-                                 client_timeout_s=param_float("~client_timeout", 2.0, 0.0, 600.0))
-        self.server.start()
+        spec = self._serve()
         rospy.loginfo(f"{self.name}: {spec.name}, lookahead {self.lookahead_distance:.2f} m, "
                       f"replanning at {1.0 / self.period_s:.1f} Hz in '{self.global_frame}'")
 
-    def _on_cancel(self, _ticket: GoalTicket, _replaced: bool) -> None:
-        with self._wake:
-            self._wake.notify_all()
-
     # ------------------------------------------------------------------ goals
-    def _end(
-        self, ticket: GoalTicket, outcome: GoalOutcome, reason: str, pose: Optional[Tuple[float, float, float]]
-    ) -> None:
-        code = "SUCCESS" if outcome is GoalOutcome.SUCCEEDED else "FAILURE"
-        (rospy.loginfo if outcome is GoalOutcome.SUCCEEDED else rospy.logwarn)(
-            f"{self.name}: goal #{ticket.number}: {code}: {reason}")
-        result_pose = pose_of_xy_yaw(*pose) if pose is not None else pose_of_xy_yaw(math.nan, math.nan, 0.0)
-        self.server.finish(ticket, outcome, self.server.result(code, reason, pose=result_pose))
-
     def _progress_of(self, msg: Path) -> PathProgress:
         poses = path_in_frame(self.tf_buffer, msg, self.global_frame, self.transform_timeout_s)
         return PathProgress(poses, self.lookahead_distance, self.goal_tolerance)
 
-    def _run(self, ticket: GoalTicket) -> None:
-        source: Optional[TopicPath] = None
-        if self.source == "path":
-            try:
-                progress = self._progress_of(ticket.goal.path)
-            except (ConfigError, NotReadyError) as err:
-                self._end(ticket, GoalOutcome.ABORTED, f"bad path: {err}", None)
-                return
-        else:
-            topic = ticket.goal.topic.data
-            problem = topic_name_problem(topic)
-            if problem is not None:
-                self._end(ticket, GoalOutcome.ABORTED, f"bad topic in the goal: {problem}", None)
-                return
-            fresh_since = fresh_from(ticket.goal.newer_than)
-            source = self._topics.subscribe(topic)
-            if not self._topics.wait_first(source, self.topic_timeout_s, ticket.cancelled, newer_than=fresh_since):
-                if not ticket.cancelled.is_set():
-                    self._end(ticket, GoalOutcome.ABORTED, source.no_path_reason(self.topic_timeout_s), None)
-                return
-            used = source.count
-            assert source.msg is not None
-            try:
-                progress = self._progress_of(source.msg)
-            except (ConfigError, NotReadyError) as err:
-                self._end(ticket, GoalOutcome.ABORTED, f"bad path on {source.topic}: {err}", None)
-                return
-        self._follow(ticket, progress, source, used if source is not None else 0)
+    def _pursue(self, ticket: GoalTicket, first: GoalPath) -> None:
+        try:
+            progress = self._progress_of(first.msg)
+        except (ConfigError, NotReadyError) as err:
+            self._end(ticket, GoalOutcome.ABORTED, bad_path(first.topic, err))
+            return
+        self._follow(ticket, progress, first.topic, first.count)
 
     def _follow(self, ticket: GoalTicket, progress: PathProgress, source: Optional[TopicPath], used: int) -> None:
         last_plan_s = self.clock.now()  # replanning is paced and failure_timeout counted on ROS time
         next_due_s = last_plan_s
         watch = ClockWatch(stall_timeout_s=0.0)  # a stopped clock just stops the replanning; a jump back ends it
         watch.observe(last_plan_s, time.monotonic())
-        pose: Optional[Tuple[float, float, float]] = None
+        pose: Optional[Pose2D] = None
         while True:
             with self._wake:
                 while not ticket.cancelled.is_set() and not rospy.is_shutdown():
                     now_s = self.clock.now()
                     if self.clock.observe(watch) is ClockChange.JUMPED_BACK:
-                        self._end(ticket, GoalOutcome.ABORTED, f"ROS time moved backwards by {watch.jump_s:.2f} s (a "
-                                                          "restarted simulation or a looped bag): goal dropped", pose)
+                        self._end(ticket, GoalOutcome.ABORTED, f"ROS time moved backwards by {watch.jump_s:.2f} s "
+                                  "(a restarted simulation or a looped bag): goal dropped", pose)
                         return
                     if now_s >= next_due_s:
                         break
@@ -168,7 +121,7 @@ class FollowServer:
                 try:
                     progress = self._progress_of(source.msg)
                 except (ConfigError, NotReadyError) as err:
-                    self._end(ticket, GoalOutcome.ABORTED, f"bad path on {source.topic}: {err}", pose)
+                    self._end(ticket, GoalOutcome.ABORTED, bad_path(source, err), pose)
                     return
             try:
                 pose = self.costmap.robot_pose.pose(timeout_s=self.transform_timeout_s)
@@ -190,7 +143,7 @@ class FollowServer:
                 rospy.logwarn_throttle(1.0, f"{self.name}: {problem}")
 
     def _replan(
-        self, ticket: GoalTicket, progress: PathProgress, pose: Tuple[float, float, float], source: Optional[TopicPath]
+        self, ticket: GoalTicket, progress: PathProgress, pose: Pose2D, source: Optional[TopicPath]
     ) -> Tuple[Optional[Progress], Optional[str]]:
         """Plan to the lookahead point and publish it; (progress, None) or (progress or None, why not)."""
         snapshot = self.costmap.snapshot()
@@ -216,12 +169,3 @@ class FollowServer:
         self.plan_publisher.publish(path_msg(np.asarray(result.path[:, :2]), self.global_frame, rospy.Time.now(),
                                              final_yaw=float(result.path[-1, 2])))
         return state, None
-
-    def _feedback(self, ticket: GoalTicket, pose: Tuple[float, float, float], source: Optional[TopicPath]) -> None:
-        feedback: Any
-        if source is None:
-            feedback = FollowPathFeedback(pose=pose_of_xy_yaw(*pose))
-        else:
-            feedback = FollowTopicFeedback(pose=pose_of_xy_yaw(*pose),
-                                           path=source.msg if source.msg is not None else Path())
-        self.server.feedback(ticket, feedback)

@@ -43,35 +43,31 @@ import enum
 import math
 import threading
 import time
-from typing import Any, Optional, Tuple
+from typing import Optional, Tuple
 
 import numpy as np
 import rospy
 import tf2_ros
 from geometry_msgs.msg import TwistStamped
-from nav_msgs.msg import Odometry, Path
+from nav_msgs.msg import Odometry
 
-from flex_nav.action_types import action_type
 from flex_nav.exceptions import ConfigError, NotReadyError
-from flex_nav.msg import FollowPathFeedback, FollowTopicFeedback
 from flex_nav.nav.control.clock_watch import ClockChange, ClockWatch
 from flex_nav.nav.control.controller import Decision, LocalCostmap, Outcome, SafeFollower, no_tracks, warm_up
 from flex_nav.nav.control.pure_pursuit import PurePursuitParams
-from flex_nav.nav.control.topic_name import topic_name_problem
 from flex_nav.nav.planar import transform_poses
 from flex_nav.nav.pose_checks import yaw_of_quaternion
-from flex_nav.ros.conversions import pose_of_xy_yaw
+from flex_nav.nodes.follow_base import FollowNode, GoalPath, GoalSource, Pose2D, bad_path
 from flex_nav.ros.costmap_ros import CostmapROS
 from flex_nav.ros.frames import frame_pose, path_in_frame
-from flex_nav.ros.goal_server import GoalOutcome, GoalServer, GoalTicket
+from flex_nav.ros.goal_server import GoalOutcome, GoalTicket
 from flex_nav.ros.heartbeat import HeartbeatListener
 from flex_nav.ros.moving_obstacles_ros import MovingObstaclesROS, yield_rule
-from flex_nav.ros.params import param_bool, param_float, param_str, reject_unknown
+from flex_nav.ros.params import param_bool, param_float, param_str
 from flex_nav.ros.proxies import SHUTDOWN_DRAIN_S, drain_publisher
 from flex_nav.ros.ros_clock import RosClock
-from flex_nav.ros.topic_path import TopicPath, TopicPaths, fresh_from
+from flex_nav.ros.topic_path import TopicPath, TopicPaths
 
-SOURCES = ("path", "topic")
 PARAMETERS = (
     "global_frame", "robot_base_frame", "controller_frequency", "sensor_timeout", "collision_timeout",
     "transform_timeout", "topic_timeout", "feedback_frequency", "local_costmap", "pure_pursuit",
@@ -109,15 +105,11 @@ def pursuit_params(raw: dict, costmap: CostmapROS) -> PurePursuitParams:
         raise ConfigError(f"{name}: {err}") from err
 
 
-class PurePursuitController:
-    """One controller node; ``source`` is "path" (FollowPath) or "topic" (FollowTopic)."""
+class PurePursuitController(FollowNode):
+    """One controller node, serving FollowPath or FollowTopic as ``source`` says."""
 
-    def __init__(self, source: str) -> None:
-        if source not in SOURCES:
-            raise ConfigError(f"controller source {source!r} is not valid (valid: {', '.join(SOURCES)})")
-        self.source = source
-        self.name = rospy.get_name()
-        reject_unknown("~", PARAMETERS)
+    def __init__(self, source: GoalSource) -> None:
+        super().__init__(source, PARAMETERS)
         self.global_frame = param_str("~global_frame", "map")
         self.robot_base_frame = param_str("~robot_base_frame", "base_footprint")
         frequency = param_float("~controller_frequency", 20.0, 0.5, 1000.0)
@@ -154,7 +146,6 @@ class PurePursuitController:
             blocked_timeout_s=param_float("~blocked_timeout", 0.5, 0.0, 600.0),
             yielding=yielding,
         )
-        self._wake = threading.Condition()  # odometry, paths and cancels wake the control loop
         self._odom: Optional[Odometry] = None
         self._odom_count = 0
         self._publish_lock = threading.Lock()
@@ -164,10 +155,7 @@ class PurePursuitController:
         rospy.on_shutdown(self._on_shutdown)
         self.odom_subscriber = rospy.Subscriber("odom", Odometry, self._on_odom, queue_size=1, tcp_nodelay=True)
         self.costmap.serve_clear_costmap(self.name + "/clear_costmap")
-        spec = action_type("FollowPath" if source == "path" else "FollowTopic")
-        self.server = GoalServer(self.name, spec, self._run, on_cancel=self._on_cancel, on_error=self._on_error,
-                                 client_timeout_s=param_float("~client_timeout", 2.0, 0.0, 600.0))
-        self.server.start()
+        spec = self._serve(on_error=self._on_error)
         rospy.loginfo(f"{self.name}: pure pursuit on {spec.name} goals at {frequency:.1f} Hz in '{self.global_frame}'")
 
     # ------------------------------------------------------------------ inputs
@@ -178,7 +166,7 @@ class PurePursuitController:
             self.follower.watchdog.saw("odom", rospy.get_time())
             self._wake.notify_all()
 
-    def _robot_pose(self) -> Tuple[float, float, float]:
+    def _robot_pose(self) -> Pose2D:
         """Odometry pose carried into the global frame (raises NotReadyError without odometry or tf)."""
         odom = self._odom
         if odom is None:
@@ -223,10 +211,9 @@ class PurePursuitController:
         self._publish(None, 0.0, 0.0)
         drain_publisher(self.cmd_publisher, time.monotonic() + SHUTDOWN_DRAIN_S)
 
-    def _on_cancel(self, _ticket: GoalTicket, replaced: bool) -> None:
+    def _on_cancel(self, ticket: GoalTicket, replaced: bool) -> None:
         self._publish(None, 0.0, 0.0)
-        with self._wake:
-            self._wake.notify_all()
+        super()._on_cancel(ticket, replaced)
         rospy.loginfo(f"{self.name}: {'replaced' if replaced else 'cancelled'}; zero twist published")
 
     def _on_error(self, _ticket: GoalTicket, _error: BaseException) -> None:
@@ -234,40 +221,26 @@ class PurePursuitController:
         self.follower.stop()
 
     # ------------------------------------------------------------------ goals
-    def _end(self, ticket: GoalTicket, outcome: GoalOutcome, reason: str) -> None:
+    def _end(self, ticket: GoalTicket, outcome: GoalOutcome, reason: str, pose: Optional[Pose2D] = None) -> None:
+        """Zero twist and the follower stopped first; without ``pose``, the result's is the odometry pose."""
         self._publish(None, 0.0, 0.0)
         self.follower.stop()
-        try:
-            pose = pose_of_xy_yaw(*self._robot_pose())
-        except NotReadyError:
-            pose = pose_of_xy_yaw(math.nan, math.nan, 0.0)
-        code = "SUCCESS" if outcome is GoalOutcome.SUCCEEDED else "FAILURE"
-        (rospy.loginfo if outcome is GoalOutcome.SUCCEEDED else rospy.logwarn)(
-            f"{self.name}: goal #{ticket.number}: {code}: {reason}")
-        self.server.finish(ticket, outcome, self.server.result(code, reason, pose=pose))
-
-    def _run(self, ticket: GoalTicket) -> None:
-        if self.source == "path":
+        if pose is None:
             try:
-                self.follower.set_path(path_in_frame(self.tf_buffer, ticket.goal.path, self.global_frame,
+                pose = self._robot_pose()
+            except NotReadyError:
+                pose = None
+        super()._end(ticket, outcome, reason, pose)
+
+    def _pursue(self, ticket: GoalTicket, first: GoalPath) -> None:
+        if first.topic is None:  # a goal's own path is taken now; a topic's Paths by the control loop
+            try:
+                self.follower.set_path(path_in_frame(self.tf_buffer, first.msg, self.global_frame,
                                                      self.transform_timeout_s))
             except (ConfigError, NotReadyError) as err:
-                self._end(ticket, GoalOutcome.ABORTED, f"bad path: {err}")
+                self._end(ticket, GoalOutcome.ABORTED, bad_path(first.topic, err))
                 return
-            self._control(ticket, None)
-            return
-        topic = ticket.goal.topic.data
-        problem = topic_name_problem(topic)
-        if problem is not None:
-            self._end(ticket, GoalOutcome.ABORTED, f"bad topic in the goal: {problem}")
-            return
-        fresh_since = fresh_from(ticket.goal.newer_than)
-        source = self._topics.subscribe(topic)
-        if not self._topics.wait_first(source, self.topic_timeout_s, ticket.cancelled, newer_than=fresh_since):
-            if not ticket.cancelled.is_set():
-                self._end(ticket, GoalOutcome.ABORTED, source.no_path_reason(self.topic_timeout_s))
-            return
-        self._control(ticket, source)
+        self._control(ticket, first.topic)
 
     def _wait_for_tick(self, ticket: GoalTicket, next_due_s: float, used_odom: int) -> Wake:
         """Wait until a tick is due (``next_due_s`` [s ROS time] passed and new odometry, or one period later
@@ -309,7 +282,7 @@ class PurePursuitController:
             if wake is Wake.JUMPED_BACK:
                 self.follower.watchdog.restart(self.clock.now())
                 self._end(ticket, GoalOutcome.ABORTED, f"ROS time moved backwards by {self.clock_watch.jump_s:.2f} s "
-                                                  "(a restarted simulation or a looped bag): goal dropped")
+                                                       "(a restarted simulation or a looped bag): goal dropped")
                 return
             if wake is Wake.LINK_LOST:
                 self._end(ticket, GoalOutcome.ABORTED, self.heartbeat.why_lost())
@@ -326,7 +299,7 @@ class PurePursuitController:
                     self.follower.set_path(path_in_frame(self.tf_buffer, path_msg, self.global_frame,
                                                          self.transform_timeout_s))
                 except (ConfigError, NotReadyError) as err:
-                    self._end(ticket, GoalOutcome.ABORTED, f"bad path on {source.topic if source else '?'}: {err}")
+                    self._end(ticket, GoalOutcome.ABORTED, bad_path(source, err))
                     return
             decision = self._tick()
             if decision.outcome is not Outcome.RUNNING:
@@ -338,7 +311,7 @@ class PurePursuitController:
                 return
             if now_s - last_feedback_s >= self.feedback_period_s:
                 last_feedback_s = now_s
-                self._feedback(ticket, decision, source)
+                self._report(ticket, decision, source)
 
     def _tick(self) -> Decision:
         scan_s = self.costmap.last_scan_received_s
@@ -351,15 +324,10 @@ class PurePursuitController:
             self.people.report(decision.yielded)
         return decision
 
-    def _feedback(self, ticket: GoalTicket, decision: Decision, source: Optional[TopicPath]) -> None:
+    def _report(self, ticket: GoalTicket, decision: Decision, source: Optional[TopicPath]) -> None:
+        """Feedback with the odometry pose (none while it is unknown) and the command just published."""
         try:
-            pose = pose_of_xy_yaw(*self._robot_pose())
+            pose = self._robot_pose()
         except NotReadyError:
             return
-        feedback: Any
-        if source is None:
-            feedback = FollowPathFeedback(pose=pose)
-            feedback.twist.linear.x, feedback.twist.angular.z = decision.v, decision.w
-        else:
-            feedback = FollowTopicFeedback(pose=pose, path=source.msg if source.msg is not None else Path())
-        self.server.feedback(ticket, feedback)
+        self._feedback(ticket, pose, source, (decision.v, decision.w))
