@@ -3,8 +3,11 @@
 from __future__ import annotations
 
 import math
+from typing import Tuple
 
 import numpy as np
+
+Pose2D = Tuple[float, float, float]  # (x [m], y [m], yaw [rad]) in some planar frame
 
 
 def transform_poses(poses: np.ndarray, x: float, y: float, yaw: float) -> np.ndarray:

@@ -24,13 +24,13 @@ from flex_nav.action_types import ActionType, action_type
 from flex_nav.exceptions import ConfigError
 from flex_nav.msg import FollowPathFeedback, FollowTopicFeedback
 from flex_nav.nav.control.topic_name import topic_name_problem
+from flex_nav.nav.planar import Pose2D
 from flex_nav.ros.conversions import pose_of_xy_yaw
 from flex_nav.ros.goal_server import GoalOutcome, GoalServer, GoalTicket
 from flex_nav.ros.params import param_float, reject_unknown
 from flex_nav.ros.ros_clock import RosClock
 from flex_nav.ros.topic_path import TopicPath, TopicPaths, fresh_from
 
-Pose2D = Tuple[float, float, float]  # (x [m], y [m], yaw [rad]) in the node's global frame
 
 class GoalSource(enum.Enum):
     """Where a node's goals take their path from (chosen by the node's script)."""

@@ -41,9 +41,9 @@ from flex_nav.nav.control.safety import SensorWatchdog
 from flex_nav.nav.control.yielding import YieldDecision, YieldRule
 from flex_nav.nav.costmap.costmap_grid import CostmapGeometry
 from flex_nav.nav.path import as_path, cumulative_lengths
+from flex_nav.nav.planar import Pose2D
 from flex_nav.perception.moving_obstacles import Track
 
-Pose2D = Tuple[float, float, float]  # (x [m], y [m], yaw [rad])
 LocalCostmap = Optional[Tuple[np.ndarray, CostmapGeometry]]
 
 

@@ -49,9 +49,9 @@ import numpy as np
 
 from flex_nav.exceptions import ConfigError
 from flex_nav.nav.costmap.costmap_grid import INSCRIBED, NO_INFORMATION, CostmapGeometry
+from flex_nav.nav.planar import Pose2D
 from flex_nav.perception.moving_obstacles import Track
 
-Pose2D = Tuple[float, float, float]  # (x [m], y [m], yaw [rad])
 LATER_WEIGHT = 0.05  # [m/s] a later first violation is worth this much clearance per second (ties only)
 COMMIT_BONUS_M = 0.05  # [m] the escape motion chosen on the previous tick is worth this much more
 OWN_MARKS_MARGIN_M = 0.15  # [m] costmap cells this far beyond a moving track's body are its own marks
