@@ -19,6 +19,7 @@ from flex_nav.testing.process import ManagedProcess, wait_until
 REPO_ROOT = Path(__file__).resolve().parents[2]
 
 
+@pytest.mark.ros
 def test_master_starts_on_free_port_with_own_home_and_stops(tmp_path: Path) -> None:
     with PrivateMaster(ros_home=tmp_path / "home") as master:
         assert master.port not in (0, 11311)
@@ -32,12 +33,14 @@ def test_master_starts_on_free_port_with_own_home_and_stops(tmp_path: Path) -> N
     assert not master_is_up(master.uri)
 
 
+@pytest.mark.ros
 def test_two_masters_side_by_side(tmp_path: Path) -> None:
     with PrivateMaster(ros_home=tmp_path / "a") as first, PrivateMaster(ros_home=tmp_path / "b") as second:
         assert first.uri != second.uri
         assert master_is_up(first.uri) and master_is_up(second.uri)
 
 
+@pytest.mark.ros
 def test_a_master_orphaned_by_a_killed_roscore_is_stopped_too(tmp_path: Path) -> None:
     """roslaunch runs rosmaster in a session of its own: a roscore killed before it could stop it (SIGKILL after
     the grace period on a loaded machine) leaves the master running; stop() must end it as well."""
