@@ -43,6 +43,13 @@ PERIOD_S = 0.05  # [s] the controllers' control period (20 Hz, controller_safety
 SENSOR_TIMEOUT_S = 1.0  # [s] (controller_safety.test)
 TOPIC_TIMEOUT_S = 2.0  # [s] pp_topic waits this long for the first Path (controller_safety.test)
 CLIENT_TIMEOUT_S = 1.0  # [s] pp_path ends a goal whose client is gone this long (controller_safety.test)
+FRESH_PASSES = 10  # the robot's 20 Hz passes over connected controllers before their sensors count as flowing:
+# several of each message (each controller keeps the newest), as a goal needs odometry, scan and tf younger
+# than SENSOR_TIMEOUT_S, and a scan of a broken test must be taken before its local costmap is cleared
+# Real test durations: how long a test watches that nothing happens (these are not waits for something)
+QUIET_S = 4 * PERIOD_S  # [s] after a stop, no moving twist for 4 control periods
+LIVE_CLIENT_S = 2 * CLIENT_TIMEOUT_S  # [s] a live doomed_client's goal runs on, past the client timeout
+OWN_GOAL_LIVES_S = 3 * CLIENT_TIMEOUT_S  # [s] this node's own goal runs on, well past the client timeout
 DOOMED_CLIENT = FilePath(__file__).resolve().parent / "doomed_client.py"
 
 
@@ -71,6 +78,8 @@ class FakeRobot:
         self.bad_velocity = False
         self.obstacle_ahead = False  # the scan sees something 0.35 m straight ahead
         self.odom_frame = "odom"
+        self.passes = 0  # loop passes done; each published what was on at its start
+        self.passed = threading.Condition()
         self.odom_pub = rospy.Publisher("odom", Odometry, queue_size=1)
         self.scan_pub = rospy.Publisher("scan", LaserScan, queue_size=1)
         self.localizer_on = threading.Event()  # map -> odom, as a localizer publishes it (with the odometry)
@@ -113,6 +122,9 @@ class FakeRobot:
                 if self.obstacle_ahead:
                     scan.ranges[170:191] = [0.35] * 21  # beams within +-10 deg of straight ahead
                 self.scan_pub.publish(scan)
+            with self.passed:
+                self.passes += 1
+                self.passed.notify_all()
             rospy.sleep(0.05)
 
     def healthy(self):
@@ -127,14 +139,28 @@ class FakeRobot:
         self.localizer_on.set()
         return broken
 
-    def wait_heard_by(self, odom_subscribers, scan_subscribers, timeout_s):
-        """True once that many nodes are connected to odometry and to the scan and have had a few of each."""
+    def wait_passes(self, count, timeout_s):
+        """True once ``count`` whole passes that began after this call are published (what a test switched on
+        or off before it is in all of them); False after ``timeout_s``."""
+        deadline = rospy.get_time() + timeout_s
+        with self.passed:
+            target = self.passes + count + 1  # the pass under way may have read the switches before they changed
+            while self.passes < target:
+                left = deadline - rospy.get_time()
+                if left <= 0:
+                    return False
+                self.passed.wait(min(left, 0.1))
+        return True
+
+    def wait_heard_by(self, odom_subscribers, scan_subscribers, tf_subscribers, timeout_s):
+        """True once that many nodes are connected to odometry, to the scan and to tf (as this node's publishers
+        count them: ready to deliver), and FRESH_PASSES of each have gone out over those connections."""
         deadline = rospy.get_time() + timeout_s
         while rospy.get_time() < deadline:
             if (self.odom_pub.get_num_connections() >= odom_subscribers
-                    and self.scan_pub.get_num_connections() >= scan_subscribers):
-                rospy.sleep(2 * SENSOR_TIMEOUT_S)  # several messages at 20 Hz over the new connections
-                return True
+                    and self.scan_pub.get_num_connections() >= scan_subscribers
+                    and self.tf.pub_tf.get_num_connections() >= tf_subscribers):
+                return self.wait_passes(FRESH_PASSES, deadline - rospy.get_time())
             rospy.sleep(0.05)
         return False
 
@@ -145,7 +171,7 @@ class Commands:
     def __init__(self, topic):
         self.cond = threading.Condition()
         self.msgs = []
-        rospy.Subscriber(topic, TwistStamped, self.on_msg, queue_size=50)
+        self.sub = rospy.Subscriber(topic, TwistStamped, self.on_msg, queue_size=50)
 
     def on_msg(self, msg):
         with self.cond:
@@ -171,6 +197,16 @@ class Commands:
     def since(self, index):
         with self.cond:
             return list(self.msgs[index:])
+
+    def wait_publishers_gone(self, timeout_s=RESULT_WAIT_S):
+        """True once no publisher is connected: all a stopped node sent has been read (its connection closes
+        after its last message)."""
+        deadline = rospy.get_time() + timeout_s
+        while self.sub.get_num_connections() > 0:
+            if rospy.get_time() > deadline:
+                return False
+            rospy.sleep(0.01)
+        return True
 
 
 def is_zero(msg):
@@ -219,7 +255,7 @@ class TestControllerSafety(unittest.TestCase):
         assert cls.path_client.wait_for_server(rospy.Duration(WAIT_S)), "pp_path did not come up"
         assert cls.topic_client.wait_for_server(rospy.Duration(WAIT_S)), "pp_topic did not come up"
         # a goal sent before a controller has odometry is rightly aborted ("no odometry received yet")
-        assert cls.robot.wait_heard_by(3, 2, WAIT_S), "the controllers did not subscribe to odom and scan"
+        assert cls.robot.wait_heard_by(3, 2, 3, WAIT_S), "the controllers did not subscribe to odom, scan and tf"
         cls.plan_pub = rospy.Publisher("test_plan", Path, queue_size=1, latch=True)
         cls.clear_clients = [ActionClientProxy(name + "/clear_costmap", ClearCostmapAction)
                              for name in ("pp_path", "pp_topic")]
@@ -227,8 +263,8 @@ class TestControllerSafety(unittest.TestCase):
             assert client.is_available(WAIT_S), "a controller's clear_costmap did not come up"
 
     def setUp(self):
-        if self.robot.healthy():
-            rospy.sleep(2 * SENSOR_TIMEOUT_S)  # sensors fresh again after a test that stopped them
+        if self.robot.healthy():  # sensors fresh again after a test that stopped them
+            self.assertTrue(self.robot.wait_passes(FRESH_PASSES, WAIT_S), "the fake robot stopped publishing")
             for client in self.clear_clients:  # no obstacle mark of the previous test left in a local costmap
                 client.send_goal(ClearCostmapGoal())
                 self.assertTrue(client.wait_for_result(RESULT_WAIT_S), "clear_costmap did not answer")
@@ -256,7 +292,7 @@ class TestControllerSafety(unittest.TestCase):
         self.assertIsNotNone(zero, "no zero twist published")
         # the zero went out before the goal was reported aborted, and nothing moved the robot after it
         self.assertLessEqual(zero.header.stamp, ended.header.stamp)
-        rospy.sleep(4 * PERIOD_S)
+        rospy.sleep(QUIET_S)
         after = cmds.since(cmds.msgs.index(zero))
         self.assertFalse(any(moving(m) for m in after), "a non-zero twist followed the stop")
 
@@ -321,7 +357,7 @@ class TestControllerSafety(unittest.TestCase):
 
     def test_obstacle_ahead_in_the_local_costmap(self):
         self.robot.obstacle_ahead = True  # pp_path has collision_timeout 0: abort at the first collision
-        rospy.sleep(0.5)  # a few scans into the rolling local costmap
+        self.assertTrue(self.robot.wait_passes(FRESH_PASSES, WAIT_S))  # scans of it into the rolling local costmap
         mark = self.path_cmds.mark()
         handle = self.send_path(straight_path())
         self.assert_aborted_and_stopped(handle, self.path_results, self.path_cmds, mark, "collision ahead")
@@ -339,7 +375,7 @@ class TestControllerSafety(unittest.TestCase):
             self.assertIsNotNone(zero, f"attempt {attempt}: no zero twist after cancel")
             # published from the cancel callback itself, before the goal was reported preempted
             self.assertLessEqual(zero.header.stamp, ended.header.stamp, f"attempt {attempt}")
-            rospy.sleep(4 * PERIOD_S)
+            rospy.sleep(QUIET_S)
             after = self.path_cmds.since(self.path_cmds.msgs.index(zero))
             self.assertFalse(any(moving(m) for m in after), f"attempt {attempt}: moved after the cancel")
 
@@ -379,7 +415,7 @@ class TestControllerSafety(unittest.TestCase):
             mark = cmds.mark()
             node.send_signal(signal.SIGINT)
             node.wait(RESULT_WAIT_S)
-            rospy.sleep(4 * PERIOD_S)
+            self.assertTrue(cmds.wait_publishers_gone(), "the stopped node's connection stayed open")
             sent = cmds.since(mark)
             self.assertTrue(sent, "nothing was published after the signal")
             self.assertTrue(is_zero(sent[-1]), f"the last command was {sent[-1].twist}")
@@ -404,7 +440,7 @@ class TestControllerSafety(unittest.TestCase):
         self.assertIsNotNone(self.path_cmds.wait_for(moving, mark, WAIT_S), "the client's goal never drove")
         goal_id = client.stdout.readline().strip()  # printed before the goal could drive
         self.assertTrue(goal_id.startswith("/doomed_client-"), goal_id)
-        rospy.sleep(2 * CLIENT_TIMEOUT_S)  # the client alive: its goal runs on
+        rospy.sleep(LIVE_CLIENT_S)  # the client alive: its goal runs on
         self.assertFalse(self.path_results.has_goal(goal_id), "a live client's goal was ended")
         return goal_id
 
@@ -417,13 +453,13 @@ class TestControllerSafety(unittest.TestCase):
         zero = self.path_cmds.wait_for(is_zero, mark)
         self.assertIsNotNone(zero, "no zero twist published")
         self.assertLessEqual(zero.header.stamp, ended.header.stamp)
-        rospy.sleep(4 * PERIOD_S)
+        rospy.sleep(QUIET_S)
         after = self.path_cmds.since(self.path_cmds.msgs.index(zero))
         self.assertFalse(any(moving(m) for m in after), "the robot moved after the stop")
 
     def test_goal_of_a_killed_client_stops(self):
         live = self.start_driving()  # this node stays: its goal outlives the client timeout untouched
-        rospy.sleep(3 * CLIENT_TIMEOUT_S)
+        rospy.sleep(OWN_GOAL_LIVES_S)
         self.assertNotEqual(live.get_comm_state(), actionlib.CommState.DONE, live.get_goal_status_text())
         live.cancel()
         self.assertEqual(self.wait_terminal(live), GoalStatus.PREEMPTED)
