@@ -19,6 +19,8 @@ import tf2_ros
 from geometry_msgs.msg import PointStamped, TransformStamped, Twist, TwistStamped
 from nav_msgs.msg import MapMetaData, OccupancyGrid
 from nav_msgs.srv import GetMap
+from roscpp.srv import SetLoggerLevel
+from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import LaserScan
 
 from flex_nav.msg import ClearCostmapAction, ClearCostmapGoal, ClearCostmapResult
@@ -34,6 +36,10 @@ MAP_YAML = os.path.join(rospkg.RosPack().get_path("flex_nav"), "test", "data", "
 ROBOT = (1.0, 1.0)  # where the test puts io_base in the map
 OBSTACLE = (2.0, 1.0)  # free on the map; the fake scan sees something there
 LIDAR_X = 0.12  # [m] io_lidar ahead of io_base (more than two cells of the rolling window)
+RELAY_TIMEOUT_S = 0.3  # [s] twist_relay's ~timeout (nodes_io.test)
+RESEND_S = 0.1  # [s] a command is sent again this often until it is forwarded (less than RELAY_TIMEOUT_S)
+ONE_ZERO_WATCH_S = 0.8  # [s] real test duration: after the timeout's zero, no second one for this long
+STALE_DROPPED = "twist_relay: dropped a command stamped before one already forwarded"  # its debug log
 
 
 class Latest:
@@ -64,6 +70,20 @@ class Latest:
     def count(self):
         with self.cond:
             return len(self.msgs)
+
+
+def publish_until_forwarded(pub, msg, out, condition):
+    """Publish ``msg`` every RESEND_S until ``out`` has a message meeting ``condition`` since the first, and
+    return that one (None after WAIT_S). A subscriber counts its connection before the publishing node does: a
+    relay that has just come up may forward the first copies to nobody."""
+    mark = out.count()
+    deadline = rospy.get_time() + WAIT_S
+    while rospy.get_time() < deadline:
+        pub.publish(msg)
+        got = out.wait_for(condition, timeout_s=RESEND_S, after=mark)
+        if got is not None:
+            return got
+    return None
 
 
 def cell_value(msg, x, y):
@@ -152,8 +172,8 @@ class TestNodesIO(unittest.TestCase):
             cmd = TwistStamped()
             cmd.header.stamp = rospy.Time.now()
             cmd.twist.linear.x = 0.2
-            pub.publish(cmd)
-            self.assertIsNotNone(out.wait_for(lambda m: m.linear.x == 0.2), "command not forwarded")
+            self.assertIsNotNone(publish_until_forwarded(pub, cmd, out, lambda m: m.linear.x == 0.2),
+                                 "command not forwarded")
             moving = out.count()
             relay.send_signal(signal.SIGINT)
             relay.wait(timeout=WAIT_S)
@@ -168,6 +188,7 @@ class TestNodesIO(unittest.TestCase):
                 relay.wait(timeout=WAIT_S)
 
     def test_twist_relay_forwards_drops_non_finite_and_times_out(self):
+        logs = Latest("/rosout", Log)  # early: connected long before the relay's log this test waits for
         out = Latest("cmd_vel", Twist)
         pub = rospy.Publisher("cmd_vel_stamped", TwistStamped, queue_size=1)
         deadline = rospy.get_time() + WAIT_S
@@ -178,14 +199,13 @@ class TestNodesIO(unittest.TestCase):
         cmd = TwistStamped()
         cmd.twist.linear.x, cmd.twist.angular.z = 0.25, -0.5
         before = out.count()
-        pub.publish(cmd)
-        got = out.wait_for(lambda m: m.linear.x == 0.25, after=before)
+        got = publish_until_forwarded(pub, cmd, out, lambda m: m.linear.x == 0.25)
         self.assertIsNotNone(got, "command not forwarded")
         self.assertEqual(got.angular.z, -0.5)
-        # silence: exactly one zero Twist after the 0.3 s timeout
+        # silence: exactly one zero Twist after the RELAY_TIMEOUT_S timeout
         zero = out.wait_for(lambda m: m.linear.x == 0.0 and m.angular.z == 0.0, after=out.count() - 1)
         self.assertIsNotNone(zero, "no zero Twist after the timeout")
-        rospy.sleep(0.8)
+        rospy.sleep(ONE_ZERO_WATCH_S)
         zeros_after = [m for m in out.msgs[before:] if m.linear.x == 0.0 and m.angular.z == 0.0]
         self.assertEqual(len(zeros_after), 1, "the timeout zero must be sent once")
         # a NaN command is not forwarded; a zero goes out instead
@@ -214,8 +234,14 @@ class TestNodesIO(unittest.TestCase):
         newer.header.stamp = now + rospy.Duration(0.1)
         newer.twist.linear.x = 0.1
         mark = out.count()
+        rospy.wait_for_service("twist_relay/set_logger_level", WAIT_S)
+        rospy.ServiceProxy("twist_relay/set_logger_level", SetLoggerLevel)(logger="rosout", level="debug")
+        log_mark = logs.count()
         pub.publish(late)
-        rospy.sleep(0.2)
+        # the relay took it (and newer cannot displace it from its one-message queue): its debug log says so
+        dropped = logs.wait_for(lambda m: m.name == "/twist_relay" and m.msg == STALE_DROPPED, after=log_mark)
+        rospy.ServiceProxy("twist_relay/set_logger_level", SetLoggerLevel)(logger="rosout", level="info")
+        self.assertIsNotNone(dropped, "the relay did not drop the stale command")
         pub.publish(newer)
         self.assertIsNotNone(out.wait_for(lambda m: m.linear.x == 0.1, after=mark), "newer command not forwarded")
         self.assertFalse(any(m.linear.x == 0.2 for m in out.msgs[mark:]), "a stale command was forwarded")
