@@ -26,6 +26,10 @@ from flex_nav.ros.node import init_node
 from flex_nav_sim.world import load_world
 
 WAIT_S = 60.0  # [s] wall bound of each wait
+UNDER_WAY_MPS = 0.45  # [m/s] ground truth speed of a robot at cruise when preempted (turtlebot2 drives 0.5)
+# Real test durations [s] wall: how long the scenario watches that nothing happens (not waits for something)
+HELD_WATCH_S = 2.0  # the plan waits for approval: nothing moving is commanded
+STOPPED_WATCH_S = 1.0  # after the preempt: nothing moving is commanded after the zero, then the robot stands
 RUNNER = "/robot1/behavior_runner"
 
 
@@ -65,6 +69,7 @@ def scenario(out: Path) -> None:
         statuses: List[Any] = []
         feedback: List[Any] = []
         activity: List[Any] = []
+        speeds: List[float] = []  # [m/s] ground truth forward speed, as received
 
         def keep(into: List[Any], value: Any) -> None:
             with lock:
@@ -75,6 +80,7 @@ def scenario(out: Path) -> None:
         rospy.Subscriber(f"{RUNNER}/status", BehaviorStatus, lambda m: keep(statuses, m))
         rospy.Subscriber(f"{RUNNER}/command_feedback", BehaviorCommandFeedback, lambda m: keep(feedback, m))
         rospy.Subscriber(f"{RUNNER}/activity", BehaviorActivity, lambda m: keep(activity, m))
+        rospy.Subscriber("/robot1/ground_truth", Odometry, lambda m: keep(speeds, m.twist.twist.linear.x))
         monitor = nav_demo.DemoMonitor(runs)
         problem = nav_demo.wait_until_ready(monitor, processes)
         check(problem is None, f"startup: {problem}")
@@ -89,7 +95,7 @@ def scenario(out: Path) -> None:
                                               for r in activity[-1].requests)
 
         wait_for(approval_requested, "request for approval of /ApprovePlan -> execute")
-        time.sleep(2.0)
+        time.sleep(HELD_WATCH_S)
         with lock:
             moving = [c for c in cmds if c[0] >= goal_sent_s and abs(c[1]) > 0.01]
             active = list(activity[-1].active_paths)
@@ -102,14 +108,16 @@ def scenario(out: Path) -> None:
         check(code == 0, f"operator approve-next failed ({code}): {text}")
         print(f"operator: {text}", flush=True)
         wait_for(lambda: any(c[1] > 0.05 for c in list(cmds)), "forward motion after the approval")
-        time.sleep(1.5)
 
-        def driving_forward() -> bool:  # not in a turn on the spot at the moment of the preempt
+        def driving_forward() -> bool:  # under way, not in a turn on the spot at the moment of the preempt
             with lock:
-                return bool(cmds) and cmds[-1][1] > 0.05
+                return bool(cmds) and cmds[-1][1] > 0.05 and bool(speeds) and speeds[-1] >= UNDER_WAY_MPS
 
         # 3. Preempt mid-motion: zero command, nothing after it, the robot stands.
-        wait_for(driving_forward, "the robot driving forward (last command v > 0.05 m/s) before the preempt")
+        wait_for(driving_forward, f"the robot driving forward (last command v > 0.05 m/s, ground truth >= "
+                                  f"{UNDER_WAY_MPS} m/s) before the preempt")
+        with lock:
+            speed_before = speeds[-1]
         monitor.stopping = True
         sent_s = rospy.get_time()
         code, text = operator("preempt")
@@ -118,7 +126,7 @@ def scenario(out: Path) -> None:
         with lock:
             preempt_s = next(f.header.stamp.to_sec() for f in feedback if f.command == "preempt")
             preempted_s = next(s.header.stamp.to_sec() for s in statuses if s.code == BehaviorStatus.PREEMPTED)
-        time.sleep(1.0)
+        time.sleep(STOPPED_WATCH_S)
         with lock:
             after = [c for c in cmds if c[0] >= sent_s]
         zeros = [c for c in after if c[1] == 0.0 and c[2] == 0.0]
@@ -133,7 +141,7 @@ def scenario(out: Path) -> None:
               f"simulated time; control period {period_s * 1e3:.0f} ms); no motion command after it", flush=True)
         speed = _ground_truth_speed()
         check(speed is not None and speed < 0.02, f"robot still moving 1 s after the preempt: {speed} m/s")
-        print(f"robot speed 1 s after the preempt: {speed:.4f} m/s", flush=True)
+        print(f"robot speed {speed_before:.2f} m/s at the preempt, 1 s after it: {speed:.4f} m/s", flush=True)
 
 
 def _ground_truth_speed() -> Optional[float]:
