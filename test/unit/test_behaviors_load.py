@@ -6,11 +6,22 @@ from pathlib import Path
 
 import pytest
 
+from flex_nav.behavior.container import Container
+from flex_nav.behavior.state import State
 from flex_nav.behavior.state_machine import StateMachine
 from flex_nav.behavior.yaml_loader import list_behaviors, load_behavior
+from flex_nav_states.move_distance_state import MoveDistanceState
 
 BEHAVIORS = Path(__file__).resolve().parents[2] / "behaviors"
 NAMES = sorted(p.stem for p in BEHAVIORS.glob("*.yaml"))
+
+
+def child(state: State, *labels: str) -> State:
+    """The state at ``labels`` below ``state``, each step a container."""
+    for label in labels:
+        assert isinstance(state, Container), f"{label}: {state!r} is not a container"
+        state = state[label]
+    return state
 
 
 def test_the_issue_behaviors_are_shipped() -> None:
@@ -35,18 +46,23 @@ def test_flex_planner_navigate_is_pluggable_and_recovers_by_sub_behavior() -> No
                                 ("create_navigate", {"MidLevel", "LowLevel", "Controller", "Health"})):
         root = load_behavior("flex_planner", parameters={"navigate": navigate}, search_path=[BEHAVIORS]).root
         assert isinstance(root, StateMachine)
-        concurrency = root["Navigate"]["Navigate"]
+        concurrency = child(root, "Navigate", "Navigate")
+        assert isinstance(concurrency, Container)
         assert followers <= set(concurrency.children)
         assert {"Bumper"} <= set(concurrency.children)
         assert root.transitions_of("Navigate") == {
             "arrived": "Arrived", "failed": "CountReplan", "bumper": "Recovery", "stuck": "CountReplan"
         }
     root = load_behavior("flex_planner", search_path=[BEHAVIORS]).root
+    assert isinstance(root, StateMachine)
     assert root.transitions_of("Recovery") == {"done": "CountReplan", "failed": "failed"}
-    assert set(root["Recovery"].children) == {"Stop", "BackUp", "BackUpFailed", "Clear"}
+    recovery = child(root, "Recovery")
+    assert isinstance(recovery, Container)
+    assert set(recovery.children) == {"Stop", "BackUp", "BackUpFailed", "Clear"}
 
 
 def test_backup_distance_is_a_behavior_parameter() -> None:
     root = load_behavior("flex_planner", parameters={"backup_offset_m": -0.05}, search_path=[BEHAVIORS]).root
-    backup = root["Recovery"]["BackUp"]
+    backup = child(root, "Recovery", "BackUp")
+    assert isinstance(backup, MoveDistanceState)
     assert backup._distance_m == pytest.approx(-0.05)

@@ -45,14 +45,16 @@ def test_a_master_orphaned_by_a_killed_roscore_is_stopped_too(tmp_path: Path) ->
     """roslaunch runs rosmaster in a session of its own: a roscore killed before it could stop it (SIGKILL after
     the grace period on a loaded machine) leaves the master running; stop() must end it as well."""
     master = PrivateMaster(ros_home=tmp_path).start()
+    roscore = master.process
+    assert roscore is not None
     orphan = master_pid(master.uri)
     rosout = None
     try:
         wait_until(lambda: node_pid(master.uri, "/rosout") is not None, 10.0, "rosout to register")
         rosout = node_pid(master.uri, "/rosout")
-        assert orphan is not None and orphan != master.process.pid
-        assert rosout is not None and rosout not in (orphan, master.process.pid)
-        os.killpg(master.process.pid, signal.SIGKILL)  # roscore's group only: the master and rosout live on
+        assert orphan is not None and orphan != roscore.pid
+        assert rosout is not None and rosout not in (orphan, roscore.pid)
+        os.killpg(roscore.pid, signal.SIGKILL)  # roscore's group only: the master and rosout live on
         time.sleep(0.5)
         assert master_is_up(master.uri), "the master should have outlived roscore (its own session)"
         assert _running(rosout), "rosout should have outlived roscore (its own session)"

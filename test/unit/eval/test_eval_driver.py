@@ -3,6 +3,7 @@ result each run leaves behind, ``--resume`` and bad arguments. ``run_one`` is re
 writes what ``scenario_run`` would print, so no master is needed."""
 
 import json
+from typing import List, Tuple
 
 import pytest
 
@@ -21,7 +22,7 @@ def fake_run_one(calls):
 
 
 def test_every_scenario_behavior_and_seed_runs_once_and_resume_keeps_them(tmp_path, monkeypatch, capsys):
-    calls = []
+    calls: List[Tuple[str, str, int]] = []  # (world, behavior, seed) of each run
     monkeypatch.setattr(scenarios, "run_one", fake_run_one(calls))
     argv = ["--scenarios", "s1_light_box_door,s5_heavy_box_short_route", "--seeds", "2", "--out", str(tmp_path)]
     assert scenarios.main(argv) == 0

@@ -65,7 +65,8 @@ def test_watchdog_names_the_stalest_sensor():
     assert problem is not None and problem.startswith("stale odom") and "0.60 s" in problem
     dog.saw("odom", 1.6)
     assert dog.problem(1.6) is None
-    assert dog.problem(1.75).startswith("stale scan")
+    problem = dog.problem(1.75)
+    assert problem is not None and problem.startswith("stale scan")
     assert dog.age("scan", 2.0) == pytest.approx(0.8)
 
 

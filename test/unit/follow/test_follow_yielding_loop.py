@@ -5,6 +5,8 @@ the path without ever touching one of them. Simulated time only (no timed assert
 """
 
 import math
+from functools import partial
+from typing import Callable, Set
 
 import numpy as np
 import pytest
@@ -14,6 +16,7 @@ from flex_nav.nav.control.controller import Outcome, SafeFollower
 from flex_nav.nav.control.pure_pursuit import PurePursuitParams
 from flex_nav.nav.control.yielding import YieldParams, YieldRule
 from flex_nav.nav.costmap.grid_map import GridMap
+from flex_nav.nav.planar import Pose2D
 from flex_nav.perception.moving_obstacles import MovingObstacleTracker
 from flex_nav.perception.static_mask import StaticMask
 
@@ -24,6 +27,11 @@ DT = 0.05  # [s] control period
 SCAN_PERIOD = 1.0 / 5.5  # [s]
 PURSUIT = PurePursuitParams(desired_linear_vel=0.26, max_linear_accel=0.9, max_linear_decel=0.9, lookahead_dist=0.5,
                             goal_dist_tol=0.15, use_final_heading=False, use_collision_detection=False)
+
+
+def pose_now(x: float, y: float, yaw: float) -> Callable[[], Pose2D]:
+    """The robot's pose callable of one tick (bound now, not to the loop's variables)."""
+    return lambda: (x, y, yaw)
 
 
 def walker(start, end, speed, t_s):
@@ -57,7 +65,8 @@ def run(start_s, limit_s=120.0):
     tracker = MovingObstacleTracker(static_mask=room_mask())
     x, y, yaw, v, w = 0.5, 4.0, 0.0, 0.0, 0.0
     t, next_scan = start_s, start_s
-    min_gap, reasons = math.inf, set()
+    min_gap = math.inf
+    reasons: Set[str] = set()
     while t < start_s + limit_s:
         people = [walker(a, b, speed, t) for a, b, speed in PEOPLE]
         min_gap = min(min_gap, *(math.hypot(px - x, py - y) - PERSON_RADIUS - ROBOT_RADIUS for px, py in people))
@@ -66,8 +75,7 @@ def run(start_s, limit_s=120.0):
             tracker.update_scan(xs, ys, (x, y), t)
             next_scan += SCAN_PERIOD
         follower.watchdog.saw("odom", t)
-        decision = follower.tick(t, lambda pose=(x, y, yaw): pose, (v, w), lambda: None,
-                                 lambda now=t: tracker.tracks(now))
+        decision = follower.tick(t, pose_now(x, y, yaw), (v, w), lambda: None, partial(tracker.tracks, t))
         if decision.outcome is not Outcome.RUNNING:
             return decision, t - start_s, min_gap, reasons
         reasons.add(decision.reason.split(":")[0])
@@ -96,7 +104,7 @@ def blind_min_gap(start_s):
         min_gap = min(min_gap, *(math.hypot(px - x, py - 4.0) - PERSON_RADIUS - ROBOT_RADIUS
                                  for px, py in (walker(a, b, s, t) for a, b, s in PEOPLE)))
         follower.watchdog.saw("odom", t)
-        v = follower.tick(t, lambda pose=(x, 4.0, 0.0): pose, (v, 0.0), lambda: None).v
+        v = follower.tick(t, pose_now(x, 4.0, 0.0), (v, 0.0), lambda: None).v
         x, t = x + v * DT, t + DT
     return min_gap
 

@@ -2,6 +2,7 @@
 
 import heapq
 import math
+from typing import Tuple
 
 import numpy as np
 import pytest
@@ -12,6 +13,17 @@ from flex_nav.nav.planning.astar import line_cost
 from flex_nav.nav.planning.planner import GridPlanner, PlannerParams, PlanStatus
 
 RES = 0.1
+
+
+def cell(row) -> Tuple[int, int]:
+    """A (row, col) of np.argwhere's as a cell index."""
+    return int(row[0]), int(row[1])
+
+
+def two_free_cells(rng, free) -> Tuple[Tuple[int, int], Tuple[int, int]]:
+    """Two different cells of ``free`` (np.argwhere's rows), drawn with ``rng``."""
+    first, second = rng.choice(len(free), 2, replace=False)
+    return cell(free[first]), cell(free[second])
 
 
 def dijkstra(costs, start, goal, params):
@@ -85,7 +97,7 @@ def test_cost_equals_dijkstra_on_random_grids(params):
     for _ in range(25):
         costs = random_costs(rng)
         free = np.argwhere(np.isfinite(planner.weights[costs]))
-        s, g = (tuple(int(v) for v in free[i]) for i in rng.choice(len(free), 2, replace=False))
+        s, g = two_free_cells(rng, free)
         cost, cells, _ = planner.plan_cells(costs, s, g)
         expected = dijkstra(costs, s, g, params)
         if math.isinf(expected):
@@ -104,10 +116,10 @@ def test_reused_work_arrays_give_same_answers_as_a_fresh_planner():
     shared = GridPlanner()
     free = np.argwhere(np.isfinite(shared.weights[costs]))
     for _ in range(20):
-        s, g = (tuple(int(v) for v in free[i]) for i in rng.choice(len(free), 2, replace=False))
+        s, g = two_free_cells(rng, free)
         assert shared.plan_cells(costs, s, g)[0] == GridPlanner().plan_cells(costs, s, g)[0]
     shared._generation = 2**32 - 4  # next query wraps the stamps
-    s, g = (tuple(int(v) for v in free[i]) for i in rng.choice(len(free), 2, replace=False))
+    s, g = two_free_cells(rng, free)
     assert shared.plan_cells(costs, s, g)[0] == GridPlanner().plan_cells(costs, s, g)[0]
     assert shared._generation == 2
 
@@ -284,7 +296,7 @@ def test_full_queue_storage_is_grown_and_the_search_repeated():
     planner._heap = np.empty((2, 3))
     planner._stack = np.empty(1, dtype=np.int64)
     free = np.argwhere(np.isfinite(planner.weights[costs]))
-    s, g = tuple(int(v) for v in free[0]), tuple(int(v) for v in free[-1])
+    s, g = cell(free[0]), cell(free[-1])
     cost, _, expanded = planner.plan_cells(costs, s, g)
     assert cost == GridPlanner().plan_cells(costs, s, g)[0] and expanded > 0
     assert len(planner._heap) > 2 and len(planner._stack) > 1

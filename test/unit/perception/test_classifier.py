@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any, Dict
 
 import numpy as np
 import pytest
@@ -24,7 +25,7 @@ from flex_nav_sim.readings import ImageReading
 from flex_nav_sim.simulation import SensorOptions, Simulation
 from flex_nav_sim.world import load_world
 
-META = {
+META: Dict[str, Any] = {
     "format": "flex_nav_obstacle_classifier/1",
     "input": {"width": 8, "height": 8, "mean": [0.0, 0.0, 0.0], "std": [1.0, 1.0, 1.0]},
     "output": "probabilities",

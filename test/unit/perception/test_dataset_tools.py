@@ -173,10 +173,10 @@ def test_the_recorded_training_command_trains_the_same_model_again(argv: list[st
 
 
 def test_load_splits_concatenates_and_checks_the_classes(tmp_path: Path) -> None:
-    for name, n, classes in (("a", 3, LABELS), ("b", 2, LABELS), ("c", 1, ("x", "y"))):
+    for name, n, names in (("a", 3, LABELS), ("b", 2, LABELS), ("c", 1, ("x", "y"))):
         np.savez(tmp_path / f"{name}.npz", patches=np.full((n, 4, 4, 3), 51 * n, np.uint8),
                  depths=np.full((n, 4, 4), 1000 * n, np.uint16), labels=np.arange(n), models=np.array(["m"] * n),
-                 classes=np.array(classes))
+                 classes=np.array(names))
     np.savez(tmp_path / "old.npz", patches=np.zeros((1, 4, 4, 3), np.uint8), labels=np.arange(1),
              models=np.array(["m"]), classes=np.array(LABELS))
     images, labels, classes = train.load_splits(tmp_path, ["a", "b"], depth=False)

@@ -58,6 +58,6 @@ def test_bad_config_is_rejected_naming_the_field(kwargs: dict, needle: str) -> N
 def test_as_names() -> None:
     assert as_names(["a", "b"], "names") == ("a", "b")
     with pytest.raises(ConfigError, match="names = 'ab' must be a list"):
-        as_names("ab", "names")  # type: ignore[arg-type]
+        as_names("ab", "names")
     with pytest.raises(ConfigError, match="non-empty strings"):
         as_names(["a", ""], "names")

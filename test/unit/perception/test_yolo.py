@@ -106,7 +106,7 @@ def test_raw_model_end_to_end_maps_letterboxed_boxes_to_the_image(tmp_path: Path
     found = det.detect(np.zeros((240, 320, 3), np.uint8))
     np.testing.assert_allclose(found.boxes, [[120, 80, 200, 160]], atol=1e-4)
     prediction = det.classify(np.zeros((240, 320, 3), np.uint8))
-    assert (prediction.label, prediction.confidence) == (MOVABLE, pytest.approx(0.8))
+    assert prediction.label == MOVABLE and prediction.confidence == pytest.approx(0.8)
 
 
 def test_end2end_model_and_person_first(tmp_path: Path) -> None:

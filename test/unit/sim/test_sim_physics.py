@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
-from typing import Dict, List, Sequence, Tuple
+from typing import Dict, List, Sequence, Tuple, Type, TypeVar
 
 import numpy as np
 import pytest
@@ -17,6 +17,7 @@ from flex_nav_sim.readings import (
     ContactReading,
     ImageReading,
     OdometryReading,
+    Pose2D,
     ScanReading,
     WorldEventReading,
 )
@@ -52,10 +53,20 @@ def drive(sim: Simulation, robot: str, v: float, w: float, duration: float) -> L
     return out
 
 
-def last(readings: Sequence[object], kind: type) -> object:
+R = TypeVar("R")  # a kind of reading
+
+
+def last(readings: Sequence[object], kind: Type[R]) -> R:
     found = [r for r in readings if isinstance(r, kind)]
     assert found, f"no {kind.__name__}"
     return found[-1]
+
+
+def present(sim: Simulation, name: str) -> Pose2D:
+    """The pose of solid or person ``name``, which must be in the world."""
+    pose = sim.object_pose(name)
+    assert pose is not None, f"{name} is not in the world"
+    return pose
 
 
 # -- lidar --------------------------------------------------------------------------------------------
@@ -253,12 +264,12 @@ def test_person_walks_along_waypoints(tmp_path: Path) -> None:
     person = world.people[0]
     with Simulation(world, [spawn(pose=(-1.0, -1.0, 0))], seed=0, sensors=NO_CAMERA) as sim:
         sim.run(0.5)
-        assert sim.object_pose("ann")[:2] == pytest.approx((-1.5, 1.5), abs=1e-6)  # not started yet
+        assert present(sim, "ann")[:2] == pytest.approx((-1.5, 1.5), abs=1e-6)  # not started yet
         sim.run(2.0)
-        assert sim.object_pose("ann")[:2] == pytest.approx(person.pose_after(2.0)[:2], abs=0.01)
-        assert sim.object_pose("ann")[:2] == pytest.approx((0.5, 1.5), abs=0.01)
+        assert present(sim, "ann")[:2] == pytest.approx(person.pose_after(2.0)[:2], abs=0.01)
+        assert present(sim, "ann")[:2] == pytest.approx((0.5, 1.5), abs=0.01)
         sim.run(5.0)
-        assert sim.object_pose("ann")[:2] == pytest.approx((1.5, -1.5), abs=0.01)  # stopped at the end
+        assert present(sim, "ann")[:2] == pytest.approx((1.5, -1.5), abs=0.01)  # stopped at the end
 
 
 def test_person_touching_robot_reported(tmp_path: Path) -> None:
@@ -291,7 +302,7 @@ def test_scripted_events_remove_and_start(tmp_path: Path) -> None:
         assert [e[1:] for e in events] == [("remove", "wall_piece"), ("start_walking", "ann")]
         assert events[0][0] == pytest.approx(0.5, abs=0.005)
         assert sim.object_pose("wall_piece") is None
-        assert sim.object_pose("ann").x == pytest.approx(-1.5 + 1.0, abs=0.02)  # walked 1 s
+        assert present(sim, "ann").x == pytest.approx(-1.5 + 1.0, abs=0.02)  # walked 1 s
 
 
 # -- bad commands -----------------------------------------------------------------------------------------
@@ -304,7 +315,8 @@ def test_non_finite_commands_ignored_and_robot_stops(tmp_path: Path) -> None:
         assert sim.truth_pose("r1")[:2] == pytest.approx((0.0, 0.0), abs=1e-3)
         sim.command("r1", 0.3, 0.0)
         sim.run(0.3)
-        assert sim.command("r1", math.nan, 0.0).kind == "ignored"  # previous command stays until the timeout
+        notice = sim.command("r1", math.nan, 0.0)
+        assert notice is not None and notice.kind == "ignored"  # previous command stays until the timeout
         out = sim.run(1.5)
         notices = [r for r in out if isinstance(r, CommandNotice)]
         assert [n.kind for n in notices] == ["timeout"]
@@ -386,6 +398,7 @@ def test_camera_sees_a_person_ahead(tmp_path: Path) -> None:
     with Simulation(world, [spawn()], seed=0) as sim:
         image = last(sim.step(), ImageReading)
         spec = sim.robot("r1").profile.camera
+        assert spec is not None
     assert image.rgb.shape == (spec.height, spec.width, 3) and image.rgb.dtype == np.uint8
     h, w = spec.height, spec.width
     centre = image.rgb[h // 2 - 5 : h // 2 + 5, w // 2 - 5 : w // 2 + 5].reshape(-1, 3).astype(int)
