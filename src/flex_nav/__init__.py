@@ -13,6 +13,8 @@ The subpackages are the layers (checked by the import-linter contracts in ``pypr
 - ``flex_nav.msg``         message and action classes generated from ``msg/`` and ``action/`` (by
   ``tools/gen_actions.py`` or catkin)
 - ``flex_nav.exceptions``  the typed exceptions every part raises
+- ``flex_nav.validation``  the parameter checks every part uses (numbers with bounds and units, integers,
+  booleans, names, choices)
 - ``flex_nav.resources``   where the data folders (behaviors, models, config, launch) are
 - ``flex_nav.action_types`` the four actions' classes and result codes by name
 
