@@ -212,7 +212,7 @@ def _base(f: Fields) -> BaseSpec:
         radius=radius,
         height=height,
         mass=f.positive("mass", unit="[kg]"),
-        com_height=f.number("com_height", minimum=0.0, maximum=height, strict_min=True, unit="[m]"),
+        com_height=f.number("com_height", positive=True, maximum=height, unit="[m]"),
     )
     f.done()
     return spec

@@ -28,6 +28,7 @@ from typing import Dict, List, Mapping, Optional, Sequence, Tuple
 import cv2
 import numpy as np
 
+from flex_nav import validation
 from flex_nav.exceptions import ConfigError, choices_message
 from flex_nav.nav.costmap.map_io import image_to_occupancy
 from flex_nav_sim.geometry2d import Footprint, Point, project_on_segment, segment_footprint
@@ -36,7 +37,6 @@ from flex_nav_sim.yaml_fields import (
     Fields,
     PathLike,
     available_names,
-    check_number,
     read_yaml_mapping,
     resolve_named_file,
 )
@@ -525,7 +525,9 @@ class _WorldReader:
                 waypoints = tuple(f.points("waypoints", minimum=2))
                 yaw = 0.0
             start = f.raw("start", 0.0)
-            start_time = None if start is None else check_number(start, f.where("start"), minimum=0.0, unit="[s]")
+            start_time: Optional[float] = None
+            if start is not None:
+                start_time = validation.number(f.source, f.dotted("start"), start, minimum=0.0, unit="[s]")
             people.append(
                 Person(
                     name=name,

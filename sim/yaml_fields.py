@@ -3,7 +3,8 @@
 Robot profiles and worlds are hand-written YAML. A typo must fail at load time with a message such as
 ``lab.yaml: obstacles[2].shape 'cube' is not valid (valid: box, cylinder)``, never be ignored. A
 :class:`Fields` wraps one mapping plus its location (file and dotted path); every getter checks type
-and range, and :meth:`Fields.done` rejects keys nobody read (unknown fields, listing the known ones).
+and range with :mod:`flex_nav.validation` (the file is the owner, the dotted path the parameter), and
+:meth:`Fields.done` rejects keys nobody read (unknown fields, listing the known ones).
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ from typing import Any, Dict, List, Optional, Sequence, Set, Tuple, Union
 
 import yaml
 
+from flex_nav import validation
 from flex_nav.exceptions import ConfigError, choices_message
 
 PathLike = Union[str, Path]
@@ -64,7 +66,7 @@ class Fields:
     def __init__(self, data: object, source: str, path: str = "") -> None:
         if not isinstance(data, dict):
             where = f"{source}: {path}" if path else source
-            raise ConfigError(f"{where} must be a mapping (key: value), got {_show(data)}")
+            raise ConfigError(f"{where} must be a mapping (key: value), got {validation.shown(data)}")
         self.data: Dict[str, Any] = data
         self.source = source
         self.path = path
@@ -72,8 +74,11 @@ class Fields:
 
     def where(self, key: str) -> str:
         """``source: path.key`` for messages."""
-        dotted = f"{self.path}.{key}" if self.path else key
-        return f"{self.source}: {dotted}"
+        return f"{self.source}: {self.dotted(key)}"
+
+    def dotted(self, key: str) -> str:
+        """``path.key``: where ``key`` is in the file."""
+        return f"{self.path}.{key}" if self.path else key
 
     def has(self, key: str) -> bool:
         return key in self.data
@@ -90,7 +95,7 @@ class Fields:
     def sub(self, key: str, default_empty: bool = False) -> Fields:
         """A nested mapping as :class:`Fields`."""
         value = self.raw(key, {} if default_empty else _MISSING)
-        return Fields(value, self.source, self._dotted(key))
+        return Fields(value, self.source, self.dotted(key))
 
     def sub_list(self, key: str) -> List[Fields]:
         """A list of mappings (missing -> empty list)."""
@@ -98,8 +103,8 @@ class Fields:
         if items is None:
             return []
         if not isinstance(items, list):
-            raise ConfigError(f"{self.where(key)} must be a list, got {_show(items)}")
-        return [Fields(item, self.source, f"{self._dotted(key)}[{i}]") for i, item in enumerate(items)]
+            raise ConfigError(f"{self.where(key)} must be a list, got {validation.shown(items)}")
+        return [Fields(item, self.source, f"{self.dotted(key)}[{i}]") for i, item in enumerate(items)]
 
     def number(
         self,
@@ -108,53 +113,47 @@ class Fields:
         *,
         minimum: Optional[float] = None,
         maximum: Optional[float] = None,
-        strict_min: bool = False,
+        positive: bool = False,
         unit: str = "",
     ) -> float:
-        """A finite number within [minimum, maximum] (``strict_min``: > minimum)."""
+        """A finite number within [minimum, maximum] (``positive``: > 0)."""
         value = self.raw(key, _MISSING if default is None else default)
-        return check_number(value, self.where(key), minimum=minimum, maximum=maximum, strict_min=strict_min, unit=unit)
+        return validation.number(
+            self.source, self.dotted(key), value, minimum=minimum, maximum=maximum, positive=positive, unit=unit
+        )
 
     def positive(self, key: str, default: Optional[float] = None, unit: str = "") -> float:
-        return self.number(key, default, minimum=0.0, strict_min=True, unit=unit)
+        return self.number(key, default, positive=True, unit=unit)
 
     def integer(self, key: str, default: Optional[int] = None, *, minimum: Optional[int] = None) -> int:
         value = self.raw(key, _MISSING if default is None else default)
-        if isinstance(value, bool) or not isinstance(value, int):
-            raise ConfigError(f"{self.where(key)} must be an integer, got {_show(value)}")
-        if minimum is not None and value < minimum:
-            raise ConfigError(f"{self.where(key)} must be >= {minimum}, got {value}")
-        return value
+        return validation.integer(self.source, self.dotted(key), value, minimum=minimum)
 
     def boolean(self, key: str, default: Optional[bool] = None) -> bool:
         value = self.raw(key, _MISSING if default is None else default)
-        if not isinstance(value, bool):
-            raise ConfigError(f"{self.where(key)} must be true or false, got {_show(value)}")
-        return value
+        return validation.boolean(self.source, self.dotted(key), value)
 
     def string(self, key: str, default: Optional[str] = None) -> str:
         value = self.raw(key, _MISSING if default is None else default)
-        if not isinstance(value, str):
-            raise ConfigError(f"{self.where(key)} must be a string, got {_show(value)}")
-        return value
+        return validation.text(self.source, self.dotted(key), value)
 
     def choice(self, key: str, valid: Sequence[str], default: Optional[str] = None) -> str:
         value = self.raw(key, _MISSING if default is None else default)
-        if value not in valid:
-            raise ConfigError(choices_message(self.where(key), value, valid))
-        return str(value)
+        return validation.choice(self.source, self.dotted(key), value, valid)
 
     def vector(
         self, key: str, length: int, default: Optional[Sequence[float]] = None, unit: str = ""
     ) -> Tuple[float, ...]:
         """A list of exactly ``length`` finite numbers."""
         value = self.raw(key, _MISSING if default is None else list(default))
-        return check_vector(value, self.where(key), (length,), unit)
+        return check_vector(value, self.source, self.dotted(key), (length,), unit)
 
     def pose(self, key: str, default: Optional[Sequence[float]] = None) -> Tuple[float, float, float]:
         """``[x, y]`` or ``[x, y, yaw_deg]`` -> (x [m], y [m], yaw [rad])."""
         value = self.raw(key, _MISSING if default is None else list(default))
-        x, y, *rest = check_vector(value, self.where(key), (2, 3), "[x [m], y [m]] or [x [m], y [m], yaw [deg]]")
+        x, y, *rest = check_vector(
+            value, self.source, self.dotted(key), (2, 3), "[x [m], y [m]] or [x [m], y [m], yaw [deg]]"
+        )
         return x, y, math.radians(rest[0]) if rest else 0.0
 
     def points(self, key: str, minimum: int = 1) -> List[Tuple[float, float]]:
@@ -162,11 +161,12 @@ class Fields:
         value = self.raw(key)
         if not isinstance(value, list) or len(value) < minimum:
             raise ConfigError(
-                f"{self.where(key)} must be a list of at least {minimum} [x, y] points [m], got {_show(value)}"
+                f"{self.where(key)} must be a list of at least {minimum} [x, y] points [m], "
+                f"got {validation.shown(value)}"
             )
         out = []
         for i, item in enumerate(value):
-            x, y = check_vector(item, f"{self.where(key)}[{i}]", (2,), "[x [m], y [m]]")
+            x, y = check_vector(item, self.source, f"{self.dotted(key)}[{i}]", (2,), "[x [m], y [m]]")
             out.append((x, y))
         return out
 
@@ -177,43 +177,13 @@ class Fields:
             bad = unknown[0]
             raise ConfigError(choices_message(f"{self.where(str(bad))}: unknown field", bad, sorted(self._read)))
 
-    def _dotted(self, key: str) -> str:
-        return f"{self.path}.{key}" if self.path else key
 
-
-def check_number(
-    value: object,
-    where: str,
-    *,
-    minimum: Optional[float] = None,
-    maximum: Optional[float] = None,
-    strict_min: bool = False,
-    unit: str = "",
-) -> float:
-    """``value`` as a finite float within bounds, else ConfigError naming ``where``."""
-    suffix = f" {unit}" if unit else ""
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise ConfigError(f"{where} must be a number{suffix}, got {_show(value)}")
-    number = float(value)
-    if not math.isfinite(number):
-        raise ConfigError(f"{where} must be finite{suffix}, got {value!r}")
-    if minimum is not None and (number <= minimum if strict_min else number < minimum):
-        relation = ">" if strict_min else ">="
-        raise ConfigError(f"{where} must be {relation} {minimum:g}{suffix}, got {number:g}")
-    if maximum is not None and number > maximum:
-        raise ConfigError(f"{where} must be <= {maximum:g}{suffix}, got {number:g}")
-    return number
-
-
-def check_vector(value: object, where: str, lengths: Tuple[int, ...], unit: str = "") -> Tuple[float, ...]:
-    """A list/tuple of finite numbers whose length is one of ``lengths``."""
+def check_vector(
+    value: object, owner: str, name: str, lengths: Tuple[int, ...], unit: str = ""
+) -> Tuple[float, ...]:
+    """A list/tuple of finite numbers whose length is one of ``lengths``; messages name ``owner: name``."""
     wanted = " or ".join(str(n) for n in lengths)
     if not isinstance(value, (list, tuple)) or len(value) not in lengths:
         detail = f" {unit}" if unit else ""
-        raise ConfigError(f"{where} must be a list of {wanted} numbers{detail}, got {_show(value)}")
-    return tuple(check_number(v, f"{where}[{i}]") for i, v in enumerate(value))
-
-
-def _show(value: object) -> str:
-    text = repr(value)
-    return text if len(text) <= 80 else text[:77] + "..."
+        raise ConfigError(f"{owner}: {name} must be a list of {wanted} numbers{detail}, got {validation.shown(value)}")
+    return tuple(validation.number(owner, f"{name}[{i}]", v) for i, v in enumerate(value))

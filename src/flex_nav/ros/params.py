@@ -1,7 +1,8 @@
 """Reading private parameters with their type, range and choices checked when the node starts.
 
 A bad value raises ConfigError naming the parameter, the value and what is valid, so a node dies at
-start with a clear message instead of misbehaving later.
+start with a clear message instead of misbehaving later. The rules are :mod:`flex_nav.validation`'s; the
+messages are worded for a parameter server (``parameter /relay/timeout = -1.0 is outside [0.0, 3600.0]``).
 """
 
 from __future__ import annotations
@@ -12,6 +13,7 @@ from typing import Any
 
 import rospy
 
+from flex_nav import validation
 from flex_nav.exceptions import ConfigError, choices_message
 
 _MISSING = object()
@@ -24,36 +26,37 @@ def _resolved(name: str) -> str:
 def param_float(
     name: str, default: float | None = None, minimum: float = -math.inf, maximum: float = math.inf
 ) -> float:
-    """A finite float parameter within [minimum, maximum]; ``default`` None means required."""
+    """A finite float parameter within [minimum, maximum]; ``default`` None means required. What ``float()``
+    takes counts as a number (a string such as "0.5" set with ``type="str"``, a bool)."""
     raw = _get(name, default)
     try:
         value = float(raw)
     except (TypeError, ValueError):
         raise ConfigError(f"parameter {_resolved(name)} = {raw!r} is not a number") from None
-    if not math.isfinite(value) or not minimum <= value <= maximum:
+    if validation.number_problem(value, minimum=minimum, maximum=maximum) is not None:
         raise ConfigError(f"parameter {_resolved(name)} = {raw!r} is outside [{minimum}, {maximum}]")
     return value
 
 
 def param_int(name: str, default: int | None = None, minimum: int | None = None, maximum: int | None = None) -> int:
     raw = _get(name, default)
-    if isinstance(raw, bool) or not isinstance(raw, int):
+    if validation.integer_problem(raw) is not None:
         raise ConfigError(f"parameter {_resolved(name)} = {raw!r} is not an integer")
-    if (minimum is not None and raw < minimum) or (maximum is not None and raw > maximum):
+    if validation.integer_problem(raw, minimum=minimum, maximum=maximum) is not None:
         raise ConfigError(f"parameter {_resolved(name)} = {raw!r} is outside [{minimum}, {maximum}]")
     return raw
 
 
 def param_bool(name: str, default: bool | None = None) -> bool:
     raw = _get(name, default)
-    if not isinstance(raw, bool):
+    if validation.boolean_problem(raw) is not None:
         raise ConfigError(f"parameter {_resolved(name)} = {raw!r} is not true/false")
     return raw
 
 
 def param_str(name: str, default: str | None = None, choices: Sequence[str] | None = None) -> str:
     raw = _get(name, default)
-    if not isinstance(raw, str):
+    if validation.text_problem(raw) is not None:
         raise ConfigError(f"parameter {_resolved(name)} = {raw!r} is not a string")
     if choices is not None and raw not in choices:
         raise ConfigError(choices_message(f"parameter {_resolved(name)}", raw, choices))

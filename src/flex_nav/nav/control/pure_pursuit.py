@@ -41,6 +41,7 @@ from typing import Any, Mapping, Optional, Tuple
 import numpy as np
 from numba import njit
 
+from flex_nav import validation
 from flex_nav.exceptions import ConfigError, choices_message
 from flex_nav.nav.angles import wrap_angle
 from flex_nav.nav.control.path_obstacle import obstacle_on_path
@@ -76,6 +77,25 @@ class Command:
     lookahead: float = 0.0  # [m] lookahead distance used
     distance_to_goal: float = math.inf  # [m] along the path
     cross_track: float = math.inf  # [m] distance from the robot to the path
+
+
+_OWNER = "pure pursuit"  # in the messages of PurePursuitParams' checks
+# every number is finite and >= 0; these are > 0, and these have a maximum
+_POSITIVE = frozenset({
+    "desired_linear_vel",
+    "max_linear_accel",
+    "max_linear_decel",
+    "max_angular_vel",
+    "max_angular_accel",
+    "lookahead_dist",
+    "min_lookahead_dist",
+    "rotate_to_heading_angular_vel",
+    "regulated_linear_scaling_min_radius",
+    "cost_scaling_dist",
+    "goal_dist_tol",
+    "yaw_goal_tolerance",
+})
+_MAXIMUM = {"cost_scaling_gain": 1.0}
 
 
 @dataclass(frozen=True)
@@ -117,37 +137,15 @@ class PurePursuitParams:
         for f in fields(self):
             value = getattr(self, f.name)
             if f.type in (bool, "bool"):
-                if not isinstance(value, bool):
-                    raise ConfigError(f"pure pursuit {f.name} must be true or false, got {value!r}")
-                continue
-            if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-                raise ConfigError(f"pure pursuit {f.name} must be a finite number, got {value!r}")
-            if value < 0:
-                raise ConfigError(f"pure pursuit {f.name} must be >= 0, got {value!r}")
-        positive = (
-            "desired_linear_vel",
-            "max_linear_accel",
-            "max_linear_decel",
-            "max_angular_vel",
-            "max_angular_accel",
-            "lookahead_dist",
-            "min_lookahead_dist",
-            "rotate_to_heading_angular_vel",
-            "regulated_linear_scaling_min_radius",
-            "cost_scaling_dist",
-            "goal_dist_tol",
-            "yaw_goal_tolerance",
-        )
-        for name in positive:
-            if getattr(self, name) <= 0:
-                raise ConfigError(f"pure pursuit {name} must be > 0, got {getattr(self, name)!r}")
+                validation.boolean(_OWNER, f.name, value)
+            else:
+                validation.number(_OWNER, f.name, value, minimum=0.0, positive=f.name in _POSITIVE,
+                                  maximum=_MAXIMUM.get(f.name))
         if self.max_lookahead_dist < self.min_lookahead_dist:
             raise ConfigError(
                 f"pure pursuit max_lookahead_dist ({self.max_lookahead_dist}) must be >= min_lookahead_dist "
                 f"({self.min_lookahead_dist})"
             )
-        if self.cost_scaling_gain > 1.0:
-            raise ConfigError(f"pure pursuit cost_scaling_gain must be in [0, 1], got {self.cost_scaling_gain!r}")
 
     @classmethod
     def from_mapping(cls, values: Mapping[str, Any]) -> PurePursuitParams:

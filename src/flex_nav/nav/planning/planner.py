@@ -27,10 +27,13 @@ from typing import Optional, Sequence, Tuple
 
 import numpy as np
 
+from flex_nav import validation
 from flex_nav.exceptions import ConfigError
 from flex_nav.nav.costmap.costmap_grid import LETHAL, NO_INFORMATION, CostmapGeometry
 from flex_nav.nav.costmap.grid_map import Cell
 from flex_nav.nav.planning import astar
+
+_OWNER = "planner"  # in the messages of PlannerParams' checks
 
 
 class PlanStatus(enum.Enum):
@@ -62,18 +65,14 @@ class PlannerParams:
     simplify: bool = False  # drop poses in the middle of straight runs
 
     def __post_init__(self) -> None:
-        _finite(self.neutral_cost, "neutral_cost", low=1e-9)
-        _finite(self.cost_factor, "cost_factor", low=0.0)
-        _finite(self.goal_tolerance, "goal_tolerance", low=0.0)
-        _finite(self.start_escape, "start_escape", low=0.0)
-        _finite(self.smoothing_slack, "smoothing_slack", low=0.0)
-        _finite(self.diagonal_factor, "diagonal_factor", low=1.0)
-        if self.diagonal_factor > 2.0:
-            raise ConfigError(f"planner diagonal_factor must be in [1, 2], got {self.diagonal_factor!r}")
-        for name, low, high in (("lethal_cost", 1, 255), ("unknown_cost", 0, 254)):
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
-                raise ConfigError(f"planner {name} must be an integer in {low}..{high}, got {value!r}")
+        validation.number(_OWNER, "neutral_cost", self.neutral_cost, minimum=1e-9)
+        validation.number(_OWNER, "cost_factor", self.cost_factor, minimum=0.0)
+        validation.number(_OWNER, "goal_tolerance", self.goal_tolerance, minimum=0.0, unit="[m]")
+        validation.number(_OWNER, "start_escape", self.start_escape, minimum=0.0, unit="[m]")
+        validation.number(_OWNER, "smoothing_slack", self.smoothing_slack, minimum=0.0)
+        validation.number(_OWNER, "diagonal_factor", self.diagonal_factor, minimum=1.0, maximum=2.0)
+        validation.integer(_OWNER, "lethal_cost", self.lethal_cost, minimum=1, maximum=255)
+        validation.integer(_OWNER, "unknown_cost", self.unknown_cost, minimum=0, maximum=254)
 
     def weight_table(self) -> np.ndarray:
         """float64[256]: the weight of entering a cell of each cost (inf = impassable)."""
@@ -367,8 +366,3 @@ def _bad_pose(pose: Sequence[float], name: str) -> str:
     if not all(math.isfinite(v) for v in values):
         return f"{name} has a non-finite value: {pose!r}"
     return ""
-
-
-def _finite(value: object, name: str, *, low: float) -> None:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value < low:
-        raise ConfigError(f"planner {name} must be a finite number >= {low}, got {value!r}")
