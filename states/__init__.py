@@ -13,9 +13,10 @@ Modules (one state or one small family each):
   :mod:`follow_topic_state` (FollowTopic), :mod:`clear_costmaps_state` (several ClearCostmap servers at once);
 - goals: :mod:`get_pose_state` (a PoseStamped goal from a topic, stale messages dropped),
   :mod:`goal_list_state` (the goals of a fixed list in turn, e.g. the paper's intermediate goals);
-- motion (:mod:`~flex_nav_states.motion_base`; TwistStamped out, zero twist on every exit):
-  :mod:`move_distance_state`, :mod:`rotate_angle_state` (closed loop on odometry), :mod:`timed_twist_state`,
-  :mod:`timed_stop_state`, :mod:`pure_pursuit_state` (follows the ``plan`` in userdata);
+- motion (:mod:`~flex_nav_states.motion_base`; TwistStamped out, zero twist on every exit; the parameter groups
+  they share in :mod:`~flex_nav_states.motion_params`): :mod:`move_distance_state`, :mod:`rotate_angle_state`
+  (closed loop on odometry), :mod:`timed_twist_state`, :mod:`timed_stop_state`, :mod:`pure_pursuit_state` (follows
+  the ``plan`` in userdata);
 - monitors: :mod:`bumper_monitor_state` (bumper/cliff, configured by robot profile),
   :mod:`stuck_monitor_state`, :mod:`sensor_freshness_state`;
 - obstacles (push or avoid): :mod:`follow_until_blocked_state` (FollowPath with a ``blocked`` outcome),

@@ -1,8 +1,9 @@
 """The common part of the motion states: velocity commands out, odometry in, zero twist on every exit.
 
 :class:`MotionBase` publishes geometry_msgs/TwistStamped on ``cmd_topic`` (default ``cmd_vel_stamped``; a
-``twist_relay`` turns it into the base's Twist) and reads nav_msgs/Odometry on ``odom_topic``. Its
-guarantees, whatever the subclass does:
+``twist_relay`` turns it into the base's Twist) and reads nav_msgs/Odometry on ``odom_topic`` (the groups
+:class:`~flex_nav_states.motion_params.CommandOutput` and :class:`~flex_nav_states.motion_params.OdometryInput`,
+which a subclass builds from its flat parameters). Its guarantees, whatever the subclass does:
 
 - a zero twist is published in ``on_exit`` (own outcome, preemption, a monitor ending the concurrency,
   a forced transition, a failure elsewhere) and in ``on_pause``;
@@ -26,6 +27,7 @@ from flex_nav.behavior.userdata import UserDataView
 from flex_nav.exceptions import ConfigError
 from flex_nav_states import validation
 from flex_nav_states.messages import OdomSample, message_age_s, odom_sample, sample_is_finite, twist_stamped
+from flex_nav_states.motion_params import CommandOutput, OdometryInput
 from flex_nav_states.proxy_types import PublisherLike, SubscriptionLike, proxies_of
 
 MOTION_RATE_HZ = 20.0  # [Hz] default rate of the motion states (a twist_relay times out after 0.5 s)
@@ -98,19 +100,15 @@ class MotionBase(State):
         self,
         outcomes: Sequence[str],
         *,
-        cmd_topic: str,
-        frame_id: str,
-        odom_topic: str,
-        odom_timeout_s: float,
+        command: CommandOutput,
+        odometry: Optional[OdometryInput],
         input_keys: Sequence[str] = (),
         output_keys: Sequence[str] = (),
     ) -> None:
+        """``command``: where the commands go; ``odometry``: where odometry comes from (None: the state reads none)."""
         super().__init__(outcomes=outcomes, input_keys=input_keys, output_keys=output_keys, rate_hz=MOTION_RATE_HZ)
-        owner = type(self).__name__
-        self._cmd_topic = validation.name(owner, "cmd_topic", cmd_topic)
-        self._frame_id = validation.name(owner, "frame_id", frame_id, allow_empty=True)
-        self._odom_topic = validation.name(owner, "odom_topic", odom_topic, allow_empty=True)
-        self._odom_timeout_s = validation.number(owner, "odom_timeout_s", odom_timeout_s, positive=True, unit="[s]")
+        self._command_output = command
+        self._odometry_input = odometry
         self._cmd: Optional[PublisherLike] = None
         self._odom: Optional[SubscriptionLike] = None
         self._enter_s = 0.0
@@ -121,9 +119,9 @@ class MotionBase(State):
     # --- lifecycle ---------------------------------------------------------------------------------
     def on_start(self) -> None:
         proxies = proxies_of(self)
-        self._cmd = proxies.publisher(self._cmd_topic, TwistStamped)
-        if self._odom_topic:
-            self._odom = proxies.subscription(self._odom_topic, Odometry)
+        self._cmd = proxies.publisher(self._command_output.topic, TwistStamped)
+        if self._odometry_input is not None:
+            self._odom = proxies.subscription(self._odometry_input.topic, Odometry)
 
     def on_enter(self, userdata: UserDataView) -> None:
         now = self.now_s()
@@ -150,8 +148,8 @@ class MotionBase(State):
             self.log_error(f"non-finite velocity command v={v!r} w={w!r} replaced by a stop")
             v = w = 0.0
         if self._cmd is None:
-            self._cmd = proxies_of(self).publisher(self._cmd_topic, TwistStamped)
-        self._cmd.publish(twist_stamped(v, w, self._frame_id, self.now_s()))
+            self._cmd = proxies_of(self).publisher(self._command_output.topic, TwistStamped)
+        self._cmd.publish(twist_stamped(v, w, self._command_output.frame_id, self.now_s()))
 
     def stop(self) -> None:
         self.send(0.0, 0.0)
@@ -160,18 +158,23 @@ class MotionBase(State):
         """[s] time since entry, without the paused time."""
         return self.now_s() - self._enter_s - self._paused_total_s
 
+    def odometry_input(self) -> OdometryInput:
+        """Where odometry comes from; ConfigError for a state built without odometry."""
+        if self._odometry_input is None:
+            raise ConfigError(f"{type(self).__name__}: needs odometry but odom_topic is empty")
+        return self._odometry_input
+
     def odometry(self) -> Optional[OdomSample]:
         """The newest odometry sample if it is fresh and finite, else None."""
+        odometry = self.odometry_input()
         sub = self._odom
         if sub is None:
-            if not self._odom_topic:
-                raise ConfigError(f"{type(self).__name__}: needs odometry but odom_topic is empty")
-            sub = self._odom = proxies_of(self).subscription(self._odom_topic, Odometry)
+            sub = self._odom = proxies_of(self).subscription(odometry.topic, Odometry)
         msg = sub.last()
         if msg is None:
             return None
         now = self.now_s()
-        if message_age_s(msg, sub, now) > self._odom_timeout_s:
+        if message_age_s(msg, sub, now) > odometry.timeout_s:
             return None
         sample = odom_sample(msg)
         if not sample_is_finite(sample):
@@ -181,15 +184,16 @@ class MotionBase(State):
 
     def odometry_lost(self) -> bool:
         """True when no fresh odometry was seen for longer than odom_timeout_s (entry and resume count as seen)."""
-        return self.now_s() - self._last_fresh_s > self._odom_timeout_s
+        return self.now_s() - self._last_fresh_s > self.odometry_input().timeout_s
 
     def odometry_problem(self) -> str:
+        odometry = self.odometry_input()
         sub = self._odom
         last = sub.last() if sub is not None else None
         if last is None:
-            return f"no odometry on {self._odom_topic} within odom_timeout_s {self._odom_timeout_s:g} s"
+            return f"no odometry on {odometry.topic} within odom_timeout_s {odometry.timeout_s:g} s"
         age = message_age_s(last, sub, self.now_s()) if sub is not None else math.inf
         return (
-            f"odometry on {self._odom_topic} is stale or invalid: newest is {age:.2f} s old "
-            f"(odom_timeout_s {self._odom_timeout_s:g} s)"
+            f"odometry on {odometry.topic} is stale or invalid: newest is {age:.2f} s old "
+            f"(odom_timeout_s {odometry.timeout_s:g} s)"
         )

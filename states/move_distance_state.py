@@ -13,6 +13,7 @@ from flex_nav.nav.angles import wrap_angle
 from flex_nav_states import validation
 from flex_nav_states.messages import OdomSample, message_age_s
 from flex_nav_states.motion_base import MotionBase, closed_loop_timeout, stall_watch
+from flex_nav_states.motion_params import SPEED_LIMITS, CommandOutput, OdometryInput, RearCheck
 from flex_nav_states.proxy_types import SubscriptionLike, proxies_of
 from flex_nav_states.rear_clearance import gap_behind_m
 
@@ -71,38 +72,31 @@ class MoveDistanceState(MotionBase):
         clearance_m: float = 0.05,
         scan_max_age_s: float = 0.5,
     ) -> None:
+        owner = type(self).__name__
         super().__init__(
             ["done", "failed"],
-            cmd_topic=cmd_topic,
-            frame_id=frame_id,
-            odom_topic=validation.name(type(self).__name__, "odom_topic", odom_topic),
-            odom_timeout_s=odom_timeout_s,
+            odometry=OdometryInput(owner, odom_topic, odom_timeout_s),
+            command=CommandOutput(owner, cmd_topic, frame_id),
         )
-        owner = type(self).__name__
         self._distance_m = validation.number(owner, "distance_m", distance_m, unit="[m]")
         if self._distance_m == 0.0:
             raise ConfigError(f"{owner}: distance_m must not be 0 [m]")
-        self._speed_mps = validation.number(owner, "speed_mps", speed_mps, positive=True,
-                                             maximum=validation.MAX_LINEAR_MPS, unit="[m/s]")
+        self._speed_mps = SPEED_LIMITS.linear(owner, "speed_mps", speed_mps)
         self._tolerance_m = validation.number(owner, "tolerance_m", tolerance_m, positive=True, unit="[m]")
         self._timeout_s = closed_loop_timeout(owner, timeout_s, amount=self._distance_m, amount_name="distance_m",
                                               speed=self._speed_mps, speed_name="speed_mps")
         self._stall = stall_watch(owner, stall_window_s, progress_name="stall_distance_m",
                                   min_progress=stall_distance_m, unit="m",
                                   slowest_speed=min(MIN_SPEED_MPS, self._speed_mps))
-        self._scan_topic = validation.name(owner, "scan_topic", scan_topic, allow_empty=True)
-        self._robot_radius_m = validation.number(owner, "robot_radius_m", robot_radius_m, positive=True, unit="[m]")
-        self._clearance_m = validation.number(owner, "clearance_m", clearance_m, minimum=0.0, unit="[m]")
-        self._scan_max_age_s = validation.number(owner, "scan_max_age_s", scan_max_age_s, positive=True,
-                                                 unit="[s]")
+        self._rear = RearCheck(owner, scan_topic, robot_radius_m, clearance_m, scan_max_age_s)
         self._scan: Optional[SubscriptionLike] = None
         self._start: Optional[OdomSample] = None
         self._progress_m = 0.0
 
     def on_start(self) -> None:
         super().on_start()
-        if self._scan_topic and self._distance_m < 0.0:
-            self._scan = proxies_of(self).subscription(self._scan_topic, LaserScan)
+        if self._rear.enabled and self._distance_m < 0.0:
+            self._scan = proxies_of(self).subscription(self._rear.scan_topic, LaserScan)
 
     def on_enter(self, userdata: UserDataView) -> None:
         super().on_enter(userdata)
@@ -157,15 +151,16 @@ class MoveDistanceState(MotionBase):
 
     def _way_behind_problem(self, remaining_m: float) -> Optional[str]:
         """Why backing up on is not safe (something in the way, no fresh scan), or None (also when not checked)."""
-        if not self._scan_topic or self._distance_m > 0.0:
+        rear = self._rear
+        if not rear.enabled or self._distance_m > 0.0:
             return None
         sub = self._scan
         if sub is None:
-            sub = self._scan = proxies_of(self).subscription(self._scan_topic, LaserScan)
+            sub = self._scan = proxies_of(self).subscription(rear.scan_topic, LaserScan)
         scan = sub.last()
-        if scan is None or message_age_s(scan, sub, self.now_s()) > self._scan_max_age_s:
-            return f"no scan on {self._scan_topic} newer than scan_max_age_s {self._scan_max_age_s:g} s to see behind"
-        gap = gap_behind_m(scan, self._robot_radius_m, self._clearance_m, remaining_m)
+        if scan is None or message_age_s(scan, sub, self.now_s()) > rear.scan_max_age_s:
+            return f"no scan on {rear.scan_topic} newer than scan_max_age_s {rear.scan_max_age_s:g} s to see behind"
+        gap = gap_behind_m(scan, rear.robot_radius_m, rear.clearance_m, remaining_m)
         if gap is None:
             return None
-        return f"something is {gap:.2f} m behind the robot, in the way (clearance_m {self._clearance_m:g} m)"
+        return f"something is {gap:.2f} m behind the robot, in the way (clearance_m {rear.clearance_m:g} m)"

@@ -16,6 +16,7 @@ from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav_states import validation
 from flex_nav_states.messages import describe, message_age_s
 from flex_nav_states.motion_base import MotionBase
+from flex_nav_states.motion_params import CommandOutput, OdometryInput
 from flex_nav_states.proxy_types import SubscriptionLike, proxies_of
 
 POSE_TYPES: Dict[str, type] = {
@@ -82,10 +83,8 @@ class PurePursuitState(MotionBase):
         owner = type(self).__name__
         super().__init__(
             ["done", "failed"],
-            cmd_topic=cmd_topic,
-            frame_id=frame_id,
-            odom_topic=validation.name(owner, "odom_topic", odom_topic),
-            odom_timeout_s=odom_timeout_s,
+            odometry=OdometryInput(owner, odom_topic, odom_timeout_s),
+            command=CommandOutput(owner, cmd_topic, frame_id),
             input_keys=["plan"],
         )
         if pure_pursuit is not None and not isinstance(pure_pursuit, Mapping):
@@ -140,7 +139,7 @@ class PurePursuitState(MotionBase):
         odom = self.odometry()
         pose = self._robot_pose(now) if odom is not None else None
         if odom is None or pose is None:
-            if now - self._last_good_s > self._odom_timeout_s:
+            if now - self._last_good_s > self.odometry_input().timeout_s:
                 problem = self.odometry_problem() if odom is None else self._pose_problem(now)
                 self.log_error(f"pure pursuit stopped: {problem}")
                 return "failed"
@@ -149,7 +148,8 @@ class PurePursuitState(MotionBase):
         self._last_good_s = now
         (x, y, yaw), frame = pose
         if frame != self._plan_frame:
-            source = f"pose_topic {self._pose_topic}" if self._pose_topic else f"odometry on {self._odom_topic}"
+            odom_topic = self.odometry_input().topic
+            source = f"pose_topic {self._pose_topic}" if self._pose_topic else f"odometry on {odom_topic}"
             self.log_error(
                 f"robot pose from {source} is in frame '{frame}' but the plan is in '{self._plan_frame}': set "
                 "pose_topic to a pose in the plan's frame"
@@ -180,7 +180,7 @@ class PurePursuitState(MotionBase):
             if sub is None:
                 sub = self._pose_sub = proxies_of(self).subscription(self._pose_topic, self._pose_type)
             msg = sub.last()
-            if msg is None or message_age_s(msg, sub, now) > self._odom_timeout_s:
+            if msg is None or message_age_s(msg, sub, now) > self.odometry_input().timeout_s:
                 return None
         else:
             sub = self._odom
@@ -196,5 +196,5 @@ class PurePursuitState(MotionBase):
         sub = self._pose_sub
         msg = sub.last() if sub is not None else None
         if msg is None or sub is None:
-            return f"no robot pose on {self._pose_topic} within {self._odom_timeout_s:g} s"
+            return f"no robot pose on {self._pose_topic} within {self.odometry_input().timeout_s:g} s"
         return f"robot pose on {self._pose_topic} is stale or invalid ({message_age_s(msg, sub, now):.2f} s old)"

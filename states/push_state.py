@@ -18,6 +18,7 @@ from flex_nav.perception.labels import PERSON
 from flex_nav_states import validation
 from flex_nav_states.messages import OdomSample
 from flex_nav_states.motion_base import MotionBase, stall_watch
+from flex_nav_states.motion_params import SPEED_LIMITS, CommandOutput, OdometryInput
 from flex_nav_states.obstacle_class_state import ClassReader
 
 HEADING_GAIN = 1.0  # [1/s] yaw rate per radian of heading error (pushes straight)
@@ -70,15 +71,12 @@ class PushState(MotionBase):
         owner = type(self).__name__
         super().__init__(
             ["done", "failed", PERSON],
-            cmd_topic=cmd_topic,
-            frame_id=frame_id,
-            odom_topic=validation.name(owner, "odom_topic", odom_topic),
-            odom_timeout_s=odom_timeout_s,
+            odometry=OdometryInput(owner, odom_topic, odom_timeout_s),
+            command=CommandOutput(owner, cmd_topic, frame_id),
             output_keys=["push_progress_m"],
         )
         self._distance_m = validation.number(owner, "distance_m", distance_m, positive=True, unit="[m]")
-        self._speed_mps = validation.number(owner, "speed_mps", speed_mps, positive=True,
-                                             maximum=validation.MAX_LINEAR_MPS, unit="[m/s]")
+        self._speed_mps = SPEED_LIMITS.linear(owner, "speed_mps", speed_mps)
         margin = validation.number(owner, "margin_s", margin_s, minimum=0.0, unit="[s]")
         self._timeout_s = self._distance_m / self._speed_mps + margin
         self._stall = stall_watch(owner, stall_window_s, progress_name="stall_distance_m",

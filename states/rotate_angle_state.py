@@ -10,6 +10,7 @@ from flex_nav.exceptions import ConfigError
 from flex_nav.nav.angles import wrap_angle
 from flex_nav_states import validation
 from flex_nav_states.motion_base import MotionBase, closed_loop_timeout, stall_watch
+from flex_nav_states.motion_params import SPEED_LIMITS, CommandOutput, OdometryInput
 
 SLOWDOWN_GAIN = 1.5  # [1/s] commanded yaw rate = gain x remaining angle near the end (capped)
 MIN_RATE_RADPS = 0.15  # [rad/s] slowest commanded yaw rate (static friction)
@@ -50,19 +51,16 @@ class RotateAngleState(MotionBase):
         cmd_topic: str = "cmd_vel_stamped",
         frame_id: str = "base_footprint",
     ) -> None:
+        owner = type(self).__name__
         super().__init__(
             ["done", "failed"],
-            cmd_topic=cmd_topic,
-            frame_id=frame_id,
-            odom_topic=validation.name(type(self).__name__, "odom_topic", odom_topic),
-            odom_timeout_s=odom_timeout_s,
+            odometry=OdometryInput(owner, odom_topic, odom_timeout_s),
+            command=CommandOutput(owner, cmd_topic, frame_id),
         )
-        owner = type(self).__name__
         self._angle_rad = validation.number(owner, "angle_rad", angle_rad, unit="[rad]")
         if self._angle_rad == 0.0:
             raise ConfigError(f"{owner}: angle_rad must not be 0 [rad]")
-        self._speed = validation.number(owner, "angular_speed_radps", angular_speed_radps, positive=True,
-                                        maximum=validation.MAX_ANGULAR_RADPS, unit="[rad/s]")
+        self._speed = SPEED_LIMITS.angular(owner, "angular_speed_radps", angular_speed_radps)
         self._tolerance_rad = validation.number(owner, "tolerance_rad", tolerance_rad, positive=True, unit="[rad]")
         self._timeout_s = closed_loop_timeout(owner, timeout_s, amount=self._angle_rad, amount_name="angle_rad",
                                               speed=self._speed, speed_name="angular_speed_radps")

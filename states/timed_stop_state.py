@@ -7,6 +7,7 @@ from typing import Optional
 from flex_nav.behavior.userdata import UserDataView
 from flex_nav_states import validation
 from flex_nav_states.motion_base import MotionBase
+from flex_nav_states.motion_params import CommandOutput, OdometryInput
 
 
 class TimedStopState(MotionBase):
@@ -35,14 +36,12 @@ class TimedStopState(MotionBase):
         cmd_topic: str = "cmd_vel_stamped",
         frame_id: str = "base_footprint",
     ) -> None:
+        owner = type(self).__name__
         super().__init__(
             ["done", "failed"],
-            cmd_topic=cmd_topic,
-            frame_id=frame_id,
-            odom_topic=validation.name(type(self).__name__, "odom_topic", odom_topic),
-            odom_timeout_s=odom_timeout_s,
+            odometry=OdometryInput(owner, odom_topic, odom_timeout_s),
+            command=CommandOutput(owner, cmd_topic, frame_id),
         )
-        owner = type(self).__name__
         self._duration_s = validation.number(owner, "duration_s", duration_s, positive=True, unit="[s]")
         self._lin_tol = validation.number(owner, "linear_tolerance_mps", linear_tolerance_mps, positive=True,
                                           unit="[m/s]")

@@ -7,6 +7,7 @@ from typing import Optional
 from flex_nav.behavior.userdata import UserDataView
 from flex_nav_states import validation
 from flex_nav_states.motion_base import MotionBase
+from flex_nav_states.motion_params import SPEED_LIMITS, CommandOutput
 
 
 class TimedTwistState(MotionBase):
@@ -26,12 +27,10 @@ class TimedTwistState(MotionBase):
 
     def __init__(self, linear_mps: float = 0.0, angular_radps: float = 0.0, duration_s: float = 1.0,
                  cmd_topic: str = "cmd_vel_stamped", frame_id: str = "base_footprint") -> None:
-        super().__init__(["done"], cmd_topic=cmd_topic, frame_id=frame_id, odom_topic="", odom_timeout_s=1.0)
         owner = type(self).__name__
-        self._v = validation.number(owner, "linear_mps", linear_mps, minimum=-validation.MAX_LINEAR_MPS,
-                                    maximum=validation.MAX_LINEAR_MPS, unit="[m/s]")
-        self._w = validation.number(owner, "angular_radps", angular_radps, minimum=-validation.MAX_ANGULAR_RADPS,
-                                    maximum=validation.MAX_ANGULAR_RADPS, unit="[rad/s]")
+        super().__init__(["done"], command=CommandOutput(owner, cmd_topic, frame_id), odometry=None)
+        self._v = SPEED_LIMITS.linear(owner, "linear_mps", linear_mps, signed=True)
+        self._w = SPEED_LIMITS.angular(owner, "angular_radps", angular_radps, signed=True)
         self._duration_s = validation.number(owner, "duration_s", duration_s, positive=True, unit="[s]")
 
     def execute(self, userdata: UserDataView) -> Optional[str]:
