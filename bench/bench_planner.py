@@ -115,7 +115,7 @@ def pyastar_cost_in_model(planner: GridPlanner, costs: np.ndarray, path: np.ndar
 
 
 def median_ms(values: list) -> float:
-    return 1e3 * statistics.median(values)
+    return float(1e3 * statistics.median(values))
 
 
 def main() -> int:

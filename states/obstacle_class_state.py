@@ -41,7 +41,7 @@ class ClassReader:
             self.start(state)
         sub = self._sub
         assert sub is not None
-        msg = sub.last()
+        msg: Optional[ObstacleClass] = sub.last()
         if msg is None or message_age_s(msg, sub, state.now_s()) > self.max_age_s:
             return None
         stamp = stamp_s(msg)

@@ -25,7 +25,7 @@ def scenario(out: Path, world: str, behavior: str, sim_limit_s: float = SIM_LIMI
     )
     lines = [line for line in outcome.output.splitlines() if line.startswith("RESULT ")]
     assert outcome.returncode == 0 and lines, f"no result (exit {outcome.returncode}):\n{outcome.output[-5000:]}"
-    result = json.loads(lines[-1][len("RESULT "):])
+    result: dict = json.loads(lines[-1][len("RESULT "):])
     result["output"] = outcome.output
     assert (out / "run.png").stat().st_size > 5_000
     return result

@@ -102,7 +102,8 @@ def _segment_distances(path: np.ndarray, x: float, y: float) -> np.ndarray:
     denom = np.einsum("ij,ij->i", ab, ab)
     t = np.einsum("ij,ij->i", np.array([x, y]) - a, ab) / np.where(denom > 0.0, denom, 1.0)
     nearest = a + np.clip(t, 0.0, 1.0)[:, None] * ab
-    return np.hypot(nearest[:, 0] - x, nearest[:, 1] - y)
+    distances: np.ndarray = np.hypot(nearest[:, 0] - x, nearest[:, 1] - y)
+    return distances
 
 
 @njit(cache=True, nogil=True)

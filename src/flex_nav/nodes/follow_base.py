@@ -73,8 +73,8 @@ class FollowNode(abc.ABC):
     server: GoalServer
 
     def __init__(self, source: GoalSource, parameters: Sequence[str]) -> None:
-        if not isinstance(source, GoalSource):
-            valid = ", ".join(str(member) for member in GoalSource)
+        if not isinstance(source, GoalSource):  # a caller without type checking
+            valid = ", ".join(str(member) for member in GoalSource)  # type: ignore[unreachable]
             raise ConfigError(f"{type(self).__name__} source {source!r} is not valid (valid: {valid})")
         self.source = source
         self.name = rospy.get_name()

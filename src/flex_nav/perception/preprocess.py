@@ -85,7 +85,8 @@ class Normaliser:
     def batch(self, patches: np.ndarray) -> np.ndarray:
         """(N, H, W, 3) uint8 -> (N, 3, H, W) float32."""
         nchw = patches.astype(np.float32).transpose(0, 3, 1, 2)
-        return nchw * self._scale[None, :, None, None] + self._offset[None, :, None, None]
+        scaled: np.ndarray = nchw * self._scale[None, :, None, None] + self._offset[None, :, None, None]
+        return scaled
 
 
 @dataclass(frozen=True)

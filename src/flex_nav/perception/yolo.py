@@ -89,7 +89,8 @@ def classwise_nms(boxes: np.ndarray, scores: np.ndarray, classes: np.ndarray, io
     if not keep:
         return np.zeros(0, dtype=np.int64)
     kept = np.concatenate(keep)
-    return kept[np.argsort(-scores[kept], kind="stable")]
+    ordered: np.ndarray = kept[np.argsort(-scores[kept], kind="stable")]
+    return ordered
 
 
 def resolve_layout(shape: Sequence[Any], num_classes: int, layout: str = "auto") -> str:

@@ -48,7 +48,8 @@ def goal_in_frame(buffer: tf2_ros.Buffer, goal: PoseStamped, target_frame: str, 
         raise ConfigError(f"goal {problem}")
     pose = np.array([[p.x, p.y, yaw_of_quaternion(q.x, q.y, q.z, q.w)]])
     tx, ty, tyaw = frame_pose(buffer, target_frame, goal.header.frame_id, timeout_s)
-    return transform_poses(pose, tx, ty, tyaw)[0]
+    in_target: np.ndarray = transform_poses(pose, tx, ty, tyaw)[0]
+    return in_target
 
 
 def path_in_frame(buffer: tf2_ros.Buffer, path: Path, target_frame: str, timeout_s: float) -> np.ndarray:

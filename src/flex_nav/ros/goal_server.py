@@ -146,8 +146,8 @@ class GoalServer:
                 self.server.set_succeeded(result, result.message)
             elif outcome is GoalOutcome.ABORTED:
                 self.server.set_aborted(result, result.message)
-            else:
-                valid = ", ".join(str(member) for member in GoalOutcome)
+            else:  # a caller without type checking
+                valid = ", ".join(str(member) for member in GoalOutcome)  # type: ignore[unreachable]
                 raise ValueError(f"outcome {outcome!r} is not valid (valid: {valid})")
             self._current = None
             return True

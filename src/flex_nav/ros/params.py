@@ -44,14 +44,14 @@ def param_int(name: str, default: int | None = None, minimum: int | None = None,
         raise ConfigError(f"parameter {_resolved(name)} = {raw!r} is not an integer")
     if validation.integer_problem(raw, minimum=minimum, maximum=maximum) is not None:
         raise ConfigError(f"parameter {_resolved(name)} = {raw!r} is outside [{minimum}, {maximum}]")
-    return raw
+    return int(raw)
 
 
 def param_bool(name: str, default: bool | None = None) -> bool:
     raw = _get(name, default)
     if validation.boolean_problem(raw) is not None:
         raise ConfigError(f"parameter {_resolved(name)} = {raw!r} is not true/false")
-    return raw
+    return bool(raw)
 
 
 def param_str(name: str, default: str | None = None, choices: Sequence[str] | None = None) -> str:
@@ -60,7 +60,7 @@ def param_str(name: str, default: str | None = None, choices: Sequence[str] | No
         raise ConfigError(f"parameter {_resolved(name)} = {raw!r} is not a string")
     if choices is not None and raw not in choices:
         raise ConfigError(choices_message(f"parameter {_resolved(name)}", raw, choices))
-    return raw
+    return str(raw)
 
 
 def _get(name: str, default: Any) -> Any:

@@ -226,7 +226,7 @@ class FakeActionClient:
 
     def state(self) -> int:
         self._apply_due()
-        return self._state
+        return int(self._state)
 
     def feedback(self) -> Any:
         return self._feedback

@@ -246,7 +246,8 @@ def test_ensemble_averages_the_members_probabilities(tmp_path: Path) -> None:
     image = np.random.default_rng(0).uniform(0.0, 1.0, (4, 3, 8, 8)).astype(np.float32)
 
     def run(path: Path) -> np.ndarray:
-        return make_session(path).run(None, {"image": image})[0]
+        scores: np.ndarray = make_session(path).run(None, {"image": image})[0]
+        return scores
 
     expected = (run(members[0]) + run(members[1])) / 2.0
     np.testing.assert_allclose(run(out), expected, rtol=1e-5)

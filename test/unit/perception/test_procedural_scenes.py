@@ -41,7 +41,8 @@ class RecordingClient:
 
     @staticmethod
     def getQuaternionFromEuler(euler: Sequence[float]) -> Sequence[float]:
-        return pybullet.getQuaternionFromEuler(euler)
+        quaternion: Sequence[float] = pybullet.getQuaternionFromEuler(euler)
+        return quaternion
 
     def extent(self) -> Tuple[np.ndarray, np.ndarray]:
         """(lowest, highest) corner [m] over all shapes."""

@@ -71,10 +71,11 @@ class Concurrence(Container):
                 errors.append(f"outcome_map names outcome {outcome!r}, which is not one of {_listed(registered)}")
             if not isinstance(conditions, Mapping) or not conditions:
                 errors.append(f"outcome_map[{outcome!r}] must be a non-empty mapping of child label -> outcome")
+        # runtime checks: SMACH code calling this is not type-checked
         if outcome_cb is not None and not callable(outcome_cb):
-            errors.append(f"outcome_cb {outcome_cb!r} is not callable")
+            errors.append(f"outcome_cb {outcome_cb!r} is not callable")  # type: ignore[unreachable]
         if child_termination_cb is not None and not callable(child_termination_cb):
-            errors.append(f"child_termination_cb {child_termination_cb!r} is not callable")
+            errors.append(f"child_termination_cb {child_termination_cb!r} is not callable")  # type: ignore[unreachable]
         if errors:
             raise InvalidStateError("errors in the outcome policy of a Concurrence: " + "; ".join(errors))
         self._default_outcome = default_outcome

@@ -122,7 +122,7 @@ class Remapper:
         object.__setattr__(self, "_map", remapping if remapping else _NO_REMAPPING)
 
     def _remap(self, key: str) -> str:
-        return self._map.get(key, key)
+        return str(self._map.get(key, key))
 
     def _read(self, key: str) -> Any:
         if key not in self._input:

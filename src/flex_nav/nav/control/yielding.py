@@ -153,7 +153,8 @@ class _People:
 
     def clearance(self, robot: np.ndarray) -> np.ndarray:
         """(M, K) predicted distance minus R (grown with the prediction time) for robot positions (K, 2)."""
-        return np.hypot(*(self.future - robot[None, :, :]).transpose(2, 0, 1)) - self.grown
+        clearance: np.ndarray = np.hypot(*(self.future - robot[None, :, :]).transpose(2, 0, 1)) - self.grown
+        return clearance
 
 
 def _segment_closest(points: np.ndarray, a: np.ndarray, b: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:

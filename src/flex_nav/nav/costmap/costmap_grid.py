@@ -53,7 +53,8 @@ def costs_to_occupancy(costs: np.ndarray) -> np.ndarray:
     """
     if costs.dtype != np.uint8:
         raise ConfigError(f"costs must be uint8, got {costs.dtype}")
-    return OCCUPANCY_OF_COST[costs]
+    occupancy: np.ndarray = OCCUPANCY_OF_COST[costs]
+    return occupancy
 
 
 @dataclass

@@ -88,7 +88,8 @@ class Inflator:
         np.multiply(dist, dist, out=dist)
         index = cv2.convertScaleAbs(dist, alpha=1.0) if len(self.table) <= 256 else np.rint(dist).astype(np.intp)
         np.minimum(index, len(self.table) - 1, out=index)
-        return self.table[index]
+        inflated: np.ndarray = self.table[index]
+        return inflated
 
     def apply(self, costs: np.ndarray) -> None:
         """Inflate ``costs`` (uint8 (H, W)) in place with costmap_2d's combination rule."""
