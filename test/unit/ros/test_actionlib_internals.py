@@ -85,6 +85,6 @@ def test_finish_refuses_an_outcome_that_is_not_a_goal_outcome():
     server._current = ticket
     server.server.is_active = lambda: True
     with pytest.raises(ValueError, match=r"valid: GoalOutcome.SUCCEEDED, GoalOutcome.ABORTED"):
-        server.finish(ticket, "succeeded", server.result("SUCCESS", "done"))
+        server.finish(ticket, "succeeded", server.result("SUCCESS", "done"))  # type: ignore[arg-type]  # on purpose
     assert not server.finish(GoalTicket(None, 2), GoalOutcome.SUCCEEDED, server.result("SUCCESS", "done"))
 

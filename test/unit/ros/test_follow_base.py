@@ -26,4 +26,4 @@ def test_a_bad_paths_reason_names_the_topic_it_came_on():
         topic = "/robot/plan"
 
     assert bad_path(None, ValueError("empty")) == "bad path: empty"
-    assert bad_path(OnTopic(), ValueError("empty")) == "bad path on /robot/plan: empty"
+    assert bad_path(OnTopic(), ValueError("empty")) == "bad path on /robot/plan: empty"  # type: ignore[arg-type]

@@ -29,7 +29,8 @@ PLANNER_NAMES = {f.name for f in dataclasses.fields(PlannerParams)}
 
 
 def load(name: str) -> dict:
-    return yaml.safe_load((REPO_ROOT / "config" / f"{name}.yaml").read_text())
+    config: dict = yaml.safe_load((REPO_ROOT / "config" / f"{name}.yaml").read_text())
+    return config
 
 
 def test_one_config_per_profile():

@@ -90,7 +90,7 @@ def test_path_in_frame_and_round_trip():
     msg = path_msg(points, "odom", rospy.Time(0), final_yaw=0.3)
     np.testing.assert_array_equal(path_points(msg), points)
     poses = path_in_frame(buffer, msg, "map", 0.0)
-    np.testing.assert_allclose(poses, [[0, 0, 0], [1, 0, math.pi / 2], [1, 1, 0.3]], atol=1e-12)
+    np.testing.assert_allclose(poses, np.array([[0, 0, 0], [1, 0, math.pi / 2], [1, 1, 0.3]]), atol=1e-12)
 
 
 def test_path_in_frame_zero_quaternions_face_along_the_path():

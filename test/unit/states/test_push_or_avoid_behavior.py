@@ -4,6 +4,7 @@ never a forward command; heavy: the push stalls, back off, plan around; the trie
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Optional
 
 from actionlib_msgs.msg import GoalStatus
 from geometry_msgs.msg import PoseStamped
@@ -47,7 +48,7 @@ class Scene:
         self.h.start()
         self.camera = Camera(self.h, label)
         self.lidar = self.h.proxies.subscription("scan", LaserScan)
-        self.wall_behind_x = None  # [m] world x of something behind the robot (None: free all round)
+        self.wall_behind_x: Optional[float] = None  # [m] world x of something behind the robot (None: free all round)
         self.h.proxies.subscription("move_base_simple/goal", PoseStamped).inject(
             pose_stamped(3.0, 0.0, stamp_s=self.h.clock.now()))
 

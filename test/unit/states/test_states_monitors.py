@@ -32,7 +32,7 @@ def zones_msg(zones, pressed) -> BumperState:
 def test_bumper_kobuki_profile_reads_bumper_events():
     h = Harness(BumperMonitorState(profile="kobuki")).start()
     sub = h.proxies.sub("events/bumper")
-    assert sub.msg_type is BumperEvent
+    assert sub.msg_type == BumperEvent  # (== not is: an `is` check would narrow the untyped message class)
     h.run_for(1.0)
     sub.inject(event(BumperEvent.RIGHT, True))
     result = h.run(max_time_s=1.0)

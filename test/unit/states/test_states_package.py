@@ -10,7 +10,7 @@ import inspect
 import subprocess
 import sys
 from pathlib import Path
-from typing import Dict, List, Tuple
+from typing import Callable, Dict, List, Tuple
 
 import pytest
 
@@ -160,7 +160,7 @@ def _real_methods(class_name: str) -> Dict[str, Tuple[Tuple[str, object], ...]]:
     raise AssertionError(f"{class_name} not found in {PROXIES_SRC}")
 
 
-def _params(function: object) -> Tuple[Tuple[str, object], ...]:
+def _params(function: Callable[..., object]) -> Tuple[Tuple[str, object], ...]:
     parameters = list(inspect.signature(function).parameters.values())[1:]
     return tuple((p.name, NO_DEFAULT if p.default is inspect.Parameter.empty else p.default) for p in parameters)
 
