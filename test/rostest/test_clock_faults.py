@@ -246,6 +246,18 @@ class TestClockFaults(unittest.TestCase):
         # before the old timeline's last one)
         self.drive()
 
+    def test_a_clock_that_jumps_back_between_goals_leaves_the_next_goal_alone(self):
+        # the controller watches the clock across goals: the jump it finds when the next goal starts happened before
+        # that goal, which belongs to the new timeline and must drive (it was aborted 'moved backwards' at first)
+        self.drive()
+        self.controller.cancel_all_goals()
+        self.assertTrue(self.wait_done(self.controller))
+        time.sleep(0.5)
+        self.sim.rewind(50.0)  # restarted while no goal runs
+        time.sleep(1.0)
+        self.drive()
+        self.assertEqual(self.controller.get_state(), GoalStatus.ACTIVE)
+
     def wait_done(self, client, timeout_s=5.0):
         deadline = time.monotonic() + timeout_s
         while time.monotonic() < deadline:

@@ -106,7 +106,7 @@ class FollowServer(FollowNode):
             with self._wake:
                 while not ticket.cancelled.is_set() and not rospy.is_shutdown():
                     now_s = self.clock.now()
-                    if self.clock.observe(watch) is ClockChange.JUMPED_BACK:
+                    if watch.observe(now_s, time.monotonic()) is ClockChange.JUMPED_BACK:
                         self._end(ticket, GoalOutcome.ABORTED, f"ROS time moved backwards by {watch.jump_s:.2f} s "
                                   "(a restarted simulation or a looped bag): goal dropped", pose)
                         return
@@ -133,7 +133,7 @@ class FollowServer(FollowNode):
                           f"reached the end of the path ({state.distance_to_end:.3f} m from it)", pose)
                 return
             now_s = self.clock.now()
-            if problem is None or now_s < last_plan_s:  # (ROS time went back: start the count afresh)
+            if problem is None:
                 last_plan_s = now_s
             elif now_s - last_plan_s >= self.failure_timeout_s:
                 reason = f"no local plan for {now_s - last_plan_s:.1f} s: {problem}"

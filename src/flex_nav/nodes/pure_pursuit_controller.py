@@ -252,8 +252,10 @@ class PurePursuitController(FollowNode):
                     return Wake.CANCELLED
                 now_s = self.clock.now()
                 change = self.clock_watch.observe(now_s, time.monotonic())
-                if change in (ClockChange.JUMPED_BACK, ClockChange.STALLED):
-                    return Wake.JUMPED_BACK if change is ClockChange.JUMPED_BACK else Wake.STALLED
+                if change is ClockChange.JUMPED_BACK:
+                    return Wake.JUMPED_BACK
+                if change is ClockChange.STALLED:
+                    return Wake.STALLED
                 if self.heartbeat.lost():
                     return Wake.LINK_LOST
                 if not self.clock_watch.stalled and (
@@ -266,6 +268,10 @@ class PurePursuitController(FollowNode):
         used_odom = -1
         used_path = -1
         next_due_s = self.clock.now()
+        if self.clock_watch.observe(next_due_s, time.monotonic()) is ClockChange.JUMPED_BACK:
+            # time went back while no goal ran (a simulation restarted between goals): this goal is the new
+            # timeline's (the goal server forgets the old one's); only the old sensor times go
+            self.follower.watchdog.restart(next_due_s)
         last_feedback_s = -math.inf
         while True:
             wake = self._wait_for_tick(ticket, next_due_s, used_odom)

@@ -9,11 +9,8 @@ from __future__ import annotations
 
 import math
 import threading
-import time
 
 import rospy
-
-from flex_nav.nav.control.clock_watch import ClockChange, ClockWatch
 
 SIM_TIME_POLL_S = 0.002  # [s] wall period at which a wait on simulated time re-reads the clock
 IDLE_WAIT_S = 0.1  # [s] wall bound of a wait with no finite deadline
@@ -45,7 +42,3 @@ class RosClock:
         wait_s = self.wall_wait_s(deadline_s, self.now())
         if wait_s > 0.0:
             wake.wait(wait_s)
-
-    def observe(self, watch: ClockWatch) -> ClockChange:
-        """Let ``watch`` look at ROS time against wall time now."""
-        return watch.observe(self.now(), time.monotonic())
