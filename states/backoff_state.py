@@ -37,9 +37,7 @@ class BackoffState(State):
 
     def __init__(self, first_s: float = 0.5, max_s: float = 4.0, attempt: int = 0) -> None:
         owner = type(self).__name__
-        if isinstance(attempt, bool) or not isinstance(attempt, int) or attempt < 0:
-            raise ConfigError(f"{owner}: attempt must be an integer >= 0 (0: from the tries input key), "
-                              f"got {attempt!r}")
+        attempt = validation.integer(owner, "attempt", attempt, minimum=0)  # 0: from the tries input key
         super().__init__(outcomes=["done"], input_keys=[] if attempt else ["tries"])
         self._first_s = validation.number(owner, "first_s", first_s, positive=True, unit="[s]")
         self._max_s = validation.number(owner, "max_s", max_s, minimum=self._first_s, unit="[s]")

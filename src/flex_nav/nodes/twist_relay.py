@@ -78,6 +78,8 @@ class TwistRelay:
         self._logs.append((log, message))
 
     def _write_logs(self) -> None:
+        if not self._logs:  # the usual case, per command: no second lock (a racy read: a log is at most late)
+            return
         with self._lock:
             logs, self._logs = self._logs, []
         for log, message in logs:
