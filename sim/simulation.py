@@ -48,7 +48,7 @@ from flex_nav_sim.readings import (
 )
 from flex_nav_sim.robot import Contact, SimRobot
 from flex_nav_sim.sensors import Camera, Lidar
-from flex_nav_sim.world import Person, Solid, Spawn, WorldSpec, check_spawns
+from flex_nav_sim.world import SPAWN_CLEARANCE, Person, Solid, Spawn, WorldEvent, WorldSpec, check_spawns
 
 Reading = Union[
     OdometryReading, ScanReading, BumperReading, ImageReading, ContactReading, WorldEventReading, CommandNotice
@@ -126,6 +126,10 @@ class Simulation:
         spawn_list = list(world.spawns if spawns is None else spawns)
         resolved = self._profiles(spawn_list, profiles or {})
         check_spawns(world, spawn_list, {s.name: resolved[s.name].radius for s in spawn_list})
+        robots = sorted(s.name for s in spawn_list)
+        for event in world.events:
+            if event.action == "teleport" and event.target not in robots:
+                raise ConfigError(choices_message(f"{world.source}: teleport event target", event.target, robots))
 
         self.world = world
         self.dt = 1.0 / physics_rate  # [s]
@@ -293,9 +297,36 @@ class Simulation:
         while self._event_index < len(events) and events[self._event_index].time <= self.time + _EPS:
             ev = events[self._event_index]
             self._event_index += 1
-            out.append(WorldEventReading(self.time, ev.action, ev.target, self._apply(ev.action, ev.target)))
+            out.append(WorldEventReading(self.time, ev.action, ev.target, self._apply(ev)))
 
-    def _apply(self, action: str, target: str) -> str:
+    def teleport(self, robot: str, pose: Pose2D) -> str:
+        """Move ``robot`` to ``pose`` (map frame) at once and at rest; its odometry does not see the jump (the
+        kidnapped robot). ConfigError for an unknown robot, a non-finite pose or one overlapping a present solid."""
+        sim_robot = self.robot(robot)
+        if not all(math.isfinite(v) for v in pose):
+            raise ConfigError(f"teleport pose of robot {robot!r} must be finite, got {tuple(pose)}")
+        clearance = sim_robot.profile.base.radius + SPAWN_CLEARANCE
+        for name in self._solid_bodies:
+            solid = self._solids[name]
+            if solid.footprint().distance_to(pose.x, pose.y) < clearance:
+                raise ConfigError(
+                    f"teleport of robot {robot!r} to ({pose.x:.2f}, {pose.y:.2f}) overlaps {solid.kind} {name!r}; "
+                    "choose free space"
+                )
+        client = self.client
+        (_, _, z), _ = client.getBasePositionAndOrientation(sim_robot.body)
+        client.resetBasePositionAndOrientation(sim_robot.body, [pose.x, pose.y, z], yaw_quaternion(pose.yaw))
+        client.resetBaseVelocity(sim_robot.body, [0.0, 0.0, 0.0], [0.0, 0.0, 0.0])
+        sim_robot.set_v = sim_robot.set_w = 0.0
+        sim_robot.last_truth = Pose2D(pose.x, pose.y, pose.yaw)  # odometry integrates from here: no jump in it
+        return (f"robot {robot or '(unnamed)'} teleported to ({pose.x:.2f}, {pose.y:.2f}, "
+                f"{math.degrees(pose.yaw):.0f} deg)")
+
+    def _apply(self, event: WorldEvent) -> str:
+        action, target = event.action, event.target
+        if action == "teleport":
+            assert event.pose is not None  # the world loader gives every teleport a pose
+            return self.teleport(target, Pose2D(*event.pose))
         if action in ("start_walking", "stop_walking"):
             state = self._people[target]
             state.walking = action == "start_walking"

@@ -10,7 +10,8 @@ A world file (``sim/worlds/<name>.yaml``) holds:
 - ``boxes``: movable boxes with ``mass`` [kg] and ``friction`` [-];
 - ``people``: standing (one point) or walking along ``waypoints`` at ``speed`` [m/s], kinematic;
 - ``events``: scripted changes at a simulated time (``remove``/``add`` a solid, ``open``/``close`` a
-  door, ``start_walking``/``stop_walking`` a person);
+  door, ``start_walking``/``stop_walking`` a person, ``teleport`` a robot to ``pose``: the kidnapped robot,
+  whose odometry does not see the jump);
 - ``robots``: the default spawns (name = ROS namespace, profile, pose) and ``goals`` (named poses).
 
 Poses are ``[x, y]`` or ``[x, y, yaw_deg]`` ([m], [m], [deg]). Every error names the file, the field
@@ -44,7 +45,7 @@ from flex_nav_sim.yaml_fields import (
 WORLD_DIR = Path(__file__).resolve().parent / "worlds"
 SHAPES = ("box", "cylinder")
 SOLID_KINDS = ("wall", "obstacle", "door", "box")
-ACTIONS = ("remove", "add", "open", "close", "start_walking", "stop_walking")
+ACTIONS = ("remove", "add", "open", "close", "start_walking", "stop_walking", "teleport")
 ROBOT_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")  # a ROS namespace / frame prefix
 Rgba = Tuple[float, float, float, float]
 
@@ -150,7 +151,8 @@ class WorldEvent:
 
     time: float  # [s]
     action: str  # one of ACTIONS
-    target: str  # name of a solid, door or person
+    target: str  # name of a solid, door, person or (teleport) robot
+    pose: Optional[Tuple[float, float, float]] = None  # teleport only: (x [m], y [m], yaw [rad]) in the map frame
 
 
 @dataclass(frozen=True)
@@ -556,6 +558,10 @@ class _WorldReader:
                 valid = sorted(n for n, s in by_name.items() if s.kind != "wall")
             elif action in ("open", "close"):
                 valid = sorted(n for n, s in by_name.items() if s.kind == "door")
+            elif action == "teleport":  # the robot is checked when the simulation spawns its robots
+                events.append(WorldEvent(time, action, target, f.pose("pose")))
+                f.done()
+                continue
             else:
                 valid = sorted(walkers)
             if target not in valid:

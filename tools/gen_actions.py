@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
-"""Generate flex_nav's Python action/message classes without catkin.
+"""Generate flex_nav's Python action/message/service classes without catkin.
 
 Reads ``action/*.action``, expands each into its eight messages with actionlib_msgs' genaction
 (into ``build/msg``), copies the plain messages ``msg/*.msg`` beside them, and generates Python
 modules into ``src/flex_nav/msg`` with genpy, one file at a time (``genpy.generator.reset_var()``
-before each, so the output matches catkin's byte for byte). Skips all work when the inputs and
+before each, so the output matches catkin's byte for byte), and the services ``srv/*.srv`` into
+``src/flex_nav/srv`` the same way. Skips all work when the inputs and
 genpy are unchanged since the last run (a stamp file holds their hash). Exit status 0 on success,
 2 with a message on failure.
 """
@@ -21,8 +22,10 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parent.parent
 ACTION_DIR = REPO / "action"
 MSG_DIR = REPO / "msg"  # plain messages (e.g. the simulator's bumper and event messages)
+SRV_DIR = REPO / "srv"  # services (e.g. the simulator's teleport)
 BUILD_DIR = REPO / "build" / "msg"
 OUT_DIR = REPO / "src" / "flex_nav" / "msg"
+SRV_OUT_DIR = REPO / "src" / "flex_nav" / "srv"
 STAMP = OUT_DIR / ".inputs.sha256"
 PACKAGE = "flex_nav"
 GENACTION = Path("/usr/lib/actionlib_msgs/genaction.py")
@@ -45,28 +48,17 @@ def inputs_hash(actions: list[Path]) -> str:
 
     digest = hashlib.sha256()
     digest.update(str(getattr(genpy, "__file__", "")).encode())
-    for path in [*actions, *sorted(MSG_DIR.glob("*.msg")), Path(__file__)]:
+    for path in [*actions, *sorted(MSG_DIR.glob("*.msg")), *sorted(SRV_DIR.glob("*.srv")), Path(__file__)]:
         digest.update(path.name.encode())
         digest.update(path.read_bytes())
     return digest.hexdigest()
 
 
-def main() -> int:
-    actions = sorted(ACTION_DIR.glob("*.action"))
-    if not actions:
-        return fail(f"no .action files in {ACTION_DIR}")
-    try:
-        import genpy.generate_initpy
-        import genpy.generator
-    except ImportError as err:
-        return fail(f"genpy is not importable ({err}); install Debian's python3-genpy (tools/install.sh does)")
-    if not GENACTION.is_file():
-        return fail(f"{GENACTION} is missing; install Debian's libactionlib-msgs-dev (tools/install.sh does)")
-
-    want = inputs_hash(actions)
-    if STAMP.is_file() and STAMP.read_text().strip() == want and (OUT_DIR / "__init__.py").is_file():
-        print(f"[flex_nav gen_actions] action classes up to date ({len(actions)} actions)")
-        return 0
+def generate_messages(actions: list[Path]) -> str:
+    """Expand the actions and copy the plain messages into BUILD_DIR, generate them all into OUT_DIR, one file at
+    a time; the problem, or '' on success."""
+    import genpy.generate_initpy
+    import genpy.generator
 
     BUILD_DIR.mkdir(parents=True, exist_ok=True)
     for old in BUILD_DIR.glob("*.msg"):
@@ -77,7 +69,7 @@ def main() -> int:
             capture_output=True, text=True, timeout=60, check=False,
         )
         if proc.returncode != 0:
-            return fail(f"genaction failed on {action.name}: {proc.stderr.strip() or proc.stdout.strip()}")
+            return f"genaction failed on {action.name}: {proc.stderr.strip() or proc.stdout.strip()}"
 
     for msg in sorted(MSG_DIR.glob("*.msg")):
         shutil.copyfile(msg, BUILD_DIR / msg.name)
@@ -89,10 +81,50 @@ def main() -> int:
         genpy.generator.reset_var()
         status = generator.generate_messages(PACKAGE, [str(msg_file)], str(OUT_DIR), SEARCH_PATH)
         if status:
-            return fail(f"genpy failed on {msg_file.name} (status {status})")
+            return f"genpy failed on {msg_file.name} (status {status})"
     status = genpy.generate_initpy.write_modules(str(OUT_DIR))
-    if status:
-        return fail(f"writing {OUT_DIR}/__init__.py failed (status {status})")
+    return f"writing {OUT_DIR}/__init__.py failed (status {status})" if status else ""
+
+
+def generate_services() -> str:
+    """Generate ``srv/*.srv`` into SRV_OUT_DIR, one file at a time; the problem, or '' on success."""
+    import genpy.generate_initpy
+    import genpy.generator
+
+    SRV_OUT_DIR.mkdir(parents=True, exist_ok=True)
+    for old in SRV_OUT_DIR.glob("_[A-Z]*.py"):
+        old.unlink()
+    generator = genpy.generator.SrvGenerator()
+    for srv_file in sorted(SRV_DIR.glob("*.srv")):
+        genpy.generator.reset_var()
+        status = generator.generate_messages(PACKAGE, [str(srv_file)], str(SRV_OUT_DIR), SEARCH_PATH)
+        if status:
+            return f"genpy failed on {srv_file.name} (status {status})"
+    status = genpy.generate_initpy.write_modules(str(SRV_OUT_DIR))
+    return f"writing {SRV_OUT_DIR}/__init__.py failed (status {status})" if status else ""
+
+
+def main() -> int:
+    actions = sorted(ACTION_DIR.glob("*.action"))
+    if not actions:
+        return fail(f"no .action files in {ACTION_DIR}")
+    try:
+        import genpy.generate_initpy  # checked here; generate_messages and generate_services use them
+        import genpy.generator  # noqa: F401
+    except ImportError as err:
+        return fail(f"genpy is not importable ({err}); install Debian's python3-genpy (tools/install.sh does)")
+    if not GENACTION.is_file():
+        return fail(f"{GENACTION} is missing; install Debian's libactionlib-msgs-dev (tools/install.sh does)")
+
+    want = inputs_hash(actions)
+    if (STAMP.is_file() and STAMP.read_text().strip() == want and (OUT_DIR / "__init__.py").is_file()
+            and (SRV_OUT_DIR / "__init__.py").is_file()):
+        print(f"[flex_nav gen_actions] action classes up to date ({len(actions)} actions)")
+        return 0
+
+    problem = generate_messages(actions) or generate_services()
+    if problem:
+        return fail(problem)
     STAMP.write_text(want + "\n")
     count = len(list(OUT_DIR.glob("_[A-Z]*.py")))
     print(f"[flex_nav gen_actions] generated {count} message modules from {len(actions)} actions into "

@@ -19,6 +19,11 @@ Private parameters:
   ~drift_xy, ~drift_yaw, ~drift_tau  float  0, 0, 10  localization drift: [m], [rad], [s] (0 = exact)
   ~map_frame     str    map
   ~duration      float  0      [s] simulated time after which the node exits (0 = run until shutdown)
+  ~publish_map_odom  bool  true  publish map -> NS/odom from ground truth (the oracle); false when a
+                 localizer (``rosrun flex_nav localizer``) publishes it, as in every flex_nav launch file
+  ~publish_initial_pose  bool  (not ~publish_map_odom)  publish NS/initialpose once, latched: the spawn pose
+                 with a standard deviation of INITIAL_STD_XY_M / INITIAL_STD_YAW_RAD, as an operator's
+                 "2D Pose Estimate" would give the localizer
 
 Per robot ``NS`` (its name; frames are prefixed ``NS/``; an empty name is allowed for a single robot):
   publishes  NS/odom (nav_msgs/Odometry, NS/odom -> NS/base_footprint), NS/ground_truth (Odometry in
@@ -30,7 +35,10 @@ Per robot ``NS`` (its name; frames are prefixed ``NS/``; an empty name is allowe
   tf         map -> NS/odom -> NS/base_footprint; static NS/base_footprint -> NS/base_link, NS/laser,
              NS/camera_rgb_frame -> NS/camera_rgb_optical_frame
   subscribes NS/cmd_vel (geometry_msgs/Twist)
+  with ~publish_initial_pose: NS/initialpose (geometry_msgs/PoseWithCovarianceStamped, map frame, latched)
 Global: /clock (rosgraph_msgs/Clock; run every other node with use_sim_time), sim_events (world events).
+Service ~teleport (flex_nav/Teleport): move a robot to a map pose at once, at rest, without its odometry
+seeing it (the kidnapped robot); answered after the stepping thread has done it.
 """
 
 from __future__ import annotations
@@ -40,12 +48,12 @@ import sys
 import threading
 import time
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Callable, Dict, List, Optional, Tuple
 
 import genpy
 import rospy
-from geometry_msgs.msg import TransformStamped, Twist
+from geometry_msgs.msg import PoseWithCovarianceStamped, TransformStamped, Twist
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import CameraInfo, Image, LaserScan
@@ -55,6 +63,7 @@ from flex_nav.exceptions import ConfigError
 from flex_nav.msg import BumperEvent, BumperState, CreateBumper, SimEvent
 from flex_nav.ros.node import init_node
 from flex_nav.ros.params import param_bool, param_float, param_int, param_str
+from flex_nav.srv import Teleport, TeleportRequest, TeleportResponse
 from flex_nav_sim.profiles import RobotProfile
 from flex_nav_sim.readings import (
     BumperReading,
@@ -81,6 +90,9 @@ PACE_SLACK_S = 0.002  # [s] sleep only when this far ahead of the real-time sche
 MAX_LAG_S = 0.25  # [s] further behind than this: re-anchor the schedule instead of bursting to catch up
 STATS_PERIOD_S = 30.0  # [s] wall time between log lines with the achieved real-time factor
 ODOM_COVARIANCE = (0.001, 0.001, 1e6, 1e6, 1e6, 0.003)  # diagonal [m^2, m^2, -, -, -, rad^2] (planar)
+INITIAL_STD_XY_M = 0.1  # [m] standard deviation of the published initial pose (an operator's click)
+INITIAL_STD_YAW_RAD = 0.1  # [rad]
+TELEPORT_WAIT_S = 5.0  # [s, wall] bound on waiting for the stepping thread to do a teleport
 
 
 def stamp_of(t: float) -> genpy.Time:
@@ -160,6 +172,9 @@ class RobotIO:
         )
         self.pub_create = rospy.Publisher(topic("bumper"), CreateBumper, queue_size=10) if style == "create" else None
         self.pub_events = rospy.Publisher(topic("sim_events"), SimEvent, queue_size=50)
+        self.pub_initial_pose = rospy.Publisher(
+            topic("initialpose"), PoseWithCovarianceStamped, queue_size=1, latch=True
+        )
         self.sub_cmd = rospy.Subscriber(
             topic("cmd_vel"), Twist, lambda msg: queue_command(name, msg), queue_size=1, tcp_nodelay=True
         )
@@ -215,6 +230,15 @@ class RobotIO:
         self.state.zones = [z.name for z in self.profile.bumper.zones]
         self.state.pressed = [False] * len(self.state.zones)
 
+    def publish_initial_pose(self, pose: Pose2D) -> None:
+        """``pose`` (the spawn) on NS/initialpose, latched, with the covariance of an operator's estimate."""
+        msg = PoseWithCovarianceStamped()
+        msg.header.frame_id = self.map_frame
+        _set_pose(msg.pose.pose, pose)
+        msg.pose.covariance[0] = msg.pose.covariance[7] = INITIAL_STD_XY_M**2
+        msg.pose.covariance[35] = INITIAL_STD_YAW_RAD**2
+        self.pub_initial_pose.publish(msg)
+
     def static_transforms(self) -> List[TransformStamped]:
         """base_footprint -> base_link, laser, camera frames (published once, latched)."""
         p = self.profile
@@ -248,6 +272,8 @@ class BridgeOptions:
     clock_rate: float = 100.0  # [Hz] /clock rate in simulated time
     map_frame: str = "map"
     duration: float = 0.0  # [s] simulated time to run (0 = until shutdown)
+    publish_map_odom: bool = True  # map -> odom from ground truth (False: a localizer publishes it)
+    publish_initial_pose: bool = False  # NS/initialpose once, latched, from the spawn pose
 
 
 class SimBridge:
@@ -258,9 +284,12 @@ class SimBridge:
         self.rtf = options.rtf
         self.clock_period = 1.0 / options.clock_rate
         self.duration = options.duration
+        self.publish_map_odom = options.publish_map_odom
+        self.publish_initial_pose = options.publish_initial_pose
         map_frame = options.map_frame
         self._lock = threading.Lock()
         self._pending: Dict[str, Tuple[float, float]] = {}
+        self._teleports: List[_TeleportRequest] = []  # from the service thread to the stepping thread
         self.pub_clock = synchronous_publisher("/clock", Clock)
         self.pub_tf = synchronous_publisher("/tf", TFMessage)
         self.pub_tf_static = rospy.Publisher("/tf_static", TFMessage, queue_size=10, latch=True)
@@ -283,13 +312,39 @@ class SimBridge:
         }
         self._clock = Clock()
         self._tf = TFMessage()
+        self.teleport_service = rospy.Service("~teleport", Teleport, self._on_teleport)
 
     # -- commands (ROS threads) -------------------------------------------------------------------
     def _queue_command(self, robot: str, msg: Twist) -> None:
         with self._lock:
             self._pending[robot] = (msg.linear.x, msg.angular.z)
 
+    def _on_teleport(self, request: TeleportRequest) -> TeleportResponse:
+        """Service thread: queue the teleport for the stepping thread and wait (bounded) for its result."""
+        job = _TeleportRequest(request.robot, Pose2D(request.x, request.y, request.yaw))
+        with self._lock:
+            self._teleports.append(job)
+        if not job.done.wait(TELEPORT_WAIT_S):
+            return TeleportResponse(ok=False, message=f"the simulation did not step within {TELEPORT_WAIT_S} s")
+        if job.ok:
+            rospy.loginfo("sim: t = %.2f s: %s", self.sim.time, job.message)
+        else:
+            rospy.logwarn("sim: teleport refused: %s", job.message)
+        return TeleportResponse(ok=job.ok, message=job.message)
+
+    def _apply_teleports(self) -> None:
+        with self._lock:
+            jobs, self._teleports = self._teleports, []
+        for job in jobs:
+            try:
+                job.message, job.ok = self.sim.teleport(job.robot, job.pose), True
+            except ConfigError as err:
+                job.message = str(err)
+            job.done.set()
+
     def _apply_commands(self) -> None:
+        if self._teleports:
+            self._apply_teleports()
         if not self._pending:
             return
         with self._lock:
@@ -304,8 +359,10 @@ class SimBridge:
         """Step and publish until shutdown (or ``duration``); logs the achieved real-time factor."""
         static = [tf for io in self.robots.values() for tf in io.static_transforms()]
         self.pub_tf_static.publish(TFMessage(transforms=static))
-        for io in self.robots.values():
+        for name, io in self.robots.items():
             io.pub_state.publish(io.state)
+            if self.publish_initial_pose:
+                io.publish_initial_pose(self.sim.truth_pose(name))
         self._publish_clock(0.0)
         sim = self.sim
         next_clock = self.clock_period
@@ -366,11 +423,14 @@ class SimBridge:
         truth.twist.twist.linear.x = r.truth_linear
         truth.twist.twist.angular.z = r.truth_angular
         io.pub_truth.publish(truth)
-        for tf, pose in ((io.tf_map_odom, r.map_to_odom), (io.tf_odom_base, r.odom_pose)):
+        frames = [(io.tf_odom_base, r.odom_pose)]
+        if self.publish_map_odom:
+            frames.insert(0, (io.tf_map_odom, r.map_to_odom))
+        for tf, pose in frames:
             tf.header.stamp = stamp
             tf.transform.translation.x, tf.transform.translation.y = pose.x, pose.y
             set_yaw(tf.transform.rotation, pose.yaw)
-        self._tf.transforms = [io.tf_map_odom, io.tf_odom_base]
+        self._tf.transforms = [tf for tf, _ in frames]
         self.pub_tf.publish(self._tf)
 
     def _on_scan(self, r: ScanReading) -> None:
@@ -442,6 +502,17 @@ class SimBridge:
         self.robots[r.robot].pub_events.publish(msg)
 
 
+class _TeleportRequest:
+    """One teleport asked through the service, done by the stepping thread."""
+
+    def __init__(self, robot: str, pose: Pose2D) -> None:
+        self.robot = robot
+        self.pose = pose
+        self.done = threading.Event()
+        self.ok = False
+        self.message = ""
+
+
 def _set_pose(pose: Any, p: Pose2D) -> None:
     pose.position.x, pose.position.y = p.x, p.y
     set_yaw(pose.orientation, p.yaw)
@@ -463,7 +534,9 @@ def build_simulation() -> Tuple[Simulation, BridgeOptions]:
         clock_rate=param_float("~clock_rate", 100.0, 1.0, 10000.0),
         map_frame=param_str("~map_frame", "map"),
         duration=param_float("~duration", 0.0, 0.0, 1e9),
+        publish_map_odom=param_bool("~publish_map_odom", True),
     )
+    options = replace(options, publish_initial_pose=param_bool("~publish_initial_pose", not options.publish_map_odom))
     if not options.map_frame:
         raise ConfigError("parameter ~map_frame must not be empty")
     sensors = SensorOptions(

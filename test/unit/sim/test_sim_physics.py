@@ -438,3 +438,42 @@ def test_door_events_open_and_close(tmp_path: Path) -> None:
         assert by_time[0.0] == pytest.approx(door_face, abs=0.03)  # closed: the panel
         assert by_time[0.7] == pytest.approx(1.95 - 0.05, abs=0.03)  # open: the far wall
         assert by_time[1.4] == pytest.approx(door_face, abs=0.03)  # closed again
+
+
+# -- teleport (the kidnapped robot) ------------------------------------------------------------------------
+def test_teleport_moves_the_robot_but_not_its_odometry(tmp_path: Path) -> None:
+    with Simulation(make_world(tmp_path), [spawn()], seed=0, sensors=NO_CAMERA) as sim:
+        sim.run(0.2)
+        odom_before = [r for r in sim.run(0.1) if isinstance(r, OdometryReading)][-1].odom_pose
+        message = sim.teleport("r1", Pose2D(1.0, -0.5, math.pi / 2))
+        assert "teleported to (1.00, -0.50, 90 deg)" in message
+        readings = [r for r in sim.run(0.3) if isinstance(r, OdometryReading)]
+        truth = sim.truth_pose("r1")
+        assert (truth.x, truth.y, truth.yaw) == pytest.approx((1.0, -0.5, math.pi / 2), abs=2e-3)
+        # the wheels did not turn: odometry stays where it was, so map -> odom of an oracle jumps instead
+        assert readings[-1].odom_pose[:2] == pytest.approx(odom_before[:2], abs=1e-3)
+
+
+def test_teleport_refuses_solids_unknown_robots_and_nan(tmp_path: Path) -> None:
+    world = make_world(tmp_path, "obstacles:\n  - {name: crate, shape: box, size: [0.4, 0.4, 0.5], pose: [1.0, 0.0]}\n")
+    with Simulation(world, [spawn()], seed=0, sensors=NO_CAMERA) as sim:
+        with pytest.raises(ConfigError, match="overlaps obstacle 'crate'"):
+            sim.teleport("r1", Pose2D(1.0, 0.1, 0.0))
+        with pytest.raises(ConfigError, match="r1"):
+            sim.teleport("nobody", Pose2D(0.0, 0.0, 0.0))
+        with pytest.raises(ConfigError, match="must be finite"):
+            sim.teleport("r1", Pose2D(math.nan, 0.0, 0.0))
+        assert sim.truth_pose("r1")[:2] == pytest.approx((0.0, 0.0), abs=1e-3)
+
+
+def test_teleport_world_event(tmp_path: Path) -> None:
+    world = make_world(tmp_path, "events:\n  - {at: 0.5, action: teleport, target: r1, pose: [-1.0, 1.0, 180]}\n")
+    with Simulation(world, [spawn()], seed=0, sensors=NO_CAMERA) as sim:
+        out = sim.run(0.7)
+        events = [e for e in out if isinstance(e, WorldEventReading)]
+        assert [(e.action, e.target) for e in events] == [("teleport", "r1")]
+        assert "teleported to (-1.00, 1.00, 180 deg)" in events[0].detail
+        assert sim.truth_pose("r1")[:2] == pytest.approx((-1.0, 1.0), abs=2e-3)
+    bad = make_world(tmp_path, "events:\n  - {at: 0.5, action: teleport, target: r9, pose: [0, 1]}\n")
+    with pytest.raises(ConfigError, match="teleport event target.*r9.*r1"):
+        Simulation(bad, [spawn()], seed=0, sensors=NO_CAMERA)
