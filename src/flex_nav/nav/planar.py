@@ -41,3 +41,16 @@ def heading_along(points: np.ndarray) -> np.ndarray:
             following = seg_yaw[index]
         yaw[index] = following
     return yaw
+
+
+def compose_poses(a: Pose2D, b: Pose2D) -> Pose2D:
+    """The transform ``a * b``: pose ``b`` given in the frame whose pose is ``a``, expressed in ``a``'s parent."""
+    c, s = math.cos(a[2]), math.sin(a[2])
+    yaw = a[2] + b[2]
+    return (a[0] + c * b[0] - s * b[1], a[1] + s * b[0] + c * b[1], math.atan2(math.sin(yaw), math.cos(yaw)))
+
+
+def inverse_pose(p: Pose2D) -> Pose2D:
+    """The inverse transform of ``p``: ``compose_poses(p, inverse_pose(p))`` is the identity."""
+    c, s = math.cos(p[2]), math.sin(p[2])
+    return (-(c * p[0] + s * p[1]), -(-s * p[0] + c * p[1]), -p[2])
