@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from flex_nav.nav.angles import wrap_angle
-from flex_nav.nav.planar import heading_along, transform_poses
+from flex_nav.nav.planar import compose_poses, heading_along, inverse_pose, transform_poses
 
 
 def test_wrap_angle():
@@ -40,3 +40,14 @@ def test_heading_along_degenerate():
     np.testing.assert_array_equal(heading_along(np.zeros((1, 2))), [0.0])
     yaw = heading_along(np.array([[0.0, 0.0], [-1.0, 0.0]]))
     np.testing.assert_allclose(yaw, [math.pi, math.pi])
+
+
+def test_compose_and_inverse_poses() -> None:
+    a = (1.0, 2.0, math.pi / 2)
+    b = (0.5, 0.0, math.pi / 4)
+    assert compose_poses(a, b) == pytest.approx((1.0, 2.5, 3 * math.pi / 4))
+    for p in (a, b, (-3.0, 0.2, -2.5)):
+        assert compose_poses(p, inverse_pose(p)) == pytest.approx((0.0, 0.0, 0.0), abs=1e-12)
+        assert compose_poses(inverse_pose(p), p) == pytest.approx((0.0, 0.0, 0.0), abs=1e-12)
+    # yaw wraps into (-pi, pi]
+    assert compose_poses((0.0, 0.0, 3.0), (0.0, 0.0, 1.0))[2] == pytest.approx(4.0 - 2 * math.pi)
