@@ -19,9 +19,9 @@ import signal
 import subprocess
 import time
 from dataclasses import dataclass
-from types import TracebackType
 
 from flex_nav.exceptions import NotReadyError
+from flex_nav.testing.process import StopsOnExit
 
 IP_TIMEOUT_S = 10.0  # [s] bound of one ``ip`` command (they take milliseconds)
 STOP_GRACE_S = 5.0  # [s] processes left in a namespace get SIGINT, then SIGKILL after this long
@@ -62,7 +62,7 @@ def netns_unavailable_reason() -> str | None:
     return None
 
 
-class NetnsPair:
+class NetnsPair(StopsOnExit):
     """Two namespaces ``first`` and ``second`` joined by a veth pair; a context manager that always cleans up."""
 
     def __init__(self) -> None:
@@ -136,11 +136,3 @@ class NetnsPair:
 
     def __enter__(self) -> NetnsPair:
         return self.start()
-
-    def __exit__(
-        self,
-        exc_type: type[BaseException] | None,
-        exc: BaseException | None,
-        tb: TracebackType | None,
-    ) -> None:
-        self.stop()

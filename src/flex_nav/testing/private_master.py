@@ -14,11 +14,10 @@ import socket
 import tempfile
 import time
 from pathlib import Path
-from types import TracebackType
 
 from flex_nav.exceptions import NotReadyError
 from flex_nav.ros.master_probe import master_is_up, master_pid
-from flex_nav.testing.process import ManagedProcess
+from flex_nav.testing.process import ManagedProcess, StopsOnExit
 
 REPO_ROOT = Path(__file__).resolve().parents[3]
 MASTER_STARTUP_TIMEOUT_S = 20.0  # [s] roscore is ready in 0.5-1 s on an idle machine
@@ -53,7 +52,7 @@ def ros_environment(master_uri: str, ros_home: Path) -> dict[str, str]:
     return env
 
 
-class PrivateMaster:
+class PrivateMaster(StopsOnExit):
     """``roscore`` on a free port with a fresh ROS_HOME; a context manager that always stops it.
 
     ``env`` is the environment to give every process that should use this master.
@@ -125,14 +124,6 @@ class PrivateMaster:
 
     def __enter__(self) -> PrivateMaster:
         return self.start()
-
-    def __exit__(
-        self,
-        exc_type: type[BaseException] | None,
-        exc: BaseException | None,
-        tb: TracebackType | None,
-    ) -> None:
-        self.stop()
 
 
 def _cmdline(pid: int) -> list[str]:

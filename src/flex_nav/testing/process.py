@@ -20,7 +20,22 @@ from flex_nav.exceptions import NotReadyError
 DEFAULT_STOP_TIMEOUT_S = 5.0  # [s] SIGINT grace period before SIGKILL of the process group
 
 
-class ManagedProcess:
+class StopsOnExit:
+    """Base of the harness's context managers: leaving the ``with`` block calls :meth:`stop`, an error included."""
+
+    def stop(self) -> object:
+        raise NotImplementedError
+
+    def __exit__(
+        self,
+        exc_type: type[BaseException] | None,
+        exc: BaseException | None,
+        tb: TracebackType | None,
+    ) -> None:
+        self.stop()
+
+
+class ManagedProcess(StopsOnExit):
     """A subprocess in its own process group, stopped by PID (SIGINT, then SIGKILL of the group).
 
     ``log_path`` receives stdout and stderr; without it output goes to ``/dev/null``.
@@ -90,14 +105,6 @@ class ManagedProcess:
 
     def __enter__(self) -> ManagedProcess:
         return self
-
-    def __exit__(
-        self,
-        exc_type: type[BaseException] | None,
-        exc: BaseException | None,
-        tb: TracebackType | None,
-    ) -> None:
-        self.stop()
 
 
 def wait_until(predicate: object, timeout_s: float, what: str, period_s: float = 0.05) -> None:
