@@ -17,7 +17,11 @@ made; the protocols leave them as ``Any``. Every wait is bounded by the ``timeou
 
 from __future__ import annotations
 
-from typing import Any, Callable, Optional, Protocol
+from typing import Any, Callable, Dict, Optional, Protocol, TypeVar
+
+from flex_nav.exceptions import ConfigError
+
+C = TypeVar("C")
 
 
 class PublisherLike(Protocol):
@@ -146,4 +150,27 @@ class Proxies(Protocol):
     def get_service_caller(self, name: str) -> Optional[ServiceCallerLike]: ...
 
 
-__all__ = ["ActionClientLike", "Proxies", "PublisherLike", "ServiceCallerLike", "SubscriptionLike"]
+class Connections(Dict[str, C]):
+    """An implementation's connections of one ``kind`` (topic, action, service) by name; :meth:`shared` keeps the
+    rule of :class:`Proxies`: one connection per name, made the first time, and one type per name."""
+
+    def __init__(self, kind: str, type_of: Callable[[C], type]) -> None:
+        """``type_of``: the message, action or service type a connection was made with."""
+        super().__init__()
+        self.kind = kind
+        self._type_of = type_of
+
+    def shared(self, name: str, wanted: type, make: Callable[[], C]) -> C:
+        """The connection of ``name``, ``make()`` the first time; ConfigError if it has another type than ``wanted``."""
+        known = self.get(name)
+        if known is None:
+            known = self[name] = make()
+        elif self._type_of(known) is not wanted:
+            raise ConfigError(
+                f"{self.kind} {name} is already used with type {self._type_of(known).__name__} in this behavior; "
+                f"cannot use it as {wanted.__name__}"
+            )
+        return known
+
+
+__all__ = ["ActionClientLike", "Connections", "Proxies", "PublisherLike", "ServiceCallerLike", "SubscriptionLike"]

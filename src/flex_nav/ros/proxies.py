@@ -14,14 +14,15 @@ from __future__ import annotations
 import collections
 import threading
 import time
-from typing import TYPE_CHECKING, Any, Callable, Deque, Dict, Generic, List, Optional, Tuple, TypeVar
+from typing import TYPE_CHECKING, Any, Callable, Deque, Generic, List, Optional, Tuple, TypeVar
 
 import actionlib
 import rospy
 from actionlib.action_client import ClientGoalHandle, CommState
 from actionlib_msgs.msg import GoalStatus
 
-from flex_nav.exceptions import ConfigError, NotReadyError, TimedOutError
+from flex_nav.behavior.proxies import Connections
+from flex_nav.exceptions import NotReadyError, TimedOutError
 
 if TYPE_CHECKING:
     from flex_nav.behavior.proxies import Proxies
@@ -294,52 +295,32 @@ class RosProxies:
 
     def __init__(self) -> None:
         self._lock = threading.Lock()
-        self._publishers: Dict[str, Tuple[type, rospy.Publisher]] = {}
-        self._subscriptions: Dict[str, Subscription[Any]] = {}
-        self._action_clients: Dict[str, ActionClientProxy] = {}
-        self._services: Dict[str, ServiceCallerProxy] = {}
+        self._publishers: Connections[Tuple[type, rospy.Publisher]] = Connections("topic", lambda known: known[0])
+        self._subscriptions: Connections[Subscription[Any]] = Connections("topic", lambda known: known.msg_type)
+        self._action_clients: Connections[ActionClientProxy] = Connections("action", lambda known: known.action_type)
+        self._services: Connections[ServiceCallerProxy] = Connections("service", lambda known: known.srv_type)
 
     def publisher(self, topic: str, msg_type: type, latch: bool = False, queue_size: int = 10) -> rospy.Publisher:
+        def make() -> Tuple[type, rospy.Publisher]:  # kept with the type it was made with
+            return msg_type, rospy.Publisher(topic, msg_type, latch=latch, queue_size=queue_size)
+
         with self._lock:
-            known = self._publishers.get(topic)
-            if known is not None:
-                _check_type("topic", topic, known[0], msg_type)
-                return known[1]
-            pub = rospy.Publisher(topic, msg_type, latch=latch, queue_size=queue_size)
-            self._publishers[topic] = (msg_type, pub)
-            return pub
+            return self._publishers.shared(topic, msg_type, make)[1]
 
     def subscription(self, topic: str, msg_type: type, buffer_size: int = 0) -> Subscription[Any]:
         with self._lock:
-            known = self._subscriptions.get(topic)
-            if known is not None:
-                _check_type("topic", topic, known.msg_type, msg_type)
-                if buffer_size > 0:
-                    known.enable_buffer(buffer_size)
-                return known
-            sub: Subscription[Any] = Subscription(topic, msg_type, buffer_size)
-            self._subscriptions[topic] = sub
+            sub = self._subscriptions.shared(topic, msg_type, lambda: Subscription(topic, msg_type, buffer_size))
+            if buffer_size > 0:  # a subscription made before without a buffer gets one (no-op when buffering)
+                sub.enable_buffer(buffer_size)
             return sub
 
     def action_client(self, name: str, action_type: type) -> ActionClientProxy:
         with self._lock:
-            known = self._action_clients.get(name)
-            if known is not None:
-                _check_type("action", name, known.action_type, action_type)
-                return known
-            client = ActionClientProxy(name, action_type)
-            self._action_clients[name] = client
-            return client
+            return self._action_clients.shared(name, action_type, lambda: ActionClientProxy(name, action_type))
 
     def service_caller(self, name: str, srv_type: type) -> ServiceCallerProxy:
         with self._lock:
-            known = self._services.get(name)
-            if known is not None:
-                _check_type("service", name, known.srv_type, srv_type)
-                return known
-            caller = ServiceCallerProxy(name, srv_type)
-            self._services[name] = caller
-            return caller
+            return self._services.shared(name, srv_type, lambda: ServiceCallerProxy(name, srv_type))
 
     def get_publisher(self, topic: str) -> Optional[rospy.Publisher]:
         """The publisher some state of this behavior created for ``topic``, or None."""
@@ -397,14 +378,6 @@ def _connection_idle(connection: Any) -> bool:
         return True
     with lock:
         return not connection._queue and bool(getattr(data_available, "_waiters", True))
-
-
-def _check_type(kind: str, name: str, known: type, wanted: type) -> None:
-    if known is not wanted:
-        raise ConfigError(
-            f"{kind} {name} is already used with type {known.__name__} in this behavior; cannot use it as "
-            f"{wanted.__name__}"
-        )
 
 
 if TYPE_CHECKING:  # mypy: RosProxies (and so its Subscription, ActionClientProxy, ServiceCallerProxy) is a Proxies

@@ -45,13 +45,13 @@ from __future__ import annotations
 import collections
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Callable, Deque, Dict, List, Optional, Tuple
+from typing import TYPE_CHECKING, Any, Callable, Deque, List, Optional, Tuple
 
 from actionlib_msgs.msg import GoalStatus
 
 from flex_nav.behavior.clock import Clock
-from flex_nav.behavior.proxies import ServiceCallerLike
-from flex_nav.exceptions import ConfigError, NotReadyError
+from flex_nav.behavior.proxies import Connections, ServiceCallerLike
+from flex_nav.exceptions import NotReadyError
 
 if TYPE_CHECKING:
     from flex_nav.behavior.clock import ManualClock
@@ -262,35 +262,23 @@ class FakeProxies:
 
     def __init__(self, clock: Clock) -> None:
         self.clock = clock
-        self.publishers: Dict[str, FakePublisher] = {}
-        self.subscriptions: Dict[str, FakeSubscription] = {}
-        self.clients: Dict[str, FakeActionClient] = {}
+        self.publishers: Connections[FakePublisher] = Connections("topic", lambda known: known.msg_type)
+        self.subscriptions: Connections[FakeSubscription] = Connections("topic", lambda known: known.msg_type)
+        self.clients: Connections[FakeActionClient] = Connections("action", lambda known: known.action_type)
 
     def publisher(self, topic: str, msg_type: type, latch: bool = False, queue_size: int = 10) -> FakePublisher:
-        known = self.publishers.get(topic)
-        if known is not None:
-            _check_type("topic", topic, known.msg_type, msg_type)
-            return known
-        pub = self.publishers[topic] = FakePublisher(topic, msg_type, self.clock)
-        return pub
+        return self.publishers.shared(topic, msg_type, lambda: FakePublisher(topic, msg_type, self.clock))
 
     def subscription(self, topic: str, msg_type: type, buffer_size: int = 0) -> FakeSubscription:
-        known = self.subscriptions.get(topic)
-        if known is not None:
-            _check_type("topic", topic, known.msg_type, msg_type)
-            if buffer_size > 0:
-                known.enable_buffer(buffer_size)
-            return known
-        sub = self.subscriptions[topic] = FakeSubscription(topic, msg_type, self.clock, buffer_size)
+        sub = self.subscriptions.shared(
+            topic, msg_type, lambda: FakeSubscription(topic, msg_type, self.clock, buffer_size)
+        )
+        if buffer_size > 0:  # a subscription made before without a buffer gets one (no-op when buffering)
+            sub.enable_buffer(buffer_size)
         return sub
 
     def action_client(self, name: str, action_type: type) -> FakeActionClient:
-        known = self.clients.get(name)
-        if known is not None:
-            _check_type("action", name, known.action_type, action_type)
-            return known
-        client = self.clients[name] = FakeActionClient(name, action_type, self.clock)
-        return client
+        return self.clients.shared(name, action_type, lambda: FakeActionClient(name, action_type, self.clock))
 
     def service_caller(self, name: str, srv_type: type) -> ServiceCallerLike:
         raise NotImplementedError("FakeProxies has no service callers (no flex_nav state uses one)")
@@ -331,14 +319,6 @@ class FakeProxies:
     def client(self, name: str, action_type: type) -> FakeActionClient:
         """The client for ``name``, created now if no state asked for it yet (to script it before start)."""
         return self.action_client(name, action_type)
-
-
-def _check_type(kind: str, name: str, known: type, wanted: type) -> None:
-    if known is not wanted:
-        raise ConfigError(
-            f"{kind} {name} is already used with type {known.__name__} in this behavior; cannot use it as "
-            f"{wanted.__name__}"
-        )
 
 
 if TYPE_CHECKING:  # mypy: FakeProxies (and so its publisher, subscription, action client) is a Proxies
