@@ -18,10 +18,10 @@ decide. ``conditions`` may also be a mapping outcome -> pairs (its order is kept
 
 from __future__ import annotations
 
-from typing import Any, Mapping, Optional, Sequence
+from typing import Any, Mapping, Sequence
 
 from flex_nav.behavior.concurrency import ConcurrencyContainer as EngineConcurrencyContainer
-from flex_nav.compat.flexbe_core.core.container_support import FlexBEContainer
+from flex_nav.compat.flexbe_core.core.container_support import FlexBEContainer, Wiring
 from flex_nav.exceptions import UnknownTargetError, UnregisteredOutcomeError
 
 
@@ -39,16 +39,9 @@ class ConcurrencyContainer(FlexBEContainer, EngineConcurrencyContainer):
         EngineConcurrencyContainer.__init__(self, outcomes, pairs, input_keys, output_keys)
         self._init_flexbe()
 
-    def _flexbe_add(
-        self,
-        label: str,
-        state: Any,
-        transitions: Optional[Mapping[str, str]],
-        autonomy: Optional[Mapping[str, object]],
-        remapping: Optional[Mapping[str, str]],
-    ) -> Any:
+    def _flexbe_add(self, label: str, state: Any, wiring: Wiring) -> Any:
         registered = getattr(state, "outcomes", ())
-        for outcome, target in (transitions or {}).items():
+        for outcome, target in (wiring.transitions or {}).items():
             if outcome not in registered:
                 raise UnregisteredOutcomeError(
                     f"concurrency container: transition of {label!r} names outcome {outcome!r} that "
@@ -67,7 +60,7 @@ class ConcurrencyContainer(FlexBEContainer, EngineConcurrencyContainer):
                     outcome,
                     "transition",
                 )
-        return EngineConcurrencyContainer.add(self, label, state, remapping=remapping, autonomy=autonomy)
+        return EngineConcurrencyContainer.add(self, label, state, remapping=wiring.remapping, autonomy=wiring.autonomy)
 
 
 __all__ = ["ConcurrencyContainer"]

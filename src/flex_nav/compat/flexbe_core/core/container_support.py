@@ -23,6 +23,7 @@ behavior is built, before it is validated and attached.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any, Collection, Iterator, List, Mapping, Optional
 
 from flex_nav.behavior.container import Container
@@ -92,6 +93,16 @@ class UserDataDefaults:
         return f"<userdata defaults {self._owner.userdata_defaults!r}>"
 
 
+@dataclass(frozen=True)
+class Wiring:
+    """What FlexBE's ``add`` gives with a child besides its label: where its outcomes go, their autonomy levels
+    and its userdata remapping (each None when not given)."""
+
+    transitions: Optional[Mapping[str, str]] = None
+    autonomy: Optional[Mapping[str, object]] = None
+    remapping: Optional[Mapping[str, str]] = None
+
+
 def _opened(cls: type) -> Any:
     top = _OPENED.top()
     if top is None:
@@ -109,7 +120,7 @@ def _add(  # noqa: PLR0917  (FlexBE's signature of add)
     autonomy: Optional[Mapping[str, object]] = None,
     remapping: Optional[Mapping[str, str]] = None,
 ) -> Any:
-    return target._flexbe_add(label, state, transitions, autonomy, remapping)
+    return target._flexbe_add(label, state, Wiring(transitions, autonomy, remapping))
 
 
 class FlexBEContainer:
@@ -131,15 +142,9 @@ class FlexBEContainer:
                 f"closing a {type(self).__name__} that is not the innermost opened container", field="state"
             )
 
-    def _flexbe_add(
-        self,
-        label: str,
-        state: Any,
-        transitions: Optional[Mapping[str, str]],
-        autonomy: Optional[Mapping[str, object]],
-        remapping: Optional[Mapping[str, str]],
-    ) -> Any:
+    def _flexbe_add(self, label: str, state: Any, wiring: Wiring) -> Any:
+        """Add ``state`` as ``label`` with its ``wiring``, the way this kind of container adds a child."""
         raise NotImplementedError
 
 
-__all__ = ["FlexBEContainer", "UserDataDefaults", "drop_input_keys", "set_userdata_default"]
+__all__ = ["FlexBEContainer", "UserDataDefaults", "Wiring", "drop_input_keys", "set_userdata_default"]

@@ -7,10 +7,10 @@ are the engine's (:mod:`flex_nav.behavior.state_machine`); see :mod:`.container_
 
 from __future__ import annotations
 
-from typing import Any, Mapping, Optional, Sequence
+from typing import Any, Sequence
 
 from flex_nav.behavior.state_machine import StateMachine
-from flex_nav.compat.flexbe_core.core.container_support import FlexBEContainer
+from flex_nav.compat.flexbe_core.core.container_support import FlexBEContainer, Wiring
 
 
 class OperatableStateMachine(FlexBEContainer, StateMachine):
@@ -22,15 +22,10 @@ class OperatableStateMachine(FlexBEContainer, StateMachine):
         StateMachine.__init__(self, outcomes, input_keys, output_keys)
         self._init_flexbe()
 
-    def _flexbe_add(
-        self,
-        label: str,
-        state: Any,
-        transitions: Optional[Mapping[str, str]],
-        autonomy: Optional[Mapping[str, object]],
-        remapping: Optional[Mapping[str, str]],
-    ) -> Any:
-        return StateMachine.add(self, label, state, transitions=transitions, autonomy=autonomy, remapping=remapping)
+    def _flexbe_add(self, label: str, state: Any, wiring: Wiring) -> Any:
+        return StateMachine.add(
+            self, label, state, transitions=wiring.transitions, autonomy=wiring.autonomy, remapping=wiring.remapping
+        )
 
 
 __all__ = ["OperatableStateMachine"]
