@@ -16,20 +16,26 @@ inject fakes).
 
 from __future__ import annotations
 
-from typing import Callable, List, Optional
+from typing import Callable, Iterable, List, Optional, TypeVar
 
 from flex_nav.behavior.context import current_context
 from flex_nav.behavior.proxies import Proxies
 from flex_nav.exceptions import NotReadyError
 
+C = TypeVar("C")
+
 
 class Binding:
     """The hub of one FlexBE proxy object, with the setup calls made before a hub was known."""
 
-    __slots__ = ("_hub", "_owner", "_pending")
+    __slots__ = ("_hub", "_owner", "_pending", "_set_up_as", "_set_up_by")
 
-    def __init__(self, owner: str) -> None:
+    def __init__(self, owner: str, *, set_up_by: str, set_up_as: str = "set up") -> None:
+        """``owner``: the proxy's class name; ``set_up_by``: its method that sets a connection up, ``set_up_as``:
+        what that did, in the past tense (for :meth:`require`'s message)."""
         self._owner = owner
+        self._set_up_by = set_up_by
+        self._set_up_as = set_up_as
         self._hub: Optional[Proxies] = self._current_hub()
         self._pending: List[Callable[[Proxies], None]] = []
 
@@ -63,6 +69,16 @@ class Binding:
                 "flex_nav behavior runs (or is built) with proxies injected by its runner"
             )
         return hub
+
+    def require(self, found: Optional[C], missing: str, set_up: Iterable[str]) -> C:
+        """``found``, a connection looked up in the hub; NotReadyError when it is None, saying what is ``missing`` in
+        this behavior, the call that sets it up and the names this proxy set up (``set_up``)."""
+        if found is None:
+            raise NotReadyError(
+                f"{self._owner}: {missing} in this behavior; call {self._set_up_by}(topic, type) first "
+                f"(this proxy {self._set_up_as}: {', '.join(set_up) or 'none'})"
+            )
+        return found
 
     def _bind(self) -> Optional[Proxies]:
         hub = self._current_hub()

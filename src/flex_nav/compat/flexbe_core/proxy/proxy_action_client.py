@@ -15,7 +15,6 @@ from typing import Any, Dict, Optional
 from flex_nav.behavior.proxies import ActionClientLike, Proxies
 from flex_nav.compat.flexbe_core.logger import Logger
 from flex_nav.compat.flexbe_core.proxy.hub import Binding
-from flex_nav.exceptions import NotReadyError
 
 SEND_GOAL_SERVER_WAIT_S = 1.0  # [s] longest wait for the server when sending a goal (setupClient waited already)
 
@@ -24,7 +23,7 @@ class ProxyActionClient:
     """Action clients of the current behavior, by action name (``ProxyActionClient({'move': MoveAction})``)."""
 
     def __init__(self, topics: Optional[Dict[str, type]] = None, wait_duration: float = 10) -> None:
-        self._binding = Binding("ProxyActionClient")
+        self._binding = Binding("ProxyActionClient", set_up_by="setupClient")
         self._topics: Dict[str, type] = {}
         for topic, msg_type in (topics or {}).items():
             self.setupClient(topic, msg_type, wait_duration)
@@ -82,12 +81,7 @@ class ProxyActionClient:
 
     def _client(self, topic: str) -> ActionClientLike:
         client = self._binding.hub().get_action_client(topic)
-        if client is None:
-            raise NotReadyError(
-                f"ProxyActionClient: action {topic!r} is not set up in this behavior; call setupClient(topic, type) "
-                f"first (this proxy set up: {', '.join(self._topics) or 'none'})"
-            )
-        return client
+        return self._binding.require(client, f"action {topic!r} is not set up", self._topics)
 
 
 __all__ = ["ProxyActionClient"]

@@ -7,7 +7,6 @@ from typing import Any, Dict, Optional
 
 from flex_nav.behavior.proxies import Proxies, PublisherLike
 from flex_nav.compat.flexbe_core.proxy.hub import Binding
-from flex_nav.exceptions import NotReadyError
 
 WAIT_POLL_S = 0.01  # [s] poll period of wait_for_any
 
@@ -16,7 +15,7 @@ class ProxyPublisher:
     """Publishers of the current behavior, by topic (``ProxyPublisher({'/cmd_vel': Twist})``)."""
 
     def __init__(self, topics: Optional[Dict[str, type]] = None, _latch: bool = False, _queue_size: int = 100) -> None:
-        self._binding = Binding("ProxyPublisher")
+        self._binding = Binding("ProxyPublisher", set_up_by="createPublisher", set_up_as="created")
         self._topics: Dict[str, type] = {}
         for topic, msg_type in (topics or {}).items():
             self.createPublisher(topic, msg_type, _latch, _queue_size)
@@ -55,12 +54,7 @@ class ProxyPublisher:
 
     def _publisher(self, topic: str) -> PublisherLike:
         pub = self._binding.hub().get_publisher(topic)
-        if pub is None:
-            raise NotReadyError(
-                f"ProxyPublisher: no publisher for topic {topic!r} in this behavior; call createPublisher(topic, type) "
-                f"first (this proxy created: {', '.join(self._topics) or 'none'})"
-            )
-        return pub
+        return self._binding.require(pub, f"no publisher for topic {topic!r}", self._topics)
 
 
 __all__ = ["ProxyPublisher"]

@@ -7,7 +7,6 @@ from typing import Any, Dict, Optional
 from flex_nav.behavior.proxies import Proxies, ServiceCallerLike
 from flex_nav.compat.flexbe_core.logger import Logger
 from flex_nav.compat.flexbe_core.proxy.hub import Binding
-from flex_nav.exceptions import NotReadyError
 
 CALL_SERVICE_WAIT_S = 1.0  # [s] longest wait for the service when calling it (setupService waited already)
 
@@ -16,7 +15,7 @@ class ProxyServiceCaller:
     """Service callers of the current behavior, by service name (``ProxyServiceCaller({'/clear': Empty})``)."""
 
     def __init__(self, topics: Optional[Dict[str, type]] = None, wait_duration: float = 10) -> None:
-        self._binding = Binding("ProxyServiceCaller")
+        self._binding = Binding("ProxyServiceCaller", set_up_by="setupService")
         self._topics: Dict[str, type] = {}
         for topic, msg_type in (topics or {}).items():
             self.setupService(topic, msg_type, wait_duration=wait_duration)
@@ -50,12 +49,7 @@ class ProxyServiceCaller:
 
     def _caller(self, topic: str) -> ServiceCallerLike:
         caller = self._binding.hub().get_service_caller(topic)
-        if caller is None:
-            raise NotReadyError(
-                f"ProxyServiceCaller: service {topic!r} is not set up in this behavior; call setupService(topic, "
-                f"type) first (this proxy set up: {', '.join(self._topics) or 'none'})"
-            )
-        return caller
+        return self._binding.require(caller, f"service {topic!r} is not set up", self._topics)
 
 
 __all__ = ["ProxyServiceCaller"]

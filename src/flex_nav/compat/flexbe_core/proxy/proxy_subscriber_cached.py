@@ -13,7 +13,6 @@ from typing import Any, Callable, Dict, List, Optional, Tuple
 
 from flex_nav.behavior.proxies import Proxies, SubscriptionLike
 from flex_nav.compat.flexbe_core.proxy.hub import Binding
-from flex_nav.exceptions import NotReadyError
 
 DEFAULT_BUFFER_SIZE = 100  # messages kept per buffered topic
 
@@ -22,7 +21,7 @@ class ProxySubscriberCached:
     """Cached subscriptions of the current behavior, by topic (``ProxySubscriberCached({'/scan': LaserScan})``)."""
 
     def __init__(self, topics: Optional[Dict[str, type]] = None) -> None:
-        self._binding = Binding("ProxySubscriberCached")
+        self._binding = Binding("ProxySubscriberCached", set_up_by="subscribe", set_up_as="subscribed")
         self._topics: Dict[str, type] = {}
         self._callbacks: List[Tuple[str, Callable[[Any], None]]] = []
         for topic, msg_type in (topics or {}).items():
@@ -95,12 +94,7 @@ class ProxySubscriberCached:
 
     def _sub(self, topic: str) -> SubscriptionLike:
         sub = self._binding.hub().get_subscription(topic)
-        if sub is None:
-            raise NotReadyError(
-                f"ProxySubscriberCached: topic {topic!r} is not subscribed in this behavior; call subscribe(topic, "
-                f"type) first (this proxy subscribed: {', '.join(self._topics) or 'none'})"
-            )
-        return sub
+        return self._binding.require(sub, f"topic {topic!r} is not subscribed", self._topics)
 
 
 __all__ = ["ProxySubscriberCached"]
