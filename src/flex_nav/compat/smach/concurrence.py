@@ -34,17 +34,13 @@ import time
 from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Set, Tuple
 
 from flex_nav.compat.smach._hooks import HOOKS
-from flex_nav.compat.smach.container import Container, check_state_interface, run_child, smach_construction
+from flex_nav.compat.smach.container import Container, check_state_interface, listed, run_child, smach_construction
 from flex_nav.compat.smach.user_data import Remapper, UserData, remapping_of
 from flex_nav.compat.smach.util import is_shutdown
 from flex_nav.exceptions import InvalidStateError, InvalidTransitionError, InvalidUserCodeError
 
 WAIT_SLICE_S = 0.1  # [s] longest single wait of the container thread (bounds shutdown detection)
 SHUTDOWN_GRACE_S = 5.0  # [s] how long preempted children may take to stop after shutdown
-
-
-def _listed(values: Sequence[Any]) -> str:
-    return ", ".join(str(v) for v in values) if values else "none"
 
 
 class Concurrence(Container):
@@ -64,11 +60,11 @@ class Concurrence(Container):
         registered = self.get_registered_outcomes()
         errors: List[str] = []
         if not isinstance(default_outcome, str) or default_outcome not in registered:
-            errors.append(f"default outcome {default_outcome!r} is not one of its outcomes ({_listed(registered)})")
+            errors.append(f"default outcome {default_outcome!r} is not one of its outcomes ({listed(registered)})")
         outcome_map = dict(outcome_map or {})
         for outcome, conditions in outcome_map.items():
             if outcome not in registered:
-                errors.append(f"outcome_map names outcome {outcome!r}, which is not one of {_listed(registered)}")
+                errors.append(f"outcome_map names outcome {outcome!r}, which is not one of {listed(registered)}")
             if not isinstance(conditions, Mapping) or not conditions:
                 errors.append(f"outcome_map[{outcome!r}] must be a non-empty mapping of child label -> outcome")
         # runtime checks: SMACH code calling this is not type-checked
@@ -97,7 +93,7 @@ class Concurrence(Container):
         label = check_state_interface(label, state, "Concurrence")
         if label in self._states:
             raise InvalidStateError(
-                f"Concurrence: child label {label!r} is already used (labels: {_listed(list(self._states))})"
+                f"Concurrence: child label {label!r} is already used (labels: {listed(list(self._states))})"
             )
         self._states[label] = state
         self._remappings[label] = remapping_of(remapping, f"Concurrence child {label!r}")
@@ -113,7 +109,7 @@ class Concurrence(Container):
         try:
             return self._states[key]
         except KeyError:
-            raise KeyError(f"Concurrence has no child {key!r} (children: {_listed(list(self._states))})") from None
+            raise KeyError(f"Concurrence has no child {key!r} (children: {listed(list(self._states))})") from None
 
     def get_initial_states(self) -> List[str]:
         return list(self._states)
@@ -122,7 +118,7 @@ class Concurrence(Container):
         """All children always start; only ``userdata`` is merged (as in SMACH)."""
         unknown = [s for s in initial_states if s not in self._states]
         if unknown:
-            raise InvalidStateError(f"Concurrence has no children {unknown} (children: {_listed(list(self._states))})")
+            raise InvalidStateError(f"Concurrence has no children {unknown} (children: {listed(list(self._states))})")
         if userdata is not None:
             self.userdata.update(userdata)
 
@@ -148,12 +144,12 @@ class Concurrence(Container):
                 if child is None:
                     raise InvalidTransitionError(
                         f"outcome_map[{outcome!r}] names child {label!r}, which is not in the Concurrence "
-                        f"(children: {_listed(list(self._states))})"
+                        f"(children: {listed(list(self._states))})"
                     )
                 if child_outcome not in child.get_registered_outcomes():
                     raise InvalidTransitionError(
                         f"outcome_map[{outcome!r}] expects outcome {child_outcome!r} of {label!r}, which it does not "
-                        f"register (registered: {_listed(child.get_registered_outcomes())})"
+                        f"register (registered: {listed(child.get_registered_outcomes())})"
                     )
 
     # --- running --------------------------------------------------------------------------------------------------
@@ -161,9 +157,7 @@ class Concurrence(Container):
         """Run every child in its own thread until all have finished; return the container outcome."""
         self.check_consistency()
         with self._cond:
-            if self._is_running:
-                raise InvalidStateError("this Concurrence is already running (execute is not re-entrant)")
-            self._is_running = True
+            self._start_running("this Concurrence")
             self._child_outcomes = dict.fromkeys(self._states)
             self._finished = set()
             self._errors = {}
@@ -264,7 +258,7 @@ class Concurrence(Container):
                         self._to_preempt.update(self._states)
                 elif now > shutdown_deadline:
                     raise InvalidStateError(
-                        f"Concurrence children {_listed(running)} did not stop within {SHUTDOWN_GRACE_S} s of shutdown"
+                        f"Concurrence children {listed(running)} did not stop within {SHUTDOWN_GRACE_S} s of shutdown"
                     )
 
     def _raise_child_errors(self) -> None:
@@ -273,7 +267,7 @@ class Concurrence(Container):
         label = next(lb for lb in self._states if lb in self._errors)
         error = self._errors[label]
         others = [lb for lb in self._states if lb in self._errors and lb != label]
-        also = f" (also failed: {_listed(others)})" if others else ""
+        also = f" (also failed: {listed(others)})" if others else ""
         if isinstance(error, InvalidUserCodeError) and error.__cause__ is not None:
             cause: BaseException = error.__cause__
         else:
@@ -289,7 +283,7 @@ class Concurrence(Container):
             if outcomes[label] not in registered:
                 raise InvalidTransitionError(
                     f"concurrent state {label!r} returned outcome {outcomes[label]!r}, which it does not register "
-                    f"(registered: {_listed(registered)})"
+                    f"(registered: {listed(registered)})"
                 )
         if self._outcome_cb is not None:
             try:
@@ -300,7 +294,7 @@ class Concurrence(Container):
                 if not isinstance(chosen, str) or chosen not in self._outcomes:
                     raise InvalidTransitionError(
                         f"outcome_cb of a Concurrence returned {chosen!r}, which is not one of its outcomes "
-                        f"({_listed(self.get_registered_outcomes())})"
+                        f"({listed(self.get_registered_outcomes())})"
                     )
                 return chosen
         best: Optional[str] = None
@@ -316,7 +310,7 @@ class Concurrence(Container):
             self._states[label].recall_preempt()
         if self._preempt_requested:
             if unserviced:
-                HOOKS.warn(f"Concurrence children {_listed(unserviced)} did not service the preempt request")
+                HOOKS.warn(f"Concurrence children {listed(unserviced)} did not service the preempt request")
             else:
                 self.service_preempt()
 

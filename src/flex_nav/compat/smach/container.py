@@ -23,7 +23,7 @@ when it finishes.
 from __future__ import annotations
 
 import threading
-from typing import Any, Callable, Collection, Dict, Iterator, List, Optional, Sequence, Tuple
+from typing import Any, Callable, Collection, Dict, List, Optional, Sequence, Tuple
 
 from flex_nav.compat._construction import OpenedStack, construction_method
 from flex_nav.compat.smach._hooks import HOOKS
@@ -98,6 +98,12 @@ class Container(State):
 
     def is_running(self) -> bool:
         return self._is_running
+
+    def _start_running(self, this: str) -> None:
+        """Mark the container running; InvalidStateError naming ``this`` container if it already is."""
+        if self._is_running:
+            raise InvalidStateError(f"{this} is already running (execute is not re-entrant)")
+        self._is_running = True
 
     # --- userdata passing ----------------------------------------------------------------------------------
     def _copy_input_keys(self, parent_ud: Any, ud: UserData) -> None:
@@ -240,9 +246,9 @@ def check_state_interface(label: object, state: object, container: str) -> str:
     return label
 
 
-def iter_labels(labels: Iterator[str]) -> str:
-    listed = list(labels)
-    return ", ".join(listed) if listed else "none"
+def listed(values: Sequence[Any]) -> str:
+    """``values`` for a message: comma-separated, or ``none``."""
+    return ", ".join(str(v) for v in values) if values else "none"
 
 
 __all__ = ["Container"]

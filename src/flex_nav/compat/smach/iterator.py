@@ -21,16 +21,12 @@ from __future__ import annotations
 from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
 
 from flex_nav.compat.smach._hooks import HOOKS
-from flex_nav.compat.smach.container import Container, check_state_interface, run_child, smach_construction
+from flex_nav.compat.smach.container import Container, check_state_interface, listed, run_child, smach_construction
 from flex_nav.compat.smach.user_data import UserData
 from flex_nav.compat.smach.util import is_shutdown, names
 from flex_nav.exceptions import InvalidStateError, InvalidTransitionError
 
 Items = Union[Iterable[Any], Callable[[], Iterable[Any]]]
-
-
-def _listed(values: Sequence[Any]) -> str:
-    return ", ".join(str(v) for v in values) if values else "none"
 
 
 class Iterator(Container):
@@ -81,8 +77,8 @@ class Iterator(Container):
             unknown = [o for o in values if o not in registered]
             if unknown:
                 raise InvalidTransitionError(
-                    f"Iterator state {label!r}: {what} names {_listed(unknown)}, which it does not register "
-                    f"(registered: {_listed(registered)})"
+                    f"Iterator state {label!r}: {what} names {listed(unknown)}, which it does not register "
+                    f"(registered: {listed(registered)})"
                 )
         if loops and breaks:
             HOOKS.warn("Iterator: both loop_outcomes and break_outcomes given; break_outcomes win")
@@ -138,15 +134,13 @@ class Iterator(Container):
             if final not in self._outcomes:
                 raise InvalidTransitionError(
                     f"Iterator: break outcome {outcome!r} of {self._state_label!r} ends the iterator with {final!r}, "
-                    f"which is not one of its outcomes ({_listed(self.get_registered_outcomes())})"
+                    f"which is not one of its outcomes ({listed(self.get_registered_outcomes())})"
                 )
 
     # --- running -------------------------------------------------------------------------------------------------
     def execute(self, parent_ud: Any = None) -> Optional[str]:
         self.check_consistency()
-        if self._is_running:
-            raise InvalidStateError("this Iterator is already running (execute is not re-entrant)")
-        self._is_running = True
+        self._start_running("this Iterator")
         try:
             self._copy_input_keys(parent_ud, self.userdata)
             self.call_start_cbs()
@@ -164,7 +158,7 @@ class Iterator(Container):
                 if result not in self._state.get_registered_outcomes():
                     raise InvalidTransitionError(
                         f"Iterator state {self._state_label!r} returned outcome {result!r}, which it does not "
-                        f"register (registered: {_listed(self._state.get_registered_outcomes())})"
+                        f"register (registered: {listed(self._state.get_registered_outcomes())})"
                     )
                 if self._preempt_requested or result not in self._loop_outcomes:
                     self._preempt_requested = False
@@ -175,7 +169,7 @@ class Iterator(Container):
             if outcome not in self._outcomes:
                 raise InvalidTransitionError(
                     f"Iterator ends with {outcome!r}, which is not one of its outcomes "
-                    f"({_listed(self.get_registered_outcomes())})"
+                    f"({listed(self.get_registered_outcomes())})"
                 )
             self._copy_output_keys(self.userdata, parent_ud)
             self.call_termination_cbs([self._state_label], outcome)

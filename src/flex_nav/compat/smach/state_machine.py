@@ -34,16 +34,12 @@ import threading
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
 from flex_nav.compat.smach._hooks import HOOKS
-from flex_nav.compat.smach.container import SMACH_ERRORS, Container, check_state_interface, smach_construction
+from flex_nav.compat.smach.container import Container, check_state_interface, listed, run_child, smach_construction
 from flex_nav.compat.smach.user_data import Remapper, UserData, remapping_of
 from flex_nav.compat.smach.util import is_shutdown, names
-from flex_nav.exceptions import InvalidStateError, InvalidTransitionError, InvalidUserCodeError
+from flex_nav.exceptions import InvalidStateError, InvalidTransitionError
 
 _UNBOUND = object()
-
-
-def _listed(values: Sequence[Any]) -> str:
-    return ", ".join(str(v) for v in values) if values else "none"
 
 
 class StateMachine(Container):
@@ -78,12 +74,12 @@ class StateMachine(Container):
         label = check_state_interface(label, state, where)
         if label in self._states:
             raise InvalidStateError(
-                f"{where}: state label {label!r} is already used (labels: {_listed(list(self._states))})"
+                f"{where}: state label {label!r} is already used (labels: {listed(list(self._states))})"
             )
         if label in self._outcomes:
             raise InvalidStateError(
                 f"{where}: state label {label!r} is also an outcome of the machine "
-                f"(outcomes: {_listed(self.get_registered_outcomes())}); rename one"
+                f"(outcomes: {listed(self.get_registered_outcomes())}); rename one"
             )
         bound = dict(transitions or {})
         self.check_state_spec(label, state, bound)
@@ -115,8 +111,8 @@ class StateMachine(Container):
             missing = [o for o in connectors if o not in registered]
             if missing:
                 raise InvalidStateError(
-                    f"add_auto {label!r}: connector outcomes {_listed(missing)} are not registered by the state "
-                    f"(registered: {_listed(registered)})"
+                    f"add_auto {label!r}: connector outcomes {listed(missing)} are not registered by the state "
+                    f"(registered: {listed(registered)})"
                 )
         added = StateMachine._add(self, label, state, transitions, remapping)
         self._last_added_label = label
@@ -133,7 +129,7 @@ class StateMachine(Container):
             if outcome not in registered:
                 raise InvalidTransitionError(
                     f"transition of state {label!r} names outcome {outcome!r}, which it does not register "
-                    f"(registered: {_listed(registered)})"
+                    f"(registered: {listed(registered)})"
                 )
             if target is not None and (not isinstance(target, str)):
                 raise InvalidTransitionError(
@@ -148,19 +144,19 @@ class StateMachine(Container):
         try:
             return self._states[key]
         except KeyError:
-            raise KeyError(f"state machine has no state {key!r} (states: {_listed(list(self._states))})") from None
+            raise KeyError(f"state machine has no state {key!r} (states: {listed(list(self._states))})") from None
 
     def set_initial_state(self, initial_states: Sequence[str], userdata: Optional[UserData] = None) -> None:
         """Start at ``initial_states[0]`` next time; merge ``userdata`` into the machine's userdata."""
         states = [initial_states] if isinstance(initial_states, str) else list(initial_states)
         if len(states) > 1:
             raise InvalidStateError(
-                f"a StateMachine has exactly one initial state, got {states} (states: {_listed(list(self._states))})"
+                f"a StateMachine has exactly one initial state, got {states} (states: {listed(list(self._states))})"
             )
         if states:
             if states[0] not in self._states:
                 raise InvalidStateError(
-                    f"initial state {states[0]!r} is not a state of the machine (states: {_listed(list(self._states))})"
+                    f"initial state {states[0]!r} is not a state of the machine (states: {listed(list(self._states))})"
                 )
             self._initial_state_label = states[0]
         if userdata is not None:
@@ -203,7 +199,7 @@ class StateMachine(Container):
                     errors.append(f"state {label!r}: transition {outcome!r} goes to unknown target {target!r}")
         if errors:
             raise InvalidTransitionError(
-                f"state machine failed consistency check: {'; '.join(errors)} (valid targets: {_listed(available)})"
+                f"state machine failed consistency check: {'; '.join(errors)} (valid targets: {listed(available)})"
             )
 
     # --- running ---------------------------------------------------------------------------------------------------
@@ -211,9 +207,7 @@ class StateMachine(Container):
         """Run from the initial state until a transition reaches an outcome of the machine; return it."""
         self.check_consistency()
         with self._state_transitioning_lock:
-            if self._is_running:
-                raise InvalidStateError("this state machine is already running (execute is not re-entrant)")
-            self._is_running = True
+            self._start_running("this state machine")
             self._preempted_label = None
             self._preempted_state = None
             self._set_current_state(self._initial_state_label)
@@ -261,13 +255,7 @@ class StateMachine(Container):
         lock = self._state_transitioning_lock
         lock.release()
         try:
-            outcome = state.execute(ud)
-        except SMACH_ERRORS:
-            raise
-        except Exception as err:
-            raise InvalidUserCodeError(
-                f"state {label!r} ({type(state).__name__}) raised {type(err).__name__}: {err}"
-            ) from err
+            outcome = run_child(label, state, ud)
         finally:
             lock.acquire()
         target: Any = transitions.get(outcome, _UNBOUND) if isinstance(outcome, str) else _UNBOUND
@@ -303,11 +291,11 @@ class StateMachine(Container):
         if outcome in registered:
             raise InvalidTransitionError(
                 f"outcome {outcome!r} of state {label!r} is not bound to any transition target "
-                f"(bound: {_listed(list(transitions))})"
+                f"(bound: {listed(list(transitions))})"
             )
         raise InvalidTransitionError(
             f"state {label!r} ({type(state).__name__}) returned outcome {outcome!r}, which it does not register "
-            f"(registered: {_listed(registered)})"
+            f"(registered: {listed(registered)})"
         )
 
     def _terminate(self, label: str, state: Any, outcome: str, target: Optional[str]) -> str:
@@ -320,7 +308,7 @@ class StateMachine(Container):
         if container_outcome not in self._outcomes:
             raise InvalidTransitionError(
                 f"outcome {outcome!r} of state {label!r} goes to {target!r}, which is neither a state nor an outcome "
-                f"of the machine (outcomes: {_listed(self.get_registered_outcomes())})"
+                f"of the machine (outcomes: {listed(self.get_registered_outcomes())})"
             )
         if HOOKS.info_enabled():
             HOOKS.info(f"State machine terminating {label!r}:{outcome!r}:{container_outcome!r}")
