@@ -172,7 +172,8 @@ class ReadOnlyObject:
 
 
 class _ContainerView:
-    """What the read-only container views share: the wrapped object, and isinstance() seeing its type."""
+    """What the read-only container views share: the wrapped object, isinstance() seeing its type, its size,
+    membership and equality, and refusing attributes."""
 
     __slots__ = ("_ro_target",)
 
@@ -186,6 +187,24 @@ class _ContainerView:
     def __repr__(self) -> str:
         return repr(object.__getattribute__(self, "_ro_target"))
 
+    def __len__(self) -> int:
+        return len(object.__getattribute__(self, "_ro_target"))
+
+    def __contains__(self, item: object) -> bool:
+        return item in object.__getattribute__(self, "_ro_target")
+
+    def __setattr__(self, name: str, value: object) -> None:
+        raise _refuse(object.__getattribute__(self, "_ro_target"), f"set attribute {name!r}")
+
+    def __eq__(self, other: object) -> bool:
+        return bool(object.__getattribute__(self, "_ro_target") == unwrap(other))
+
+    def __ne__(self, other: object) -> bool:
+        return not self.__eq__(other)
+
+    def __hash__(self) -> int:  # a view of an unhashable container sets it None, like its target
+        return hash(object.__getattribute__(self, "_ro_target"))
+
 
 class ReadOnlySequence(_ContainerView, Sequence[Any]):
     """Read-only view of a list or tuple; items come back read-only; mutators refuse. No copy."""
@@ -198,32 +217,14 @@ class ReadOnlySequence(_ContainerView, Sequence[Any]):
             return ReadOnlySequence(target[index])  # a slice copies; the copy is protected too
         return readonly(target[index])
 
-    def __len__(self) -> int:
-        return len(object.__getattribute__(self, "_ro_target"))
-
     def __iter__(self) -> Iterator[Any]:
         return (readonly(v) for v in object.__getattribute__(self, "_ro_target"))
-
-    def __contains__(self, item: object) -> bool:
-        return item in object.__getattribute__(self, "_ro_target")
-
-    def __setattr__(self, name: str, value: object) -> None:
-        raise _refuse(object.__getattribute__(self, "_ro_target"), f"set attribute {name!r}")
 
     def __setitem__(self, key: Any, value: object) -> None:
         raise _refuse(object.__getattribute__(self, "_ro_target"), "set an item")
 
     def __delitem__(self, key: Any) -> None:
         raise _refuse(object.__getattribute__(self, "_ro_target"), "delete an item")
-
-    def __eq__(self, other: object) -> bool:
-        return bool(object.__getattribute__(self, "_ro_target") == unwrap(other))
-
-    def __ne__(self, other: object) -> bool:
-        return not self.__eq__(other)
-
-    def __hash__(self) -> int:
-        return hash(object.__getattribute__(self, "_ro_target"))
 
 
 class ReadOnlyMapping(_ContainerView, Mapping[Any, Any]):
@@ -234,29 +235,14 @@ class ReadOnlyMapping(_ContainerView, Mapping[Any, Any]):
     def __getitem__(self, key: Any) -> Any:
         return readonly(object.__getattribute__(self, "_ro_target")[key])
 
-    def __len__(self) -> int:
-        return len(object.__getattribute__(self, "_ro_target"))
-
     def __iter__(self) -> Iterator[Any]:
         return iter(object.__getattribute__(self, "_ro_target"))
-
-    def __contains__(self, key: object) -> bool:
-        return key in object.__getattribute__(self, "_ro_target")
-
-    def __setattr__(self, name: str, value: object) -> None:
-        raise _refuse(object.__getattribute__(self, "_ro_target"), f"set attribute {name!r}")
 
     def __setitem__(self, key: Any, value: object) -> None:
         raise _refuse(object.__getattribute__(self, "_ro_target"), "set an item")
 
     def __delitem__(self, key: Any) -> None:
         raise _refuse(object.__getattribute__(self, "_ro_target"), "delete an item")
-
-    def __eq__(self, other: object) -> bool:
-        return bool(object.__getattribute__(self, "_ro_target") == unwrap(other))
-
-    def __ne__(self, other: object) -> bool:
-        return not self.__eq__(other)
 
     __hash__ = None  # type: ignore[assignment]  # unhashable, like dict
 
@@ -266,23 +252,8 @@ class ReadOnlySet(_ContainerView, AbstractSet[Any]):
 
     __slots__ = ()
 
-    def __contains__(self, item: object) -> bool:
-        return item in object.__getattribute__(self, "_ro_target")
-
     def __iter__(self) -> Iterator[Any]:
         return iter(object.__getattribute__(self, "_ro_target"))
-
-    def __len__(self) -> int:
-        return len(object.__getattribute__(self, "_ro_target"))
-
-    def __setattr__(self, name: str, value: object) -> None:
-        raise _refuse(object.__getattribute__(self, "_ro_target"), f"set attribute {name!r}")
-
-    def __eq__(self, other: object) -> bool:
-        return bool(object.__getattribute__(self, "_ro_target") == unwrap(other))
-
-    def __ne__(self, other: object) -> bool:
-        return not self.__eq__(other)
 
     __hash__ = None  # type: ignore[assignment]  # unhashable, like set
 
