@@ -98,6 +98,14 @@ class ContainerRuntime(StateRuntime):
     def abort(self) -> None:
         self.container._abort()
 
+    def deactivate(self) -> None:
+        """The container left or was aborted: not active, not entered, nothing due, no pending outcome."""
+        self.active = False
+        self.entered = False
+        self.due = math.inf
+        if self.pending is not None:
+            self.drop_pending()
+
 
 class Container(State):
     """Base of StateMachine, ConcurrencyContainer and PriorityContainer (not used directly)."""
@@ -347,24 +355,14 @@ class Container(State):
 
     def _leave(self) -> None:
         """Finished with an outcome that fired: hand the outputs to the parent."""
-        rt = self.__flex_nav_runtime__
-        rt.active = False
-        rt.entered = False
-        rt.due = math.inf
-        if rt.pending is not None:
-            rt.drop_pending()
+        self.__flex_nav_runtime__.deactivate()
         self._write_outputs()
 
     def _abort(self) -> None:
         """Exit every active child (deepest first), without writing outputs."""
         for child in self._active_children():
             child.abort()
-        rt = self.__flex_nav_runtime__
-        rt.active = False
-        rt.entered = False
-        rt.due = math.inf
-        if rt.pending is not None:
-            rt.drop_pending()
+        self.__flex_nav_runtime__.deactivate()
 
     def _tick(self, now: float) -> Optional[str]:
         raise NotImplementedError
