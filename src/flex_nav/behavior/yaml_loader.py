@@ -281,6 +281,7 @@ def load_behavior_text(
 
 
 _T = TypeVar("_T")
+_C = TypeVar("_C", bound=Container)
 
 
 def _guarded(load: Callable[[], _T], file: str) -> _T:
@@ -563,21 +564,28 @@ class _Loader:
             head["userdata"] = {key: self.value(value_node) for key, (_, value_node) in defaults.items()}
         return head
 
+    def new_container(
+        self, cls: Type[_C], pairs: Dict[str, Tuple[Node, Node]], what: str, cpath: str, node: Node
+    ) -> _C:
+        """The container of the head in ``pairs`` (outcomes, keys, userdata defaults), its head marked and its
+        path set for add-time messages; the error of a bad head names the file and line."""
+        head = self.container_head(pairs, what, node)
+        self.mark((cpath, None, None, None), pairs["states"][0])
+        try:
+            container = cls(**head)
+        except ConfigError as err:
+            self.fail(node, f"{what}: {err}")
+        container.__flex_nav_runtime__.path = cpath  # for add-time messages; attach sets it again
+        if "output_keys" in pairs:
+            for key_name, key_node in self.names(pairs["output_keys"][1], "output_keys"):
+                self.mark((cpath, None, "key", key_name), key_node)
+        return container
+
     def machine(
         self, pairs: Dict[str, Tuple[Node, Node]], cls: Type[StateMachine], cpath: str, node: Node
     ) -> StateMachine:
         what = f"{cls.kind} {cpath}"
-        head = self.container_head(pairs, what, node)
-        self.mark((cpath, None, None, None), pairs["states"][0])
-        try:
-            sm = cls(**head)
-        except ConfigError as err:
-            self.fail(node, f"{what}: {err}")
-        sm.__flex_nav_runtime__.path = cpath  # for add-time messages; attach sets it again
-        for key in ("output_keys",):
-            if key in pairs:
-                for key_name, key_node in self.names(pairs[key][1], key):
-                    self.mark((cpath, None, "key", key_name), key_node)
+        sm = self.new_container(cls, pairs, what, cpath, node)
         if "initial" in pairs:
             initial_node = pairs["initial"][1]
             sm.set_initial_state(self.name(initial_node, "initial"))
@@ -615,16 +623,7 @@ class _Loader:
     def concurrency(self, pairs: Dict[str, Tuple[Node, Node]], cpath: str, node: Node) -> ConcurrencyContainer:
         what = f"concurrency container {cpath}"
         self.only(pairs, _CONCURRENCY_KEYS, what)
-        head = self.container_head(pairs, what, node)
-        self.mark((cpath, None, None, None), pairs["states"][0])
-        try:
-            cc = ConcurrencyContainer(**head)
-        except ConfigError as err:
-            self.fail(node, f"{what}: {err}")
-        cc.__flex_nav_runtime__.path = cpath  # for add-time messages; attach sets it again
-        if "output_keys" in pairs:
-            for key_name, key_node in self.names(pairs["output_keys"][1], "output_keys"):
-                self.mark((cpath, None, "key", key_name), key_node)
+        cc = self.new_container(ConcurrencyContainer, pairs, what, cpath, node)
         for label, (label_node, state_node) in self.pairs(pairs["states"][1], f"states of {what}").items():
             self.budget.count_state(self.file, label_node.start_mark.line + 1)
             self.mark((cpath, label, None, None), label_node)
