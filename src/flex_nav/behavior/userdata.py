@@ -113,8 +113,9 @@ _DICT_MUTATORS = ("update", "pop", "popitem", "setdefault", "clear")
 _SET_MUTATORS = ("add", "discard", "remove", "pop", "clear", "update")
 
 
-class ReadOnlyObject:
-    """Read-only proxy of an arbitrary object (e.g. a ROS message): attributes come back read-only."""
+class _View:
+    """What every read-only view shares: the wrapped object, isinstance() seeing its type, its size, membership,
+    equality and hash, and refusing attributes."""
 
     __slots__ = ("_ro_target",)
 
@@ -123,65 +124,6 @@ class ReadOnlyObject:
 
     @property  # type: ignore[misc]
     def __class__(self) -> type:  # makes isinstance(view, OriginalType) true
-        return type(object.__getattribute__(self, "_ro_target"))
-
-    def __getattribute__(self, name: str) -> Any:  # every attribute read comes back read-only
-        return readonly(getattr(object.__getattribute__(self, "_ro_target"), name))
-
-    def __setattr__(self, name: str, value: object) -> None:
-        raise _refuse(object.__getattribute__(self, "_ro_target"), f"set attribute {name!r}")
-
-    def __delattr__(self, name: str) -> None:
-        raise _refuse(object.__getattribute__(self, "_ro_target"), f"delete attribute {name!r}")
-
-    def __getitem__(self, key: Any) -> Any:
-        return readonly(object.__getattribute__(self, "_ro_target")[key])
-
-    def __setitem__(self, key: Any, value: object) -> None:
-        raise _refuse(object.__getattribute__(self, "_ro_target"), "set an item")
-
-    def __delitem__(self, key: Any) -> None:
-        raise _refuse(object.__getattribute__(self, "_ro_target"), "delete an item")
-
-    def __len__(self) -> int:
-        return len(object.__getattribute__(self, "_ro_target"))
-
-    def __iter__(self) -> Iterator[Any]:
-        return (readonly(v) for v in object.__getattribute__(self, "_ro_target"))
-
-    def __contains__(self, item: object) -> bool:
-        return item in object.__getattribute__(self, "_ro_target")
-
-    def __bool__(self) -> bool:
-        return bool(object.__getattribute__(self, "_ro_target"))
-
-    def __eq__(self, other: object) -> bool:
-        return bool(object.__getattribute__(self, "_ro_target") == unwrap(other))
-
-    def __ne__(self, other: object) -> bool:
-        return not self.__eq__(other)
-
-    def __hash__(self) -> int:
-        return hash(object.__getattribute__(self, "_ro_target"))
-
-    def __repr__(self) -> str:
-        return repr(object.__getattribute__(self, "_ro_target"))
-
-    def __str__(self) -> str:
-        return str(object.__getattribute__(self, "_ro_target"))
-
-
-class _ContainerView:
-    """What the read-only container views share: the wrapped object, isinstance() seeing its type, its size,
-    membership and equality, and refusing attributes."""
-
-    __slots__ = ("_ro_target",)
-
-    def __init__(self, target: Any) -> None:
-        object.__setattr__(self, "_ro_target", target)
-
-    @property  # type: ignore[misc]
-    def __class__(self) -> type:
         return type(object.__getattribute__(self, "_ro_target"))
 
     def __repr__(self) -> str:
@@ -206,7 +148,37 @@ class _ContainerView:
         return hash(object.__getattribute__(self, "_ro_target"))
 
 
-class ReadOnlySequence(_ContainerView, Sequence[Any]):
+class ReadOnlyObject(_View):
+    """Read-only proxy of an arbitrary object (e.g. a ROS message): attributes come back read-only."""
+
+    __slots__ = ()
+
+    def __getattribute__(self, name: str) -> Any:  # every attribute read comes back read-only
+        return readonly(getattr(object.__getattribute__(self, "_ro_target"), name))
+
+    def __delattr__(self, name: str) -> None:
+        raise _refuse(object.__getattribute__(self, "_ro_target"), f"delete attribute {name!r}")
+
+    def __getitem__(self, key: Any) -> Any:
+        return readonly(object.__getattribute__(self, "_ro_target")[key])
+
+    def __setitem__(self, key: Any, value: object) -> None:
+        raise _refuse(object.__getattribute__(self, "_ro_target"), "set an item")
+
+    def __delitem__(self, key: Any) -> None:
+        raise _refuse(object.__getattribute__(self, "_ro_target"), "delete an item")
+
+    def __iter__(self) -> Iterator[Any]:
+        return (readonly(v) for v in object.__getattribute__(self, "_ro_target"))
+
+    def __bool__(self) -> bool:
+        return bool(object.__getattribute__(self, "_ro_target"))
+
+    def __str__(self) -> str:
+        return str(object.__getattribute__(self, "_ro_target"))
+
+
+class ReadOnlySequence(_View, Sequence[Any]):
     """Read-only view of a list or tuple; items come back read-only; mutators refuse. No copy."""
 
     __slots__ = ()
@@ -227,7 +199,7 @@ class ReadOnlySequence(_ContainerView, Sequence[Any]):
         raise _refuse(object.__getattribute__(self, "_ro_target"), "delete an item")
 
 
-class ReadOnlyMapping(_ContainerView, Mapping[Any, Any]):
+class ReadOnlyMapping(_View, Mapping[Any, Any]):
     """Read-only view of a dict; values come back read-only; mutators refuse. No copy."""
 
     __slots__ = ()
@@ -247,7 +219,7 @@ class ReadOnlyMapping(_ContainerView, Mapping[Any, Any]):
     __hash__ = None  # type: ignore[assignment]  # unhashable, like dict
 
 
-class ReadOnlySet(_ContainerView, AbstractSet[Any]):
+class ReadOnlySet(_View, AbstractSet[Any]):
     """Read-only view of a set (elements are hashable, returned as they are); mutators refuse. No copy."""
 
     __slots__ = ()
