@@ -1,8 +1,19 @@
 """Readiness probes shared by rostest nodes (imported from this directory, not a test itself)."""
 
 import time
+from typing import Callable
 
 from actionlib_msgs.msg import GoalStatus
+
+
+def poll_until(predicate: Callable[[], object], timeout_s: float, period_s: float = 0.01) -> bool:
+    """True once ``predicate()`` holds, asked every ``period_s`` [s]; False if it did not within ``timeout_s`` [s]."""
+    deadline = time.monotonic() + timeout_s
+    while not predicate():
+        if time.monotonic() > deadline:
+            return False
+        time.sleep(period_s)
+    return True
 
 
 def wait_until_active(client, timeout_s):

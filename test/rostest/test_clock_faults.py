@@ -7,7 +7,6 @@ clock), the local planner (a Path on ``plan``) and the operator side (the heartb
 on wall time: its own ROS time stands still with the clock it stops.
 """
 
-import math
 import threading
 import time
 import unittest
@@ -17,8 +16,10 @@ import rospy
 import rostest
 import tf2_ros
 from actionlib_msgs.msg import GoalStatus
-from geometry_msgs.msg import PoseStamped, TransformStamped, Twist, TwistStamped
+from geometry_msgs.msg import PoseStamped, Twist, TwistStamped
+from message_log import MessageLog
 from nav_msgs.msg import Odometry, Path
+from robot_at_rest import BASE_FRAME, empty_scan, identity_tf, odom_at_rest
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 from std_msgs.msg import Header, String
@@ -79,27 +80,9 @@ class Simulator:
             if not self.clock_on.is_set():
                 continue  # a stopped simulator sends nothing
             stamp = self.now()
-            transforms = []
-            for parent, child in (("map", "odom"), ("odom", "base_footprint")):
-                tf = TransformStamped()
-                tf.header.stamp = stamp
-                tf.header.frame_id, tf.child_frame_id = parent, child
-                tf.transform.rotation.w = 1.0
-                transforms.append(tf)
-            self.tf.sendTransform(transforms)
-            odom = Odometry()
-            odom.header.stamp = stamp
-            odom.header.frame_id, odom.child_frame_id = "odom", "base_footprint"
-            odom.pose.pose.orientation.w = 1.0
-            self.odom_pub.publish(odom)
-            scan = LaserScan()
-            scan.header.stamp = stamp
-            scan.header.frame_id = "base_footprint"
-            scan.angle_min, scan.angle_increment = -math.pi, 2 * math.pi / 360
-            scan.angle_max = scan.angle_min + 359 * scan.angle_increment
-            scan.range_min, scan.range_max = 0.05, 3.5
-            scan.ranges = [float("inf")] * 360
-            self.scan_pub.publish(scan)
+            self.tf.sendTransform([identity_tf("map", "odom", stamp), identity_tf("odom", BASE_FRAME, stamp)])
+            self.odom_pub.publish(odom_at_rest(stamp))
+            self.scan_pub.publish(empty_scan(stamp))
             self.plan_pub.publish(straight_path(stamp))
 
     def run_heartbeat(self):
@@ -124,40 +107,22 @@ def straight_path(stamp, length=5.0):
     return path
 
 
-class Recorder:
-    """Every message on a command topic with the wall time it arrived."""
+class Recorder(MessageLog):
+    """Every message on a command topic as (wall time [s] it arrived, twist); waits on the wall clock (the test
+    fakes ROS time)."""
 
     def __init__(self, topic, msg_type):
-        self.cond = threading.Condition()
-        self.msgs = []  # (wall time [s], twist)
-        rospy.Subscriber(topic, msg_type, self.on_msg, queue_size=100)
+        super().__init__(topic, msg_type, queue_size=100, poll_s=0.05)
 
-    def on_msg(self, msg):
-        twist = msg.twist if isinstance(msg, TwistStamped) else msg
-        with self.cond:
-            self.msgs.append((time.monotonic(), twist))
-            self.cond.notify_all()
+    def record(self, msg):
+        return time.monotonic(), (msg.twist if isinstance(msg, TwistStamped) else msg)
 
-    def mark(self):
-        with self.cond:
-            return len(self.msgs)
+    def now_s(self):
+        return time.monotonic()
 
-    def since(self, index):
-        with self.cond:
-            return list(self.msgs[index:])
-
-    def wait_for(self, condition, after, timeout_s):
-        """(wall time, twist) of the first message after ``after`` meeting ``condition``, or None."""
-        deadline = time.monotonic() + timeout_s
-        with self.cond:
-            while True:
-                for entry in self.msgs[after:]:
-                    if condition(entry[1]):
-                        return entry
-                left = deadline - time.monotonic()
-                if left <= 0:
-                    return None
-                self.cond.wait(min(left, 0.05))
+    def wait_for(self, condition, after=0, timeout_s=None):
+        """(wall time, twist) of the first message from ``after`` on whose twist meets ``condition``, or None."""
+        return super().wait_for(lambda entry: condition(entry[1]), after, timeout_s)
 
 
 def moving(twist):
@@ -194,13 +159,13 @@ class TestClockFaults(unittest.TestCase):
 
     def drive(self):
         """Send a FollowTopic goal on ``plan`` and wait until the relay forwards motion; the goal's handle."""
-        mark = self.relayed.mark()
+        mark = self.relayed.count()
         self.controller.send_goal(FollowTopicGoal(topic=String(data="plan")))
         self.assertIsNotNone(self.relayed.wait_for(moving, mark, 5.0), "the robot never got a moving command")
 
     def test_a_stopped_clock_stops_the_robot_until_it_moves_again(self):
         self.drive()
-        mark_relay, mark_cmd = self.relayed.mark(), self.commanded.mark()
+        mark_relay, mark_cmd = self.relayed.count(), self.commanded.count()
         stopped_at = time.monotonic()
         self.sim.clock_on.clear()  # the simulator freezes: no /clock, no sensors
         zero = self.relayed.wait_for(is_zero, mark_relay, STOP_BOUND_S)
@@ -218,7 +183,7 @@ class TestClockFaults(unittest.TestCase):
         self.assertFalse(any(moving(t) for t in late), "the controller kept commanding motion on a stopped clock")
         self.assertTrue(any(is_zero(t) for _, t in commanded), "the controller sent no zero twist")
         self.assertEqual(self.controller.get_state(), GoalStatus.ACTIVE, "a paused clock must not end the goal")
-        mark = self.relayed.mark()
+        mark = self.relayed.count()
         self.sim.clock_on.set()
         self.assertIsNotNone(self.relayed.wait_for(moving, mark, 5.0), "the goal did not go on when time moved")
 
@@ -226,7 +191,7 @@ class TestClockFaults(unittest.TestCase):
         self.drive()
         self.follower.send_goal(FollowTopicGoal(topic=String(data="plan")))
         time.sleep(0.5)
-        mark = self.relayed.mark()
+        mark = self.relayed.count()
         jumped_at = time.monotonic()
         self.sim.rewind(50.0)  # a restarted simulation
         self.assertTrue(self.wait_done(self.controller), "the controller kept the goal of the old timeline")
@@ -268,7 +233,7 @@ class TestClockFaults(unittest.TestCase):
 
     def test_a_lost_operator_heartbeat_stops_the_robot_and_aborts_the_goal(self):
         self.drive()
-        mark = self.relayed.mark()
+        mark = self.relayed.count()
         lost_at = time.monotonic()
         self.sim.heartbeat_on.clear()  # the link to the operator's computer drops
         zero = self.relayed.wait_for(is_zero, mark, STOP_BOUND_S)

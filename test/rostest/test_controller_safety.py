@@ -18,8 +18,10 @@ import rospy
 import rostest
 import tf2_ros
 from actionlib_msgs.msg import GoalStatus
-from geometry_msgs.msg import PoseStamped, TransformStamped, TwistStamped
+from geometry_msgs.msg import PoseStamped, TwistStamped
+from message_log import MessageLog
 from nav_msgs.msg import Odometry, Path
+from robot_at_rest import BASE_FRAME, empty_scan, identity_tf, odom_at_rest
 from sensor_msgs.msg import LaserScan
 from std_msgs.msg import String
 
@@ -91,34 +93,17 @@ class FakeRobot:
     def loop(self):
         while not rospy.is_shutdown():
             stamp = rospy.Time.now()
-            tf = TransformStamped()
-            tf.header.stamp = stamp
-            tf.header.frame_id, tf.child_frame_id = "odom", "base_footprint"
-            tf.transform.rotation.w = 1.0
-            transforms = [tf]
+            transforms = [identity_tf("odom", BASE_FRAME, stamp)]
             if self.localizer_on.is_set():
-                localized = TransformStamped()
-                localized.header.stamp = stamp
-                localized.header.frame_id, localized.child_frame_id = "map", "odom"
-                localized.transform.rotation.w = 1.0
-                transforms.append(localized)
+                transforms.append(identity_tf("map", "odom", stamp))
             self.tf.sendTransform(transforms)
             if self.odom_on.is_set():
-                odom = Odometry()
-                odom.header.stamp = stamp
-                odom.header.frame_id, odom.child_frame_id = self.odom_frame, "base_footprint"
-                odom.pose.pose.orientation.w = 1.0
+                odom = odom_at_rest(stamp, self.odom_frame)
                 if self.bad_velocity:
                     odom.twist.twist.linear.x = float("nan")
                 self.odom_pub.publish(odom)
             if self.scan_on.is_set():
-                scan = LaserScan()
-                scan.header.stamp = stamp
-                scan.header.frame_id = "base_footprint"
-                scan.angle_min, scan.angle_increment = -math.pi, 2 * math.pi / 360
-                scan.angle_max = scan.angle_min + 359 * scan.angle_increment
-                scan.range_min, scan.range_max = 0.05, 3.5
-                scan.ranges = [float("inf")] * 360
+                scan = empty_scan(stamp)
                 if self.obstacle_ahead:
                     scan.ranges[170:191] = [0.35] * 21  # beams within +-10 deg of straight ahead
                 self.scan_pub.publish(scan)
@@ -165,38 +150,12 @@ class FakeRobot:
         return False
 
 
-class Commands:
-    """Every TwistStamped a controller published, with a wait for one matching a condition."""
+class Commands(MessageLog):
+    """Every TwistStamped a controller published, with a wait (at most RESULT_WAIT_S unless told) for one matching a
+    condition."""
 
     def __init__(self, topic):
-        self.cond = threading.Condition()
-        self.msgs = []
-        self.sub = rospy.Subscriber(topic, TwistStamped, self.on_msg, queue_size=50)
-
-    def on_msg(self, msg):
-        with self.cond:
-            self.msgs.append(msg)
-            self.cond.notify_all()
-
-    def mark(self):
-        with self.cond:
-            return len(self.msgs)
-
-    def wait_for(self, condition, after, timeout_s=RESULT_WAIT_S):
-        deadline = rospy.get_time() + timeout_s
-        with self.cond:
-            while True:
-                for msg in self.msgs[after:]:
-                    if condition(msg):
-                        return msg
-                left = deadline - rospy.get_time()
-                if left <= 0:
-                    return None
-                self.cond.wait(min(left, 0.1))
-
-    def since(self, index):
-        with self.cond:
-            return list(self.msgs[index:])
+        super().__init__(topic, TwistStamped, queue_size=50, wait_s=RESULT_WAIT_S)
 
     def wait_publishers_gone(self, timeout_s=RESULT_WAIT_S):
         """True once no publisher is connected: all a stopped node sent has been read (its connection closes
@@ -297,19 +256,19 @@ class TestControllerSafety(unittest.TestCase):
         self.assertFalse(any(moving(m) for m in after), "a non-zero twist followed the stop")
 
     def start_driving(self, path=None):
-        mark = self.path_cmds.mark()
+        mark = self.path_cmds.count()
         handle = self.send_path(path or straight_path())
         self.assertIsNotNone(self.path_cmds.wait_for(moving, mark), "the controller never drove")
         return handle
 
     # ------------------------------------------------------------------ bad goals
     def test_empty_path(self):
-        mark = self.path_cmds.mark()
+        mark = self.path_cmds.count()
         handle = self.send_path(Path())
         self.assert_aborted_and_stopped(handle, self.path_results, self.path_cmds, mark, "the path is empty")
 
     def test_path_in_unknown_frame(self):
-        mark = self.path_cmds.mark()
+        mark = self.path_cmds.count()
         handle = self.send_path(straight_path(frame="nowhere"))
         self.assert_aborted_and_stopped(handle, self.path_results, self.path_cmds, mark,
                                         "'nowhere' cannot be transformed")
@@ -317,48 +276,48 @@ class TestControllerSafety(unittest.TestCase):
     def test_path_with_nan(self):
         path = straight_path()
         path.poses[3].pose.position.y = float("nan")
-        mark = self.path_cmds.mark()
+        mark = self.path_cmds.count()
         self.assert_aborted_and_stopped(self.send_path(path), self.path_results, self.path_cmds, mark,
                                         "path pose 3")
 
     # ------------------------------------------------------------------ sensors
     def test_stale_odometry(self):
         handle = self.start_driving()
-        mark = self.path_cmds.mark()
+        mark = self.path_cmds.count()
         self.robot.odom_on.clear()
         self.assert_aborted_and_stopped(handle, self.path_results, self.path_cmds, mark, "stale odom")
 
     def test_stale_scan(self):
         handle = self.start_driving()
-        mark = self.path_cmds.mark()
+        mark = self.path_cmds.count()
         self.robot.scan_on.clear()
         self.assert_aborted_and_stopped(handle, self.path_results, self.path_cmds, mark, "stale scan")
 
     def test_odometry_in_unknown_frame(self):
         handle = self.start_driving()
-        mark = self.path_cmds.mark()
+        mark = self.path_cmds.count()
         self.robot.odom_frame = "lost_odom"
         self.assert_aborted_and_stopped(handle, self.path_results, self.path_cmds, mark, "robot pose unknown")
 
     def test_localization_stopped(self):
-        mark = self.blind_cmds.mark()
+        mark = self.blind_cmds.count()
         handle = self.blind_client.send_goal(FollowPathGoal(path=straight_path()))
         self.assertIsNotNone(self.blind_cmds.wait_for(moving, mark), "the controller never drove")
-        mark = self.blind_cmds.mark()
+        mark = self.blind_cmds.count()
         self.robot.localizer_on.clear()  # odometry and odom -> base_footprint go on
         self.assert_aborted_and_stopped(handle, self.blind_results, self.blind_cmds, mark,
                                         "the newest transform 'map' -> 'odom' is")
 
     def test_non_finite_velocity(self):
         handle = self.start_driving()
-        mark = self.path_cmds.mark()
+        mark = self.path_cmds.count()
         self.robot.bad_velocity = True
         self.assert_aborted_and_stopped(handle, self.path_results, self.path_cmds, mark, "velocity is not finite")
 
     def test_obstacle_ahead_in_the_local_costmap(self):
         self.robot.obstacle_ahead = True  # pp_path has collision_timeout 0: abort at the first collision
         self.assertTrue(self.robot.wait_passes(FRESH_PASSES, WAIT_S))  # scans of it into the rolling local costmap
-        mark = self.path_cmds.mark()
+        mark = self.path_cmds.count()
         handle = self.send_path(straight_path())
         self.assert_aborted_and_stopped(handle, self.path_results, self.path_cmds, mark, "collision ahead")
 
@@ -366,7 +325,7 @@ class TestControllerSafety(unittest.TestCase):
     def test_cancel_stops_every_time(self):
         for attempt in range(5):
             handle = self.start_driving()
-            mark = self.path_cmds.mark()
+            mark = self.path_cmds.count()
             handle.cancel()
             self.assertEqual(self.wait_terminal(handle), GoalStatus.PREEMPTED, f"attempt {attempt}")
             self.assertEqual(handle.get_result().code, FollowPathResult.PREEMPT)
@@ -384,7 +343,7 @@ class TestControllerSafety(unittest.TestCase):
         second = self.send_path(straight_path(yaw=0.3))
         self.assertEqual(self.wait_terminal(first), GoalStatus.PREEMPTED)
         self.assertIn("replaced by a newer goal", first.get_result().message)
-        mark = self.path_cmds.mark()
+        mark = self.path_cmds.count()
         turning = self.path_cmds.wait_for(lambda m: m.twist.angular.z > 0.05, mark)
         self.assertIsNotNone(turning, "the new path (to the left) is not being followed")
         second.cancel()
@@ -404,15 +363,15 @@ class TestControllerSafety(unittest.TestCase):
             deadline = rospy.get_time() + WAIT_S
             handle = None
             while rospy.get_time() < deadline:  # its odometry subscription may take a moment
-                mark = cmds.mark()
+                mark = cmds.count()
                 handle = client.send_goal(FollowPathGoal(path=straight_path()))
                 if cmds.wait_for(moving, mark, 2.0) is not None:
                     break
                 handle.cancel()
             self.assertIsNotNone(handle)
-            mark = cmds.mark()
+            mark = cmds.count()
             self.assertIsNotNone(cmds.wait_for(moving, mark), "pp_stopping never drove")
-            mark = cmds.mark()
+            mark = cmds.count()
             node.send_signal(signal.SIGINT)
             node.wait(RESULT_WAIT_S)
             self.assertTrue(cmds.wait_publishers_gone(), "the stopped node's connection stayed open")
@@ -436,7 +395,7 @@ class TestControllerSafety(unittest.TestCase):
 
     def drive_for_doomed_client(self, client):
         """The goal id of ``client``'s goal, once it drives and has outlived the client timeout untouched."""
-        mark = self.path_cmds.mark()
+        mark = self.path_cmds.count()
         self.assertIsNotNone(self.path_cmds.wait_for(moving, mark, WAIT_S), "the client's goal never drove")
         goal_id = client.stdout.readline().strip()  # printed before the goal could drive
         self.assertTrue(goal_id.startswith("/doomed_client-"), goal_id)
@@ -467,7 +426,7 @@ class TestControllerSafety(unittest.TestCase):
         client = self.start_doomed_client()
         try:
             goal_id = self.drive_for_doomed_client(client)
-            mark = self.path_cmds.mark()
+            mark = self.path_cmds.count()
             client.send_signal(signal.SIGKILL)
         finally:
             self.end_process(client)
@@ -480,7 +439,7 @@ class TestControllerSafety(unittest.TestCase):
         successor = None
         try:
             goal_id = self.drive_for_doomed_client(client)
-            mark = self.path_cmds.mark()
+            mark = self.path_cmds.count()
             successor = self.start_doomed_client("quiet")
             self.assertEqual(successor.stdout.readline().strip(), "connected")
             self.assert_abandoned_and_stopped(goal_id, mark)
@@ -495,7 +454,7 @@ class TestControllerSafety(unittest.TestCase):
         return self.topic_client.send_goal(goal)
 
     def test_topic_without_publisher_fails_with_reason(self):
-        mark = self.topic_cmds.mark()
+        mark = self.topic_cmds.count()
         handle = self.send_topic("nobody_publishes_this")
         self.assert_aborted_and_stopped(handle, self.topic_results, self.topic_cmds, mark,
                                         f"no Path on /nobody_publishes_this within {TOPIC_TIMEOUT_S:.1f} s "
@@ -503,16 +462,16 @@ class TestControllerSafety(unittest.TestCase):
 
     def test_topic_follows_the_newest_path_and_cancels(self):
         self.plan_pub.publish(straight_path(yaw=0.0))
-        mark = self.topic_cmds.mark()
+        mark = self.topic_cmds.count()
         handle = self.send_topic("/test_plan")
         straight = self.topic_cmds.wait_for(moving, mark)
         self.assertIsNotNone(straight)
         self.assertAlmostEqual(straight.twist.angular.z, 0.0, places=6)
-        mark = self.topic_cmds.mark()
+        mark = self.topic_cmds.count()
         self.plan_pub.publish(straight_path(yaw=-0.4))  # newer path to the right
         right = self.topic_cmds.wait_for(lambda m: m.twist.angular.z < -0.05, mark)
         self.assertIsNotNone(right, "the newer path was not followed")
-        mark = self.topic_cmds.mark()
+        mark = self.topic_cmds.count()
         self.plan_pub.publish(Path(header=straight_path().header))  # an empty path on the topic
         self.assert_aborted_and_stopped(handle, self.topic_results, self.topic_cmds, mark, "the path is empty")
 
@@ -520,10 +479,10 @@ class TestControllerSafety(unittest.TestCase):
         # a topic of its own: pp_topic may still hold the last (empty) path of /test_plan from another test
         plan_pub = rospy.Publisher("test_plan_cancel", Path, queue_size=1, latch=True)
         plan_pub.publish(straight_path())
-        mark = self.topic_cmds.mark()
+        mark = self.topic_cmds.count()
         handle = self.send_topic("/test_plan_cancel")
         self.assertIsNotNone(self.topic_cmds.wait_for(moving, mark))
-        mark = self.topic_cmds.mark()
+        mark = self.topic_cmds.count()
         handle.cancel()
         self.assertEqual(self.wait_terminal(handle), GoalStatus.PREEMPTED)
         ended = self.topic_results.for_goal(handle.comm_state_machine.action_goal.goal_id.id)

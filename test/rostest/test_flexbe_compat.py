@@ -13,6 +13,7 @@ import rostest
 from actionlib_msgs.msg import GoalStatus
 from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import Path as PathMsg
+from readiness import poll_until
 from std_msgs.msg import Int32
 from std_srvs.srv import Trigger, TriggerRequest
 
@@ -39,12 +40,7 @@ from flexbe_core.proxy import (  # noqa: E402
 
 
 def wait_for(predicate, timeout_s=WAIT_S):
-    deadline = time.monotonic() + timeout_s
-    while not predicate():
-        if time.monotonic() > deadline:
-            return False
-        time.sleep(0.01)
-    return True
+    return poll_until(predicate, timeout_s)
 
 
 def goal_pose():

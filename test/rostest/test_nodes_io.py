@@ -17,6 +17,7 @@ import rospy
 import rostest
 import tf2_ros
 from geometry_msgs.msg import PointStamped, TransformStamped, Twist, TwistStamped
+from message_log import MessageLog
 from nav_msgs.msg import MapMetaData, OccupancyGrid
 from nav_msgs.srv import GetMap
 from roscpp.srv import SetLoggerLevel
@@ -42,34 +43,11 @@ ONE_ZERO_WATCH_S = 0.8  # [s] real test duration: after the timeout's zero, no s
 STALE_DROPPED = "twist_relay: dropped a command stamped before one already forwarded"  # its debug log
 
 
-class Latest:
-    """Newest message of a topic, with a way to wait for one that satisfies a condition."""
+class Latest(MessageLog):
+    """Every message of a topic, with a wait (at most WAIT_S unless told) for one that satisfies a condition."""
 
     def __init__(self, topic, msg_type):
-        self.cond = threading.Condition()
-        self.msgs = []
-        self.sub = rospy.Subscriber(topic, msg_type, self.on_msg, queue_size=10)
-
-    def on_msg(self, msg):
-        with self.cond:
-            self.msgs.append(msg)
-            self.cond.notify_all()
-
-    def wait_for(self, condition, timeout_s=WAIT_S, after=0):
-        deadline = rospy.get_time() + timeout_s
-        with self.cond:
-            while True:
-                for msg in self.msgs[after:]:
-                    if condition(msg):
-                        return msg
-                left = deadline - rospy.get_time()
-                if left <= 0:
-                    return None
-                self.cond.wait(min(left, 0.1))
-
-    def count(self):
-        with self.cond:
-            return len(self.msgs)
+        super().__init__(topic, msg_type, wait_s=WAIT_S)
 
 
 def publish_until_forwarded(pub, msg, out, condition):

@@ -12,6 +12,7 @@ import rospy
 import rostest
 from actionlib.action_client import CommState
 from actionlib_msgs.msg import GoalStatus
+from readiness import poll_until
 from std_msgs.msg import Int32, String
 from std_srvs.srv import Trigger, TriggerRequest
 
@@ -31,12 +32,7 @@ WAIT_S = 10.0  # [s]
 
 
 def wait_for(predicate, timeout_s=WAIT_S):
-    deadline = time.monotonic() + timeout_s
-    while not predicate():
-        if time.monotonic() > deadline:
-            return False
-        time.sleep(0.01)
-    return True
+    return poll_until(predicate, timeout_s)
 
 
 def _own_topics(kind):
