@@ -20,9 +20,22 @@ def follower(collision_timeout_s=1.0, sensors=("odom", "scan")):
     return f
 
 
+def following(collision_timeout_s=1.0):
+    """A follower given the STRAIGHT path."""
+    f = follower(collision_timeout_s)
+    f.set_path(STRAIGHT)
+    return f
+
+
 def fresh(f, now_s):
     for name in ("odom", "scan"):
         f.watchdog.saw(name, now_s)
+
+
+def tick_fresh(f, now_s, pose, velocity, costmap):
+    """One tick at ``now_s`` with both sensors just seen."""
+    fresh(f, now_s)
+    return f.tick(now_s, pose, velocity, costmap)
 
 
 def at(x, y=0.0, yaw=0.0):
@@ -34,13 +47,11 @@ def no_costmap():
 
 
 def test_drives_forward_along_the_path():
-    f = follower()
-    f.set_path(STRAIGHT)
+    f = following()
     v = 0.0
     for k in range(10):
         now = 0.05 * (k + 1)
-        fresh(f, now)
-        d = f.tick(now, at(0.5), (v, 0.0), no_costmap)
+        d = tick_fresh(f, now, at(0.5), (v, 0.0), no_costmap)
         assert d.outcome is Outcome.RUNNING
         assert d.w == pytest.approx(0.0, abs=1e-9)
         assert d.v > v or d.v == pytest.approx(0.5)
@@ -49,18 +60,15 @@ def test_drives_forward_along_the_path():
 
 
 def test_goal_reached_succeeds_with_zero():
-    f = follower()
-    f.set_path(STRAIGHT)
-    fresh(f, 1.0)
-    d = f.tick(1.0, at(2.95), (0.2, 0.0), no_costmap)
+    f = following()
+    d = tick_fresh(f, 1.0, at(2.95), (0.2, 0.0), no_costmap)
     assert d.outcome is Outcome.SUCCEEDED and d.stops and d.reason == "goal reached"
     assert f.pursuit.path is None  # forgotten after the goal ended
 
 
 @pytest.mark.parametrize("stale", ["odom", "scan"])
 def test_stale_sensor_aborts_with_zero_and_names_it(stale):
-    f = follower()
-    f.set_path(STRAIGHT)
+    f = following()
     fresh(f, 1.0)
     assert f.tick(1.2, at(0.5), (0.3, 0.0), no_costmap).outcome is Outcome.RUNNING
     f.watchdog.saw("odom" if stale == "scan" else "scan", 1.6)
@@ -70,15 +78,13 @@ def test_stale_sensor_aborts_with_zero_and_names_it(stale):
 
 
 def test_sensor_never_seen_aborts_after_grace():
-    f = follower()
-    f.set_path(STRAIGHT)
+    f = following()
     d = f.tick(0.6, at(0.5), (0.0, 0.0), no_costmap)
     assert d.outcome is Outcome.ABORTED and d.stops and "since start" in d.reason
 
 
 def test_pose_failure_aborts_with_reason():
-    f = follower()
-    f.set_path(STRAIGHT)
+    f = following()
     fresh(f, 1.0)
 
     def no_pose():
@@ -90,8 +96,7 @@ def test_pose_failure_aborts_with_reason():
 
 
 def test_any_exception_aborts_with_zero():
-    f = follower()
-    f.set_path(STRAIGHT)
+    f = following()
     fresh(f, 1.0)
 
     def broken_costmap():
@@ -104,16 +109,13 @@ def test_any_exception_aborts_with_zero():
 
 def test_without_path_aborts():
     f = follower()
-    fresh(f, 1.0)
-    d = f.tick(1.0, at(0.5), (0.0, 0.0), no_costmap)
+    d = tick_fresh(f, 1.0, at(0.5), (0.0, 0.0), no_costmap)
     assert d.outcome is Outcome.ABORTED and d.stops and "no path" in d.reason
 
 
 def test_nan_pose_aborts():
-    f = follower()
-    f.set_path(STRAIGHT)
-    fresh(f, 1.0)
-    d = f.tick(1.0, at(math.nan), (0.0, 0.0), no_costmap)
+    f = following()
+    d = tick_fresh(f, 1.0, at(math.nan), (0.0, 0.0), no_costmap)
     assert d.outcome is Outcome.ABORTED and d.stops and "not finite" in d.reason
 
 
@@ -126,50 +128,36 @@ def blocked_costmap():
 
 
 def test_collision_waits_then_aborts():
-    f = follower(collision_timeout_s=1.0)
-    f.set_path(STRAIGHT)
-    fresh(f, 1.0)
-    d = f.tick(1.0, at(0.5), (0.3, 0.0), blocked_costmap)
+    f = following(collision_timeout_s=1.0)
+    d = tick_fresh(f, 1.0, at(0.5), (0.3, 0.0), blocked_costmap)
     assert d.outcome is Outcome.RUNNING and d.stops and "collision ahead" in d.reason
-    fresh(f, 1.5)
-    assert f.tick(1.5, at(0.5), (0.0, 0.0), blocked_costmap).outcome is Outcome.RUNNING
-    fresh(f, 2.0)
-    d = f.tick(2.0, at(0.5), (0.0, 0.0), blocked_costmap)
+    assert tick_fresh(f, 1.5, at(0.5), (0.0, 0.0), blocked_costmap).outcome is Outcome.RUNNING
+    d = tick_fresh(f, 2.0, at(0.5), (0.0, 0.0), blocked_costmap)
     assert d.outcome is Outcome.ABORTED and d.stops and "blocked for 1.00 s" in d.reason
 
 
 def test_collision_clears_and_resets_patience():
-    f = follower(collision_timeout_s=1.0)
-    f.set_path(STRAIGHT)
-    fresh(f, 1.0)
-    assert f.tick(1.0, at(0.5), (0.0, 0.0), blocked_costmap).stops
-    fresh(f, 1.9)
-    d = f.tick(1.9, at(0.5), (0.0, 0.0), no_costmap)
+    f = following(collision_timeout_s=1.0)
+    assert tick_fresh(f, 1.0, at(0.5), (0.0, 0.0), blocked_costmap).stops
+    d = tick_fresh(f, 1.9, at(0.5), (0.0, 0.0), no_costmap)
     assert d.outcome is Outcome.RUNNING and d.v > 0.0
-    fresh(f, 2.5)
-    assert f.tick(2.5, at(0.5), (0.0, 0.0), blocked_costmap).outcome is Outcome.RUNNING  # patience restarted
+    assert tick_fresh(f, 2.5, at(0.5), (0.0, 0.0), blocked_costmap).outcome is Outcome.RUNNING  # patience restarted
 
 
 def test_replaced_path_does_not_restart_collision_patience():
     """A planner replacing the path every second must not keep a blocked robot waiting forever."""
-    f = follower(collision_timeout_s=1.0)
+    f = following(collision_timeout_s=1.0)
+    assert tick_fresh(f, 1.0, at(0.5), (0.3, 0.0), blocked_costmap).outcome is Outcome.RUNNING
     f.set_path(STRAIGHT)
-    fresh(f, 1.0)
-    assert f.tick(1.0, at(0.5), (0.3, 0.0), blocked_costmap).outcome is Outcome.RUNNING
+    assert tick_fresh(f, 1.5, at(0.5), (0.0, 0.0), blocked_costmap).outcome is Outcome.RUNNING
     f.set_path(STRAIGHT)
-    fresh(f, 1.5)
-    assert f.tick(1.5, at(0.5), (0.0, 0.0), blocked_costmap).outcome is Outcome.RUNNING
-    f.set_path(STRAIGHT)
-    fresh(f, 2.0)
-    d = f.tick(2.0, at(0.5), (0.0, 0.0), blocked_costmap)
+    d = tick_fresh(f, 2.0, at(0.5), (0.0, 0.0), blocked_costmap)
     assert d.outcome is Outcome.ABORTED and d.stops and "blocked for 1.00 s" in d.reason
 
 
 def test_zero_collision_timeout_aborts_at_once():
-    f = follower(collision_timeout_s=0.0)
-    f.set_path(STRAIGHT)
-    fresh(f, 1.0)
-    d = f.tick(1.0, at(0.5), (0.3, 0.0), blocked_costmap)
+    f = following(collision_timeout_s=0.0)
+    d = tick_fresh(f, 1.0, at(0.5), (0.3, 0.0), blocked_costmap)
     assert d.outcome is Outcome.ABORTED and d.stops
 
 
