@@ -6,9 +6,13 @@ lifecycle call in a shared Journal, so tests can assert on the exact order of ca
 
 from __future__ import annotations
 
+import concurrent.futures
 from typing import Any, Callable, Dict, Iterable, List, Optional, Sequence, Tuple
 
+import pytest
+
 from flex_nav.behavior import BehaviorExecutor, ManualClock, State, StateMachine
+from flex_nav.exceptions import BehaviorCommandError
 
 
 class Journal:
@@ -100,6 +104,14 @@ def chain(journal: Journal, labels: Iterable[str], outcomes: Sequence[str] = ("f
     return sm
 
 
+def one_state(state: State, label: str = "A", **add: Any) -> StateMachine:
+    """A machine of the one state ``label``: its done finishes the machine, its failed fails it (``add``: more
+    arguments of ``StateMachine.add``, e.g. ``autonomy``)."""
+    sm = StateMachine(outcomes=["finished", "failed"])
+    sm.add(label, state, transitions={"done": "finished", "failed": "failed"}, **add)
+    return sm
+
+
 def executor(root: State, **kwargs: Any) -> BehaviorExecutor:
     kwargs.setdefault("clock", ManualClock())
     return BehaviorExecutor(root, **kwargs)
@@ -114,6 +126,14 @@ def spin(ex: BehaviorExecutor, times: int) -> None:
         due = ex.due_s
         if due != float("inf") and due > clock.now():
             clock.advance(due - clock.now())
+
+
+def assert_refused(ex: BehaviorExecutor, command: concurrent.futures.Future[str], match: str) -> None:
+    """The executor refuses the queued ``command`` when it applies it (its next tick), with a message matching
+    ``match``."""
+    ex.spin_once()
+    with pytest.raises(BehaviorCommandError, match=match):
+        command.result(timeout=0)
 
 
 def record_events(ex: BehaviorExecutor) -> Dict[str, List[Any]]:

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import pytest
-from unit.behavior.behavior_testlib import Journal, ScriptedState, executor, record_events, spin
+from unit.behavior.behavior_testlib import Journal, ScriptedState, executor, one_state, record_events, spin
 
 from flex_nav.behavior import Autonomy, BehaviorStatus, ConcurrencyContainer, StateMachine
 from flex_nav.exceptions import BehaviorCommandError, ConfigError
@@ -102,9 +102,7 @@ def test_unsupervised_ignores_autonomy():
 
 def test_force_transition_leaves_a_running_state_without_executing_it_again():
     journal = Journal()
-    sm = StateMachine(outcomes=["finished", "failed"])
-    sm.add("A", ScriptedState(journal, script=[None]), transitions={"done": "finished", "failed": "failed"})
-    ex = executor(sm)
+    ex = executor(one_state(ScriptedState(journal, script=[None])))
     spin(ex, 3)
     assert journal.count("A", "execute") == 3
     ex.force_transition("/A", "failed")
@@ -127,8 +125,7 @@ def test_force_another_outcome_than_the_requested_one():
 
 def test_force_on_a_nested_container_exits_its_active_state():
     journal = Journal()
-    inner = StateMachine(outcomes=["finished", "failed"])
-    inner.add("Deep", ScriptedState(journal, script=[None]), transitions={"done": "finished", "failed": "failed"})
+    inner = one_state(ScriptedState(journal, script=[None]), "Deep")
     outer = StateMachine(outcomes=["ok", "bad"])
     outer.add("Inner", inner, transitions={"finished": "ok", "failed": "bad"})
     ex = executor(outer)
@@ -142,9 +139,7 @@ def test_force_on_a_nested_container_exits_its_active_state():
 
 def test_force_the_root_finishes_the_behavior():
     journal = Journal()
-    sm = StateMachine(outcomes=["finished", "failed"])
-    sm.add("A", ScriptedState(journal, script=[None]), transitions={"done": "finished", "failed": "failed"})
-    ex = executor(sm)
+    ex = executor(one_state(ScriptedState(journal, script=[None])))
     spin(ex, 1)
     ex.force_transition("/", "failed")
     result = ex.run(timeout_s=1.0)
@@ -159,13 +154,7 @@ def test_force_the_root_finishes_the_behavior():
 def test_nested_autonomy_gates_both_levels():
     """The inner transition to the machine's outcome and the outer transition each need their level."""
     journal = Journal()
-    inner = StateMachine(outcomes=["finished", "failed"])
-    inner.add(
-        "X",
-        ScriptedState(journal),
-        transitions={"done": "finished", "failed": "failed"},
-        autonomy={"done": Autonomy.HIGH},
-    )
+    inner = one_state(ScriptedState(journal), "X", autonomy={"done": Autonomy.HIGH})
     outer = StateMachine(outcomes=["ok", "bad"])
     outer.add("Inner", inner, transitions={"finished": "ok", "failed": "bad"}, autonomy={"finished": Autonomy.FULL})
     ex = executor(outer, autonomy=Autonomy.HIGH)

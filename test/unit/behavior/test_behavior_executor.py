@@ -5,7 +5,16 @@ from __future__ import annotations
 import threading
 
 import pytest
-from unit.behavior.behavior_testlib import Journal, ScriptedState, chain, executor, record_events, spin
+from unit.behavior.behavior_testlib import (
+    Journal,
+    ScriptedState,
+    assert_refused,
+    chain,
+    executor,
+    one_state,
+    record_events,
+    spin,
+)
 
 from flex_nav.behavior import (
     Autonomy,
@@ -21,20 +30,21 @@ from flex_nav.behavior import (
 )
 from flex_nav.behavior.builtin_states import Wait
 from flex_nav.behavior.context import HOLD_REQUEST
-from flex_nav.exceptions import BehaviorCommandError, BehaviorRuntimeError, ConfigError, NotReadyError
+from flex_nav.exceptions import BehaviorRuntimeError, ConfigError, NotReadyError
 
 
 def looping(journal, label="Loop", rate_hz=10.0):
-    sm = StateMachine(outcomes=["finished", "failed"])
-    sm.add(
-        label, ScriptedState(journal, script=[], rate_hz=rate_hz), transitions={"done": "finished", "failed": "failed"}
-    )
-    return sm
+    return one_state(ScriptedState(journal, script=[], rate_hz=rate_hz), label)
+
+
+def looping_executor(**kwargs):
+    """A journal, and the executor of a looping behavior (``looping``) that records in it."""
+    journal = Journal()
+    return journal, executor(looping(journal), **kwargs)
 
 
 def test_pause_and_resume():
-    journal = Journal()
-    ex = executor(looping(journal))
+    journal, ex = looping_executor()
     events = record_events(ex)
     spin(ex, 3)
     ex.pause()
@@ -53,8 +63,7 @@ def test_pause_and_resume():
 
 
 def test_preempt_exits_active_states_and_stops_all():
-    journal = Journal()
-    ex = executor(looping(journal))
+    journal, ex = looping_executor()
     events = record_events(ex)
     spin(ex, 2)
     ex.preempt()
@@ -71,8 +80,7 @@ def test_preempt_exits_active_states_and_stops_all():
 
 
 def test_preempt_while_paused_still_exits():
-    journal = Journal()
-    ex = executor(looping(journal))
+    journal, ex = looping_executor()
     spin(ex, 1)
     ex.pause()
     ex.spin_once()
@@ -82,8 +90,7 @@ def test_preempt_while_paused_still_exits():
 
 
 def test_run_timeout_preempts_or_keeps_running():
-    journal = Journal()
-    ex = executor(looping(journal))
+    _, ex = looping_executor()
     assert ex.run(timeout_s=1.0, stop_on_timeout=False).status is BehaviorStatus.RUNNING
     result = ex.run(timeout_s=1.0)
     assert result.status is BehaviorStatus.PREEMPTED
@@ -91,9 +98,8 @@ def test_run_timeout_preempts_or_keeps_running():
 
 
 def test_should_stop_is_checked_while_waiting():
-    journal = Journal()
     stop = []
-    ex = executor(looping(journal), should_stop=lambda: bool(stop))
+    _, ex = looping_executor(should_stop=lambda: bool(stop))
     spin(ex, 2)
     stop.append(True)
     result = ex.run(timeout_s=100.0)
@@ -116,10 +122,7 @@ def test_lock_holds_the_transition_leaving_a_container_until_unlock():
     assert journal.of("X") == ["start", "enter", "execute", "exit"]
     assert journal.of("Y") == ["start", "enter", "execute", "pause"]  # held still while the lock holds it
     assert [(r.path, r.outcome, r.reason) for r in ex.requested_outcomes()] == [("/Inner/Y", "done", "lock")]
-    approval = ex.approve("/Inner/Y")
-    ex.spin_once()
-    with pytest.raises(BehaviorCommandError, match="waits for an unlock"):
-        approval.result(timeout=0)
+    assert_refused(ex, ex.approve("/Inner/Y"), "waits for an unlock")
     ex.unlock("/Inner")
     assert ex.run(timeout_s=5.0).outcome == "ok"
     assert [(e.outcome, e.reason, e.pending) for e in events["request"]] == [
@@ -155,10 +158,7 @@ def test_a_forced_outcome_held_by_a_lock_is_still_forced_after_the_unlock():
     spin(ex, 2)
     assert [(r.path, r.outcome, r.reason) for r in ex.requested_outcomes()] == [("/Mid/Inner", "finished", "lock")]
     assert ex.active_paths() == ("/Mid/Inner/W",)
-    approval = ex.approve("/Mid/Inner")
-    ex.spin_once()
-    with pytest.raises(BehaviorCommandError, match="waits for an unlock"):
-        approval.result(timeout=0)
+    assert_refused(ex, ex.approve("/Mid/Inner"), "waits for an unlock")
     ex.unlock("/Mid")
     result = ex.run(timeout_s=2.0)
     assert (result.status, result.outcome) == (BehaviorStatus.FINISHED, "ok")
@@ -178,10 +178,7 @@ def test_lock_of_a_leaf_and_unlock_errors():
     ex.lock("/A")
     ex.run(timeout_s=2.0, stop_on_timeout=False)
     assert ex.active_paths() == ("/A",)
-    future = ex.unlock("/B")
-    ex.spin_once()
-    with pytest.raises(BehaviorCommandError, match="'/B' is not locked"):
-        future.result(timeout=0)
+    assert_refused(ex, ex.unlock("/B"), "'/B' is not locked")
     ex.unlock("/A")
     assert ex.run(timeout_s=2.0).status is BehaviorStatus.FINISHED
 
@@ -200,14 +197,7 @@ def test_a_locked_single_state_root_holds_still_until_unlocked():
 
 def test_lock_then_autonomy_both_apply():
     journal = Journal()
-    sm = StateMachine(outcomes=["finished", "failed"])
-    sm.add(
-        "A",
-        ScriptedState(journal),
-        transitions={"done": "finished", "failed": "failed"},
-        autonomy={"done": Autonomy.FULL},
-    )
-    ex = executor(sm)
+    ex = executor(one_state(ScriptedState(journal), autonomy={"done": Autonomy.FULL}))
     ex.lock("/")
     ex.run(timeout_s=1.0, stop_on_timeout=False)
     assert [(r.path, r.reason) for r in ex.requested_outcomes()] == [("/A", "lock")]
@@ -394,11 +384,7 @@ def test_keyboard_interrupt_in_a_state_exits_states_before_propagating():
         if n == 3:
             raise KeyboardInterrupt
 
-    sm = StateMachine(outcomes=["finished", "failed"])
-    sm.add(
-        "A", ScriptedState(journal, script=[], action=interrupt), transitions={"done": "finished", "failed": "failed"}
-    )
-    ex = executor(sm)
+    ex = executor(one_state(ScriptedState(journal, script=[], action=interrupt)))
     with pytest.raises(KeyboardInterrupt):
         ex.run(timeout_s=10.0)
     result = ex.result()
