@@ -162,20 +162,23 @@ def test_no_path_when_walled_off():
     assert "no path" in result.reason and result.expanded > 0
 
 
-def test_inscribed_wall_blocks_unless_lethal_cost_raised():
+def across_a_wall(cost):
+    """A 20 x 20 grid with a wall of ``cost`` down column 10, and a start and a goal on either side: plan's args."""
     costs = np.zeros((20, 20), dtype=np.uint8)
-    costs[:, 10] = INSCRIBED
+    costs[:, 10] = cost
     geo = geometry_of(costs)
-    args = (costs, geo, centre(geo, (5, 2)), centre(geo, (5, 18)))
+    return costs, geo, centre(geo, (5, 2)), centre(geo, (5, 18))
+
+
+def test_inscribed_wall_blocks_unless_lethal_cost_raised():
+    args = across_a_wall(INSCRIBED)
     assert GridPlanner().plan(*args).status is PlanStatus.NO_PATH
     assert GridPlanner(PlannerParams(lethal_cost=254)).plan(*args).ok
 
 
 def test_unknown_blocks_unless_allowed():
-    costs = np.zeros((20, 20), dtype=np.uint8)
-    costs[:, 10] = NO_INFORMATION
-    geo = geometry_of(costs)
-    args = (costs, geo, centre(geo, (5, 2)), centre(geo, (5, 18)))
+    args = across_a_wall(NO_INFORMATION)
+    costs = args[0]
     assert GridPlanner().plan(*args).status is PlanStatus.NO_PATH
     result = GridPlanner(PlannerParams(allow_unknown=True)).plan(*args)
     assert result.ok and (costs[result.cells[:, 0], result.cells[:, 1]] == NO_INFORMATION).any()
