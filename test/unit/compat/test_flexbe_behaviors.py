@@ -220,21 +220,23 @@ def priority_behavior(guard_first):
     return root, journal
 
 
-def test_priority_container_holds_the_other_branch_while_it_runs(aliases):
-    root, journal = priority_behavior(guard_first=True)
+def run_priority_behavior(guard_first):
+    """Run priority_behavior to its end; its journal. The guard's three ticks come first, then the work's four."""
+    root, journal = priority_behavior(guard_first)
     ctx, _ = context()
     _, result = run(root, ctx)
     assert result.status is BehaviorStatus.FINISHED, result.reason
     assert [who for who, call in journal if call == "execute"] == ["stop"] * 3 + ["work"] * 4
+    return journal
+
+
+def test_priority_container_holds_the_other_branch_while_it_runs(aliases):
+    journal = run_priority_behavior(guard_first=True)
     assert journal.index(("stop", "execute")) < journal.index(("work", "enter"))  # held before it even started
 
 
 def test_priority_container_releases_a_sibling_listed_before_it(aliases):
-    root, journal = priority_behavior(guard_first=False)
-    ctx, _ = context()
-    _, result = run(root, ctx)
-    assert result.status is BehaviorStatus.FINISHED, result.reason
-    assert [who for who, call in journal if call == "execute"] == ["stop"] * 3 + ["work"] * 4
+    run_priority_behavior(guard_first=False)
 
 
 def test_userdata_defaults_view(aliases):
