@@ -31,6 +31,16 @@ def last_twist(h):
     return twists(h)[-1]
 
 
+def preempt_after(h, drive_s):
+    """Start, drive for ``drive_s`` [s], preempt and tick once; the twist commanded just before the preempt."""
+    h.start()
+    h.run_for(drive_s)
+    driving = last_twist(h)
+    h.executor.preempt()
+    h.tick()
+    return driving
+
+
 # --- MoveDistance -----------------------------------------------------------------------------------------
 
 
@@ -167,11 +177,7 @@ def test_move_distance_stale_stamped_odometry_is_not_used():
 
 def test_move_distance_preempt_publishes_a_zero_twist():
     h, _robot = with_robot(MoveDistanceState(distance_m=2.0, speed_mps=0.3))
-    h.start()
-    h.run_for(1.0)
-    assert last_twist(h)[0] > 0.1
-    h.executor.preempt()
-    h.tick()
+    assert preempt_after(h, 1.0)[0] > 0.1
     assert h.executor.status is BehaviorStatus.PREEMPTED
     assert last_twist(h) == (0.0, 0.0)
 
@@ -263,11 +269,7 @@ def test_rotate_angle_timeout():
 
 def test_rotate_angle_preempt_publishes_a_zero_twist():
     h, _robot = with_robot(RotateAngleState(angle_rad=3.0))
-    h.start()
-    h.run_for(1.0)
-    assert last_twist(h)[1] > 0.1
-    h.executor.preempt()
-    h.tick()
+    assert preempt_after(h, 1.0)[1] > 0.1
     assert last_twist(h) == (0.0, 0.0)
 
 
@@ -302,10 +304,7 @@ def test_timed_twist_publishes_for_the_duration_then_zero():
 
 def test_timed_twist_preempt_publishes_zero():
     h = Harness(TimedTwistState(linear_mps=0.1, duration_s=5.0))
-    h.start()
-    h.run_for(1.0)
-    h.executor.preempt()
-    h.tick()
+    preempt_after(h, 1.0)
     assert last_twist(h) == (0.0, 0.0)
 
 
@@ -397,11 +396,7 @@ def test_pure_pursuit_stale_pose_topic_fails():
 def test_pure_pursuit_preempt_publishes_zero():
     plan = path([(0.0, 0.0), (5.0, 0.0)], frame="odom")
     h, _robot = with_robot(PurePursuitState(pure_pursuit=PP), inputs={"plan": plan})
-    h.start()
-    h.run_for(2.0)
-    assert last_twist(h)[0] > 0.1
-    h.executor.preempt()
-    h.tick()
+    assert preempt_after(h, 2.0)[0] > 0.1
     assert last_twist(h) == (0.0, 0.0)
 
 

@@ -89,16 +89,21 @@ def test_state_modules_import_no_ros_client_library_and_no_wall_clock(module):
     assert bad == [], f"{module.name} imports {bad}: states use the proxies and the behavior's clock"
 
 
-def test_importing_every_state_loads_no_rospy():
-    code = (
-        "import sys, flex_nav_states\n"
-        "flex_nav_states.state_classes()\n"
+def assert_loads_no_ros_client(code: str) -> None:
+    """``code``, run in a fresh interpreter, leaves no module of rospy, actionlib or tf2_ros loaded."""
+    check = (
+        "import sys\n"
         "bad = sorted(m for m in sys.modules if m.split('.')[0] in ('rospy', 'actionlib', 'tf2_ros'))\n"
         "print(bad)\n"
         "sys.exit(1 if bad else 0)\n"
     )
-    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120, check=False)
+    proc = subprocess.run([sys.executable, "-c", code + check], capture_output=True, text=True, timeout=120,
+                          check=False)
     assert proc.returncode == 0, proc.stdout + proc.stderr
+
+
+def test_importing_every_state_loads_no_rospy():
+    assert_loads_no_ros_client("import flex_nav_states\nflex_nav_states.state_classes()\n")
 
 
 def _engine_attributes() -> set:
@@ -208,14 +213,7 @@ def test_state_library_proxy_types_are_the_engine_protocols():
 
 
 def test_the_test_doubles_load_no_rospy():
-    code = (
-        "import sys, flex_nav.testing.state_harness, flex_nav.testing.fake_proxies\n"
-        "bad = sorted(m for m in sys.modules if m.split('.')[0] in ('rospy', 'actionlib', 'tf2_ros'))\n"
-        "print(bad)\n"
-        "sys.exit(1 if bad else 0)\n"
-    )
-    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120, check=False)
-    assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert_loads_no_ros_client("import flex_nav.testing.state_harness, flex_nav.testing.fake_proxies\n")
 
 
 def test_the_fake_proxies_example_runs():
