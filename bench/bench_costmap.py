@@ -20,7 +20,7 @@ import statistics
 import sys
 import time
 from pathlib import Path
-from typing import Tuple
+from typing import List, Tuple
 
 import numpy as np
 
@@ -40,9 +40,17 @@ from flex_nav.nav.costmap.map_io import load_map  # noqa: E402
 from flex_nav.nav.costmap.obstacle_layer import LaserScan, ObstacleLayerParams  # noqa: E402
 from flex_nav.nav.planning.planner import GridPlanner  # noqa: E402
 
-MAPS_DIR = Path(os.environ.get("FLEX_NAV_BENCH_MAPS", REPO.parent / "shared" / "maps"))
-INFLATION = InflationParams(inscribed_radius=0.22, inflation_radius=0.55, cost_scaling_factor=3.0)
+MAPS_DIR = Path(os.environ.get("FLEX_NAV_BENCH_MAPS", REPO.parent / "shared" / "maps"))  # Nav2's benchmark maps
+INFLATION = InflationParams(inscribed_radius=0.22, inflation_radius=0.55, cost_scaling_factor=3.0)  # Nav2's
 REPEATS = 7
+
+
+def benchmark_maps() -> List[Path]:
+    """The maps (.yaml) in MAPS_DIR, sorted; none: [] and a message naming the folder (bench_planner's too)."""
+    maps = sorted(MAPS_DIR.glob("*.yaml"))
+    if not maps:
+        print(f"no maps in {MAPS_DIR} (set FLEX_NAV_BENCH_MAPS)")
+    return maps
 
 
 def scipy_inflation(costs: np.ndarray, inflator: Inflator) -> np.ndarray:
@@ -152,9 +160,8 @@ def bench_global_scan(grid: GridMap, scans_pose: Tuple[float, float, float] = (5
 
 
 def main() -> int:
-    maps = sorted(MAPS_DIR.glob("*.yaml"))
+    maps = benchmark_maps()
     if not maps:
-        print(f"no maps in {MAPS_DIR} (set FLEX_NAV_BENCH_MAPS)")
         return 2
     t = time.perf_counter()
     warm = Costmap.rolling(1.0, 1.0, 0.05, inflation=INFLATION)

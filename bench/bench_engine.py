@@ -45,6 +45,9 @@ except ImportError:  # pragma: no cover
     print("standalone-smach is missing: run bench/run.sh engine (it installs bench/requirements.txt)", file=sys.stderr)
     sys.exit(2)
 
+# The SMACH side (its loggers silenced, the same 2-state loop and 2-child Concurrence): the compat bench's
+from bench_smach_compat import concurrence_seconds, loop_seconds  # noqa: E402
+
 LOOP_TRANSITIONS = 100_000
 CC_TICKS = 20_000
 MB_TRANSITIONS = 50_000
@@ -84,6 +87,16 @@ class Counter(State):
         return "done" if self.i >= self.n else "next"
 
 
+def run_seconds(ex: BehaviorExecutor) -> float:
+    """[s] Wall time of running the behavior from its start to its end, which must be the outcome done."""
+    ex.start()
+    start = time.perf_counter()
+    result = ex.run()
+    elapsed = time.perf_counter() - start
+    assert result.outcome == "done", result
+    return elapsed
+
+
 def flex_loop(transitions: int, hook: Optional[Callable[[Any], None]] = None, cloud: Any = None) -> float:
     keys = ("cloud",) if cloud is not None else ()
     sm = StateMachine(outcomes=["done"], input_keys=keys)
@@ -92,12 +105,7 @@ def flex_loop(transitions: int, hook: Optional[Callable[[Any], None]] = None, cl
     ex = BehaviorExecutor(sm, clock=ManualClock(), inputs={"cloud": cloud} if cloud is not None else None)
     if hook is not None:
         ex.context.hooks.transition.append(hook)
-    ex.start()
-    start = time.perf_counter()
-    result = ex.run()
-    elapsed = time.perf_counter() - start
-    assert result.outcome == "done", result
-    return elapsed / transitions
+    return run_seconds(ex) / transitions
 
 
 class Runner(State):
@@ -121,69 +129,7 @@ def flex_concurrency(ticks: int, threads: List[int]) -> float:
     sm = StateMachine(outcomes=["done"])
     sm.add("CC", cc, transitions={"done": "done"})
     ex = BehaviorExecutor(sm, clock=ManualClock())
-    ex.start()
-    start = time.perf_counter()
-    result = ex.run()
-    elapsed = time.perf_counter() - start
-    assert result.outcome == "done", result
-    return elapsed / ticks
-
-
-# --- SMACH side --------------------------------------------------------------------------------------
-
-smach.set_loggers(lambda msg: None, lambda msg: None, lambda msg: None, lambda msg: None)
-if not hasattr(threading.Thread, "isAlive"):  # standalone-smach 0.0.9's Concurrence predates Python 3.9
-    threading.Thread.isAlive = threading.Thread.is_alive  # type: ignore[attr-defined]
-
-
-class SmachPing(smach.State):
-    def __init__(self) -> None:
-        smach.State.__init__(self, outcomes=["next"])
-
-    def execute(self, userdata: Any) -> str:
-        return "next"
-
-
-class SmachCounter(smach.State):
-    def __init__(self, n: int) -> None:
-        smach.State.__init__(self, outcomes=["next", "done"])
-        self.n = n
-        self.i = 0
-
-    def execute(self, userdata: Any) -> str:
-        self.i += 1
-        return "done" if self.i >= self.n else "next"
-
-
-def smach_loop(transitions: int) -> float:
-    sm = smach.StateMachine(outcomes=["done"])
-    with sm:
-        smach.StateMachine.add("A", SmachPing(), transitions={"next": "B"})
-        smach.StateMachine.add("B", SmachCounter(transitions // 2), transitions={"next": "A", "done": "done"})
-    start = time.perf_counter()
-    outcome = sm.execute()
-    elapsed = time.perf_counter() - start
-    assert outcome == "done", outcome
-    return elapsed / transitions
-
-
-class SmachOnce(smach.State):
-    def __init__(self) -> None:
-        smach.State.__init__(self, outcomes=["done"])
-
-    def execute(self, userdata: Any) -> str:
-        return "done"
-
-
-def smach_concurrence(executes: int) -> float:
-    cc = smach.Concurrence(outcomes=["done"], default_outcome="done", outcome_map={"done": {"A": "done", "B": "done"}})
-    with cc:
-        smach.Concurrence.add("A", SmachOnce())
-        smach.Concurrence.add("B", SmachOnce())
-    start = time.perf_counter()
-    for _ in range(executes):
-        cc.execute(smach.UserData())
-    return (time.perf_counter() - start) / executes
+    return run_seconds(ex) / ticks
 
 
 # --- the 1 MB message ------------------------------------------------------------------------------
@@ -242,7 +188,7 @@ def main() -> int:
     print(f"python {sys.version.split()[0]}, standalone-smach, best of {REPEATS} runs\n")
 
     flex = best_of(lambda: flex_loop(LOOP_TRANSITIONS))
-    ref = best_of(lambda: smach_loop(LOOP_TRANSITIONS))
+    ref = best_of(lambda: loop_seconds(smach, LOOP_TRANSITIONS) / LOOP_TRANSITIONS)
     report("2-state loop, per transition (no hooks)", flex, ref, "SMACH StateMachine", "<= 1.0x SMACH", flex <= ref)
 
     sink: List[bytes] = []
@@ -279,7 +225,7 @@ def main() -> int:
     before = threading.active_count()
     cc_tick = best_of(lambda: flex_concurrency(CC_TICKS, threads))
     extra_threads = max(threads) - before
-    cc_ref = best_of(lambda: smach_concurrence(2_000))
+    cc_ref = best_of(lambda: concurrence_seconds(smach, 2_000) / 2_000)
     report(
         "concurrency container, 2 children, per tick",
         cc_tick,

@@ -47,14 +47,13 @@ try:
 except ImportError as err:  # bench-only references
     sys.exit(f"{err}: install the bench references first: bench/run.sh planner")
 
+from bench_costmap import INFLATION, benchmark_maps  # noqa: E402
+
 from flex_nav.nav.costmap.costmap_grid import CostmapGeometry  # noqa: E402
-from flex_nav.nav.costmap.inflation import InflationParams  # noqa: E402
 from flex_nav.nav.costmap.layered import Costmap  # noqa: E402
 from flex_nav.nav.costmap.map_io import load_map  # noqa: E402
 from flex_nav.nav.planning.planner import GridPlanner, PlannerParams  # noqa: E402
 
-MAPS_DIR = Path(os.environ.get("FLEX_NAV_BENCH_MAPS", REPO.parent / "shared" / "maps"))
-INFLATION = InflationParams(inscribed_radius=0.22, inflation_radius=0.55, cost_scaling_factor=3.0)
 PAIRS = 100
 DIJKSTRA_PAIRS = int(os.environ.get("FLEX_NAV_BENCH_DIJKSTRA_PAIRS", "4"))  # per map
 
@@ -119,9 +118,8 @@ def median_ms(values: list) -> float:
 
 
 def main() -> int:
-    maps = sorted(MAPS_DIR.glob("*.yaml"))
+    maps = benchmark_maps()  # and the inflation: the costmap bench's, Nav2's
     if not maps:
-        print(f"no maps in {MAPS_DIR} (set FLEX_NAV_BENCH_MAPS)")
         return 2
     planner = GridPlanner(PlannerParams())
     same_planner = GridPlanner(PlannerParams(diagonal_factor=1.0))
