@@ -8,7 +8,10 @@ lap after lap), and prints state transitions and progress. A low step that the l
 first leg: the bumper finds it and the behavior's recovery (stop, back up, clear costmaps, replan to the
 original goal) handles it.
 
-At the end it prints ``goals reached: N/M, bumper recoveries: K, sim time: T s, wall time: W s``, writes
+Each robot localizes with flex_nav's localizer on its scan and noisy odometry (``--localization oracle``: the
+simulator's ground truth instead). At the end it prints ``goals reached: N/M, bumper recoveries: K, sim time: T s,
+wall time: W s`` and, with the localizer, ``localization: median X cm, p95 Y cm, max Z cm`` (every amcl_pose
+against the ground truth at its stamp), writes
 ``run.png`` (map, costmap, plans, trajectories, bumper hits) and ``run.bag`` to the output directory, and
 exits 0 only if every goal was reached. Everything it started is stopped on exit and on Ctrl-C.
 """
@@ -28,7 +31,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
+from flex_nav.apps.eval.localization_error import LocalizationErrors, merged
 from flex_nav.exceptions import ConfigError, FlexNavError, choices_message
+from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.testing.private_master import PrivateMaster
 from flex_nav.testing.process import ManagedProcess
 
@@ -39,6 +44,7 @@ LAP = ("g1", "g2", "g3", "start")  # the paper's three intermediate goals, then 
 STARTUP_TIMEOUT_S = 60.0  # [s] wall: every robot's behavior must be waiting for a goal by then
 GOAL_TOPIC = "move_base_simple/goal"
 GIVEN_UP = ("GiveUp", "NoPath", "Abort")  # labels of the behaviors' states that drop a goal
+LOCALIZATION_SOURCES = ("localizer", "oracle")  # who publishes map -> odom (see --localization)
 
 
 @dataclass
@@ -83,6 +89,7 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     parser.add_argument("--autonomy", default="full", help="behavior autonomy: off, low, high, full")
     parser.add_argument("--timeout", type=float, default=900.0, help="[s] wall-time bound of the whole run")
     parser.add_argument("--seed", type=int, default=0)
+    add_localization_argument(parser)
     parser.add_argument("--gui", action="store_true", help="pybullet window (needs a display)")
     parser.add_argument("--out", type=Path, default=None, help="output directory (default out/demo-<time>)")
     args = parser.parse_args(argv)
@@ -99,6 +106,13 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     if args.gui and not os.environ.get("DISPLAY"):
         parser.error("--gui needs a display (DISPLAY is not set)")
     return args
+
+
+def add_localization_argument(parser: argparse.ArgumentParser) -> None:
+    """``--localization localizer|oracle`` (the demo's and the scenario runner's)."""
+    parser.add_argument("--localization", choices=LOCALIZATION_SOURCES, default="localizer",
+                        help="who publishes map -> odom: flex_nav's localizer on the scan (default) or the "
+                             "simulator's ground truth (oracle, the figures before the localizer existed)")
 
 
 def plan_robots(world: Any, profiles: Sequence[str], laps: int, lap: Sequence[str] = LAP) -> List[RobotRun]:
@@ -127,7 +141,7 @@ class DemoMonitor:
 
     def __init__(self, runs: List[RobotRun]) -> None:
         import rospy  # noqa: PLC0415 - rospy only once the master is up
-        from geometry_msgs.msg import PointStamped, PoseStamped  # noqa: PLC0415
+        from geometry_msgs.msg import PointStamped, PoseStamped, PoseWithCovarianceStamped  # noqa: PLC0415
         from nav_msgs.msg import Odometry  # noqa: PLC0415
         from nav_msgs.msg import Path as PathMsg  # noqa: PLC0415
 
@@ -140,8 +154,11 @@ class DemoMonitor:
         self.lock = threading.Lock()
         self.goal_pubs = {}
         self.subs = []
+        self.localization = {run.name: LocalizationErrors() for run in runs}
         for run in runs:
             ns = f"/{run.name}"
+            self.subs.append(rospy.Subscriber(f"{ns}/amcl_pose", PoseWithCovarianceStamped, self._on_estimate,
+                                              callback_args=run, queue_size=10))
             self.goal_pubs[run.name] = rospy.Publisher(f"{ns}/{GOAL_TOPIC}", PoseStamped, queue_size=1)
             self.subs += [
                 rospy.Subscriber(f"{ns}/ground_truth", Odometry, self._on_odom, callback_args=run, queue_size=5),
@@ -162,10 +179,15 @@ class DemoMonitor:
     def _say(self, run: RobotRun, text: str) -> None:
         print(f"[sim {self.sim_s():7.1f} s] {run.name}: {text}", flush=True)
 
-    def _on_odom(self, msg: Any, run: RobotRun) -> None:
-        p, q = msg.pose.pose.position, msg.pose.pose.orientation
-        yaw = math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
+    def _on_estimate(self, msg: Any, run: RobotRun) -> None:
         with self.lock:
+            self.localization[run.name].add_estimate(msg.header.stamp.to_sec(), _planar_pose(msg.pose.pose))
+
+    def _on_odom(self, msg: Any, run: RobotRun) -> None:
+        p = msg.pose.pose.position
+        yaw = _planar_pose(msg.pose.pose)[2]
+        with self.lock:
+            self.localization[run.name].add_truth(msg.header.stamp.to_sec(), (p.x, p.y, yaw))
             if run.trajectory:
                 step = math.hypot(p.x - run.trajectory[-1][0], p.y - run.trajectory[-1][1])
                 if step < 0.02:
@@ -259,6 +281,11 @@ class DemoMonitor:
             return all(run.finished or run.failed_reason for run in self.runs)
 
 
+def _planar_pose(pose: Any) -> Tuple[float, float, float]:
+    q = pose.orientation
+    return (pose.position.x, pose.position.y, yaw_of_quaternion(q.x, q.y, q.z, q.w))
+
+
 def start_system(stack: contextlib.ExitStack, args: argparse.Namespace, runs: List[RobotRun], out: Path, *,
                  camera: bool = False, params: Optional[Mapping[str, object]] = None, bag: bool = True,
                  ) -> Tuple[List[ManagedProcess], Dict[str, str]]:
@@ -278,19 +305,22 @@ def start_system(stack: contextlib.ExitStack, args: argparse.Namespace, runs: Li
     for name, value in {"/use_sim_time": True, **(params or {})}.items():
         parameters.setParam(name, value)
     map_yaml = world_map(Path(args.world).stem)
+    oracle = getattr(args, "localization", "localizer") == "oracle"
     robots_param = ",".join(f"{r.name}:{r.profile}:{r.pose[0]}:{r.pose[1]}:{math.degrees(r.pose[2]):.1f}"
                             for r in runs if r.pose)
     processes = [
         ManagedProcess(["rosrun", "flex_nav", "sim", f"_world:={args.world}", f"_robots:={robots_param}",
                         f"_rtf:={args.rtf}", f"_seed:={args.seed}", f"_camera:={'true' if camera else 'false'}",
-                        f"_gui:={'true' if getattr(args, 'gui', False) else 'false'}"],
+                        f"_gui:={'true' if getattr(args, 'gui', False) else 'false'}",
+                        f"_publish_map_odom:={'true' if oracle else 'false'}"],
                        env=env, log_path=logs / "sim.log"),
         ManagedProcess(["rosrun", "flex_nav", "map_server", str(map_yaml)], env=env, log_path=logs / "map.log"),
     ]
     for run in runs:
         processes.append(ManagedProcess(
             ["roslaunch", "flex_nav", "flex_nav_robot.launch", f"robot:={run.name}", f"profile:={run.profile}",
-             "twist_relay:=true", f"autonomy:={args.autonomy}", f"behavior:={args.behavior}"],
+             "twist_relay:=true", f"autonomy:={args.autonomy}", f"behavior:={args.behavior}",
+             f"localizer:={'false' if oracle else 'true'}"],
             env=env, log_path=logs / f"{run.name}.log"))
     for proc in processes:
         stack.callback(proc.stop)
@@ -301,10 +331,12 @@ def start_system(stack: contextlib.ExitStack, args: argparse.Namespace, runs: Li
 
 def start_recorder(stack: contextlib.ExitStack, bag: Path, robots: Sequence[str], env: Mapping[str, str],
                    log_path: Path) -> ManagedProcess:
-    """Record the robots' ground truth, odometry, plans, bumper hits, commands and behavior topics (plus /tf
-    and /map) to ``bag``; registered on ``stack`` so that it stops before what was registered earlier."""
+    """Record the robots' ground truth, localization estimates, odometry, plans, bumper hits, commands and behavior
+    topics (plus /tf and /map) to ``bag``; registered on ``stack`` so that it stops before what was registered
+    earlier."""
     topics = [t for name in robots for t in (
-        f"/{name}/ground_truth", f"/{name}/odom", f"/{name}/get_path_server/plan", f"/{name}/bumper_hits",
+        f"/{name}/ground_truth", f"/{name}/amcl_pose", f"/{name}/odom", f"/{name}/get_path_server/plan",
+        f"/{name}/bumper_hits",
         f"/{name}/cmd_vel", f"/{name}/behavior_runner/transitions", f"/{name}/behavior_runner/status")]
     # the recorder itself (not the rosbag wrapper script), so SIGINT reaches it and it closes the bag
     recorder = "/usr/lib/rosbag/record" if Path("/usr/lib/rosbag/record").is_file() else "rosbag"
@@ -394,6 +426,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
             print("interrupted: stopping everything", flush=True)
         monitor.stopping = True
         sim_s = rospy.get_time()
+        with monitor.lock:
+            localization = merged(list(monitor.localization.values())).summary()
 
     wall_s = time.monotonic() - started
     reached = sum(r.reached for r in runs)
@@ -410,6 +444,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
     shutil.rmtree(out / "ros_home", ignore_errors=True)
     print(f"goals reached: {reached}/{total}, bumper recoveries: {recoveries}, sim time: {sim_s:.1f} s, "
           f"wall time: {wall_s:.1f} s", flush=True)
+    if args.localization == "localizer":
+        print(localization.line(), flush=True)
     return 0 if reached == total else 1
 
 
