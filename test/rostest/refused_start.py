@@ -1,6 +1,7 @@
 """Helper of the rostest nodes that start a node with bad input: it must exit 2 with a message, without a
 stack trace, and leave nothing registered with the master."""
 
+import itertools
 import os
 import subprocess
 from pathlib import Path
@@ -9,6 +10,14 @@ from typing import List, Tuple
 import rosgraph
 
 RUN_TIMEOUT_S = 60.0  # [s] a rejected start must end well within this
+
+_STARTS = itertools.count(1)
+
+
+def fresh_name(prefix: str) -> str:
+    """A node name new in this process, ``prefix_N``: each refused start is checked under a name of its own (what a
+    start before it left registered cannot be taken for its own)."""
+    return f"{prefix}_{next(_STARTS)}"
 
 
 def run_refused(test, executable: Path, name: str, *params: str) -> Tuple[str, List]:

@@ -15,6 +15,7 @@ from pathlib import Path
 
 import rospy
 import rostest
+from operator_tool import run_operator
 from refused_start import run_refused
 
 from flex_nav.msg import BehaviorCommand, BehaviorCommandFeedback, BehaviorStatus
@@ -33,11 +34,7 @@ STOP_GRACE_S = 10.0  # [s] for a runner started here to end after SIGINT
 
 def operator(*args, runner=RUNNER, timeout_s=60.0):
     """Run the operator tool as a user would; returns (exit code, output)."""
-    proc = subprocess.run(
-        ["rosrun", "flex_nav", "operator", "--runner", runner, *args],
-        capture_output=True, text=True, timeout=timeout_s, env=dict(os.environ), check=False,
-    )
-    return proc.returncode, proc.stdout + proc.stderr
+    return run_operator(*args, runner=runner, timeout_s=timeout_s)
 
 
 class Recorder:

@@ -2,8 +2,6 @@
 """rostest node: a behavior run by behavior_runner at autonomy Low waits for the operator; the operator tool
 approves it, preempts it, starts it again by name, and the status / activity / transition topics report it."""
 
-import os
-import subprocess
 import sys
 import threading
 import time
@@ -11,6 +9,7 @@ import unittest
 
 import rospy
 import rostest
+from operator_tool import run_operator
 
 from flex_nav.msg import BehaviorActivity, BehaviorStatus, BehaviorTransition
 from flex_nav.ros.node import init_node
@@ -22,11 +21,7 @@ RUNNER = "/behavior_runner"
 
 def operator(*args, timeout_s=30.0):
     """Run the operator tool as a user would; returns (exit code, output)."""
-    proc = subprocess.run(
-        ["rosrun", "flex_nav", "operator", "--runner", RUNNER, *args],
-        capture_output=True, text=True, timeout=timeout_s, env=dict(os.environ), check=False,
-    )
-    return proc.returncode, proc.stdout + proc.stderr
+    return run_operator(*args, runner=RUNNER, timeout_s=timeout_s)
 
 
 class Recorder:

@@ -7,18 +7,15 @@ import unittest
 from pathlib import Path
 
 import rostest
-from refused_start import run_refused
+from refused_start import fresh_name, run_refused
 
 NODE = Path(__file__).resolve().parents[2] / "scripts" / "obstacle_classifier"
 SHIPPED = Path(__file__).resolve().parents[2] / "models" / "obstacle_classifier.onnx"
 
 
 class TestObstacleClassifierBadConfig(unittest.TestCase):
-    runs = 0
-
     def run_node(self, *params):
-        TestObstacleClassifierBadConfig.runs += 1
-        stderr, _ = run_refused(self, NODE, f"classifier_bad_{TestObstacleClassifierBadConfig.runs}", *params)
+        stderr, _ = run_refused(self, NODE, fresh_name("classifier_bad"), *params)
         return stderr
 
     def test_missing_model_file(self):

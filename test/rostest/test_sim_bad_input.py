@@ -8,7 +8,7 @@ import unittest
 from pathlib import Path
 
 import rostest
-from refused_start import run_refused
+from refused_start import fresh_name, run_refused
 
 from flex_nav_sim.world import available_worlds
 
@@ -16,11 +16,8 @@ SIM = Path(__file__).resolve().parents[2] / "scripts" / "sim"
 
 
 class TestSimBadInput(unittest.TestCase):
-    runs = 0
-
     def run_sim(self, *params):
-        TestSimBadInput.runs += 1
-        stderr, publishers = run_refused(self, SIM, f"sim_bad_{TestSimBadInput.runs}", *params)
+        stderr, publishers = run_refused(self, SIM, fresh_name("sim_bad"), *params)
         self.assertNotIn("/clock", [topic for topic, _ in publishers])
         return stderr
 
