@@ -91,51 +91,35 @@ def test_malformed_world_yaml(tmp_path: Path) -> None:
         load_world(path)
 
 
-def test_bad_shape_lists_choices(tmp_path: Path) -> None:
-    path = _world(tmp_path, "obstacles:\n  - {name: o, shape: cube, size: [1, 1, 1], pose: [2, 2]}\n")
-    with pytest.raises(ConfigError, match=r"obstacles\[0\]\.shape 'cube' is not valid \(valid: box, cylinder\)"):
-        load_world(path)
-
-
-def test_unknown_world_field(tmp_path: Path) -> None:
-    path = _world(tmp_path, "obstacle:\n  - {name: o}\n")
-    with pytest.raises(ConfigError, match="unknown field 'obstacle'"):
-        load_world(path)
-
-
-def test_duplicate_names_rejected(tmp_path: Path) -> None:
-    path = _world(
-        tmp_path,
+BAD_WORLD_FILES = {  # test id: (what the file adds to a valid world, the error it must give)
+    "bad_shape_lists_choices": (
+        "obstacles:\n  - {name: o, shape: cube, size: [1, 1, 1], pose: [2, 2]}\n",
+        r"obstacles\[0\]\.shape 'cube' is not valid \(valid: box, cylinder\)",
+    ),
+    "unknown_world_field": ("obstacle:\n  - {name: o}\n", "unknown field 'obstacle'"),
+    "duplicate_names_rejected": (
         "obstacles:\n"
         "  - {name: o, size: [0.2, 0.2, 1], pose: [1, 1]}\n"
         "  - {name: o, size: [0.2, 0.2, 1], pose: [2, 2]}\n",
-    )
-    with pytest.raises(ConfigError, match="'o' is already used"):
-        load_world(path)
+        "'o' is already used",
+    ),
+    "event_target_must_exist": (
+        "events:\n  - {at: 4, action: remove, target: ghost}\n",
+        r"events\[0\]\.target for action remove 'ghost' is not valid",
+    ),
+    "event_cannot_remove_walls": ("events:\n  - {at: 4, action: remove, target: r_south}\n", "'r_south' is not valid"),
+    "door_must_sit_on_a_wall": ("doors:\n  - {name: d, at: [2, 2]}\n", "does not lie on any wall"),
+    "unknown_robot_profile_in_world": (
+        "robots:\n  - {name: r1, profile: roomba, pose: [1, 1]}\n",
+        r"robots\[0\]\.profile 'roomba' is not valid \(valid: create2, kobuki",
+    ),
+}
 
 
-def test_event_target_must_exist(tmp_path: Path) -> None:
-    path = _world(tmp_path, "events:\n  - {at: 4, action: remove, target: ghost}\n")
-    with pytest.raises(ConfigError, match=r"events\[0\]\.target for action remove 'ghost' is not valid"):
-        load_world(path)
-
-
-def test_event_cannot_remove_walls(tmp_path: Path) -> None:
-    path = _world(tmp_path, "events:\n  - {at: 4, action: remove, target: r_south}\n")
-    with pytest.raises(ConfigError, match="'r_south' is not valid"):
-        load_world(path)
-
-
-def test_door_must_sit_on_a_wall(tmp_path: Path) -> None:
-    path = _world(tmp_path, "doors:\n  - {name: d, at: [2, 2]}\n")
-    with pytest.raises(ConfigError, match="does not lie on any wall"):
-        load_world(path)
-
-
-def test_unknown_robot_profile_in_world(tmp_path: Path) -> None:
-    path = _world(tmp_path, "robots:\n  - {name: r1, profile: roomba, pose: [1, 1]}\n")
-    with pytest.raises(ConfigError, match=r"robots\[0\]\.profile 'roomba' is not valid \(valid: create2, kobuki"):
-        load_world(path)
+@pytest.mark.parametrize(("extra", "match"), BAD_WORLD_FILES.values(), ids=BAD_WORLD_FILES.keys())
+def test_bad_world_file_is_rejected_naming_the_field(tmp_path: Path, extra: str, match: str) -> None:
+    with pytest.raises(ConfigError, match=match):
+        load_world(_world(tmp_path, extra))
 
 
 def test_spawn_inside_wall_rejected() -> None:
