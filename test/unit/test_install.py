@@ -41,12 +41,18 @@ def _run_install(env: dict[str, str]) -> subprocess.CompletedProcess[str]:
     )
 
 
+def _refused(tmp_path: Path, apt_get_body: str, uid: int = 0, sudo_ok: bool = False) -> str:
+    """The installer run on ``_fake_system``, which it must refuse (exit 2): what it wrote on stderr."""
+    proc = _run_install(_fake_system(tmp_path, apt_get_body, uid, sudo_ok))
+    assert proc.returncode == 2, proc.stdout + proc.stderr
+    return proc.stderr
+
+
 def test_not_root_without_sudo_says_what_to_run(tmp_path: Path) -> None:
-    proc = _run_install(_fake_system(tmp_path, "exit 0", uid=1000, sudo_ok=False))
-    assert proc.returncode == 2
-    assert "needs root" in proc.stderr
-    assert "sudo apt-get install -y python3-rospy" in proc.stderr
-    assert "Traceback" not in proc.stderr
+    stderr = _refused(tmp_path, "exit 0", uid=1000, sudo_ok=False)
+    assert "needs root" in stderr
+    assert "sudo apt-get install -y python3-rospy" in stderr
+    assert "Traceback" not in stderr
     assert not (tmp_path / "venv-not-created").exists(), "nothing after the apt step may run"
 
 
@@ -55,10 +61,9 @@ def test_held_apt_lock_is_explained(tmp_path: Path) -> None:
         'echo "E: Could not get lock /var/lib/dpkg/lock-frontend. It is held by process 4242 (apt-get)" >&2; '
         "exit 100"
     )
-    proc = _run_install(_fake_system(tmp_path, body))
-    assert proc.returncode == 2
-    assert "holds the apt lock" in proc.stderr
-    assert "FLEX_NAV_APT_LOCK_TIMEOUT" in proc.stderr
+    stderr = _refused(tmp_path, body)
+    assert "holds the apt lock" in stderr
+    assert "FLEX_NAV_APT_LOCK_TIMEOUT" in stderr
 
 
 def test_no_network_is_explained(tmp_path: Path) -> None:
@@ -66,9 +71,7 @@ def test_no_network_is_explained(tmp_path: Path) -> None:
         'echo "W: Failed to fetch http://deb.debian.org/debian/dists/bookworm/InRelease  '
         "Temporary failure resolving 'deb.debian.org'\"; exit 0"
     )
-    proc = _run_install(_fake_system(tmp_path, body))
-    assert proc.returncode == 2
-    assert "cannot be reached" in proc.stderr
+    assert "cannot be reached" in _refused(tmp_path, body)
 
 
 def test_offline_pip_is_explained(tmp_path: Path) -> None:
