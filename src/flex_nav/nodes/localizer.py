@@ -82,6 +82,14 @@ def planar_covariance(flat: Sequence[float]) -> np.ndarray:
     return np.array([[flat[i] for i in row] for row in COVARIANCE_INDEX], dtype=np.float64)
 
 
+def invalid_beams(beams: ScanBeams) -> int:
+    """How many beams are NaN, infinite or outside [range_min, range_max] (a max-range reading is not bad input:
+    the filter skips it, as amcl's likelihood field does, but it is not worth a warning)."""
+    with np.errstate(invalid="ignore"):
+        good = np.isfinite(beams.ranges) & (beams.ranges >= beams.range_min) & (beams.ranges <= beams.range_max)
+    return int(beams.ranges.size - np.count_nonzero(good))
+
+
 class LocalizerNode:
     """Messages and transforms around one :class:`Localizer`; see the module docstring."""
 
@@ -254,10 +262,15 @@ class LocalizerNode:
             return
         if self._global_running:  # converging from particles everywhere: every scan counts, moving or not
             localizer.request_nomotion_update()
-        updated = localizer.update(odom, beams)
-        if localizer.last_dropped_beams:
-            self._complain("beams", f"scan: {localizer.last_dropped_beams} of {len(beams.ranges)} beams dropped "
-                                    "(NaN, infinite or outside the range limits)")
+        try:
+            updated = localizer.update(odom, beams)
+        except ConfigError as err:  # a malformed scan (e.g. range_min >= range_max)
+            self._complain("scan_bad", f"scan ignored: {err}")
+            return
+        bad = invalid_beams(beams)
+        if bad:
+            self._complain("beams", f"scan: {bad} of {len(beams.ranges)} beams NaN, infinite or outside "
+                                    f"[{beams.range_min:g}, {beams.range_max:g}] m: dropped")
         estimate = localizer.estimate()
         self._follow_status(estimate)
         if estimate.status is not LocalizerStatus.LOCALIZED:
