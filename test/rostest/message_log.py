@@ -11,9 +11,10 @@ class MessageLog:
     that meets a condition. A subclass may keep more than the message (:meth:`record`) and time its waits on
     another clock than ROS time (:meth:`now_s`, e.g. the wall clock where a test fakes ROS time)."""
 
-    def __init__(self, topic: str, msg_type: type, *, queue_size: int = 10, wait_s: float = 10.0,
+    def __init__(self, topic: str, msg_type: type, *, queue_size: Optional[int] = 10, wait_s: float = 10.0,
                  poll_s: float = 0.1) -> None:
-        """``wait_s`` [s]: the longest wait of :meth:`wait_for` unless told; ``poll_s`` [s]: its longest sleep."""
+        """``queue_size``: the subscriber's (None: unbounded); ``wait_s`` [s]: the longest wait of :meth:`wait_for`
+        unless told; ``poll_s`` [s]: its longest sleep."""
         self.cond = threading.Condition()
         self.msgs: List[Any] = []
         self.wait_s = wait_s

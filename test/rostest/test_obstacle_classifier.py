@@ -2,12 +2,11 @@
 """rostest node for obstacle_classifier.test: the smoothed class and safe_to_push for a person and for a box."""
 
 import sys
-import threading
-import time
 import unittest
 
 import rospy
 import rostest
+from message_log import MessageLog
 from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import Image
 from std_srvs.srv import SetBool
@@ -19,27 +18,19 @@ from flex_nav.ros.node import init_node
 WAIT_S = 60.0  # [s] the sim and two classifiers start on a shared 2-core machine
 
 
-class Latest:
+class Latest(MessageLog):
+    """Every message of a topic, and the newest one meeting a condition."""
+
     def __init__(self, topic, msg_type=ObstacleClass):
-        self.msgs = []
-        self.lock = threading.Lock()
-        self.sub = rospy.Subscriber(topic, msg_type, self._on)
+        super().__init__(topic, msg_type, queue_size=None, wait_s=WAIT_S)
 
-    def _on(self, msg):
-        with self.lock:
-            self.msgs.append(msg)
-
-    def wait_for(self, predicate):
-        deadline = time.monotonic() + WAIT_S
-        while time.monotonic() < deadline:
-            with self.lock:
-                found = [m for m in self.msgs if predicate(m)]
-            if found:
-                return found[-1]
-            time.sleep(0.05)
-        with self.lock:
-            last = self.msgs[-1] if self.msgs else None
-        raise AssertionError(f"no matching message in {WAIT_S} s; {len(self.msgs)} received, last: {last}")
+    def newest(self, predicate):
+        """The newest message meeting ``predicate`` once one did; AssertionError naming the last one after WAIT_S."""
+        if self.wait_for(predicate) is None:
+            received = self.since(0)
+            last = received[-1] if received else None
+            raise AssertionError(f"no matching message in {WAIT_S} s; {len(received)} received, last: {last}")
+        return [m for m in self.since(0) if predicate(m)][-1]
 
 
 def call(service, data):
@@ -49,7 +40,7 @@ def call(service, data):
 
 class TestObstacleClassifier(unittest.TestCase):
     def test_person_is_published_and_never_safe_to_push(self):
-        msg = Latest("/robot1/obstacle_class").wait_for(lambda m: m.votes >= 3)
+        msg = Latest("/robot1/obstacle_class").newest(lambda m: m.votes >= 3)
         self.assertEqual(msg.label, "person")
         self.assertEqual(msg.window, 5)
         self.assertEqual(list(msg.labels), ["person", "movable", "clear"])
@@ -65,7 +56,7 @@ class TestObstacleClassifier(unittest.TestCase):
         self.assertIn("person", fresh.message)
 
     def test_box_is_published_and_safe_to_push(self):
-        msg = Latest("/robot2/obstacle_class").wait_for(lambda m: m.votes >= 3)
+        msg = Latest("/robot2/obstacle_class").newest(lambda m: m.votes >= 3)
         self.assertEqual(msg.label, "movable")
         self.assertEqual(msg.frame_label, "movable")
         answer = call("/robot2/safe_to_push", False)
@@ -90,17 +81,16 @@ class TestObstacleClassifier(unittest.TestCase):
 
     def test_without_depth_images_nothing_is_classified_or_safe(self):
         log = Latest("/rosout_agg", Log)
-        Latest("/robot2/obstacle_class").wait_for(lambda m: m.votes >= 3)  # colour and depth frames are flowing
-        warning = log.wait_for(lambda m: m.name == "/robot2/classifier_without_depth" and m.level == Log.WARN
-                               and "no colour image has had a depth image" in m.msg)  # repeated every 5 s
+        Latest("/robot2/obstacle_class").newest(lambda m: m.votes >= 3)  # colour and depth frames are flowing
+        warning = log.newest(lambda m: m.name == "/robot2/classifier_without_depth" and m.level == Log.WARN
+                            and "no colour image has had a depth image" in m.msg)  # repeated every 5 s
         self.assertIn("on /robot2/camera/depth/not_published within 0.1 s", warning.msg)
         without = Latest("/robot2/obstacle_class_without_depth")
         answer = call("/robot2/safe_to_push_without_depth", False)
         self.assertFalse(answer.success, answer.message)
         self.assertIn("no camera image classified yet", answer.message)
         self.assertIn("needs a depth image on /robot2/camera/depth/not_published", answer.message)
-        with without.lock:
-            self.assertEqual(without.msgs, [])
+        self.assertEqual(without.since(0), [])
 
 
 if __name__ == "__main__":
