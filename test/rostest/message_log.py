@@ -19,6 +19,7 @@ class MessageLog:
         self.msgs: List[Any] = []
         self.wait_s = wait_s
         self.poll_s = poll_s
+        self.topic = topic
         self.sub = rospy.Subscriber(topic, msg_type, self.on_msg, queue_size=queue_size)
 
     def record(self, msg: Any) -> Any:
@@ -54,3 +55,15 @@ class MessageLog:
                 if left <= 0:
                     return None
                 self.cond.wait(min(left, self.poll_s))
+
+    def newest(self, condition: Callable[[Any], bool], timeout_s: Optional[float] = None) -> Any:
+        """The newest entry meeting ``condition`` once one did; AssertionError naming the last entries when none did
+        within ``timeout_s`` [s] (``wait_s`` when None)."""
+        wait_s = self.wait_s if timeout_s is None else timeout_s
+        if self.wait_for(condition, timeout_s=wait_s) is None:
+            received = self.since(0)
+            raise AssertionError(
+                f"no message on {self.topic} meeting the condition within {wait_s} s; {len(received)} received, "
+                f"the last: {received[-5:]}"
+            )
+        return [entry for entry in self.since(0) if condition(entry)][-1]

@@ -3,12 +3,12 @@
 approves it, preempts it, starts it again by name, and the status / activity / transition topics report it."""
 
 import sys
-import threading
 import time
 import unittest
 
 import rospy
 import rostest
+from message_log import MessageLog
 from operator_tool import run_operator
 
 from flex_nav.msg import BehaviorActivity, BehaviorStatus, BehaviorTransition
@@ -25,37 +25,19 @@ def operator(*args, timeout_s=30.0):
 
 
 class Recorder:
+    """What the runner publishes: its status, activity and transitions (waits of at most WAIT_S)."""
+
     def __init__(self):
-        self.lock = threading.Lock()
-        self.status = []
-        self.activity = []
-        self.transitions = []
-        rospy.Subscriber(f"{RUNNER}/status", BehaviorStatus, self._add, callback_args=self.status)
-        rospy.Subscriber(f"{RUNNER}/activity", BehaviorActivity, self._add, callback_args=self.activity)
-        rospy.Subscriber(f"{RUNNER}/transitions", BehaviorTransition, self._add, callback_args=self.transitions)
-
-    def _add(self, msg, into):
-        with self.lock:
-            into.append(msg)
-
-    def wait_for(self, what, predicate, timeout_s=WAIT_S):
-        deadline = time.monotonic() + timeout_s
-        while time.monotonic() < deadline:
-            with self.lock:
-                found = [m for m in getattr(self, what) if predicate(m)]
-            if found:
-                return found[-1]
-            time.sleep(0.02)
-        with self.lock:
-            seen = getattr(self, what)[-5:]
-        raise AssertionError(f"no matching {what} message within {timeout_s} s; last seen: {seen}")
+        self.status = MessageLog(f"{RUNNER}/status", BehaviorStatus, queue_size=None, wait_s=WAIT_S)
+        self.activity = MessageLog(f"{RUNNER}/activity", BehaviorActivity, queue_size=None, wait_s=WAIT_S)
+        self.transitions = MessageLog(f"{RUNNER}/transitions", BehaviorTransition, queue_size=None, wait_s=WAIT_S)
 
 
 class TestBehaviorRunner(unittest.TestCase):
     def test_operator_approves_preempts_and_restarts(self):
         rec = Recorder()
         # 1. At autonomy Low, /Ask's transition (needs High) waits for the operator; /Hold is not entered.
-        activity = rec.wait_for("activity", lambda m: any(r.path == "/Ask" for r in m.requests))
+        activity = rec.activity.newest(lambda m: any(r.path == "/Ask" for r in m.requests))
         request = next(r for r in activity.requests if r.path == "/Ask")
         self.assertEqual((request.outcome, request.required, request.reason), ("done", 2, "autonomy"))
         self.assertNotIn("/Hold", activity.active_paths)
@@ -75,14 +57,14 @@ class TestBehaviorRunner(unittest.TestCase):
         # 3. The operator tool approves: the transition fires and /Hold becomes active.
         code, out = operator("approve-next", "--timeout", "10")
         self.assertEqual(code, 0, out)
-        transition = rec.wait_for("transitions", lambda m: m.path == "/Ask")
+        transition = rec.transitions.newest(lambda m: m.path == "/Ask")
         self.assertEqual((transition.outcome, transition.target), ("done", "Hold"))
-        rec.wait_for("activity", lambda m: "/Hold" in m.active_paths)
+        rec.activity.newest(lambda m: "/Hold" in m.active_paths)
 
         # 4. Preempt: status PREEMPTED.
         code, out = operator("preempt")
         self.assertEqual(code, 0, out)
-        status = rec.wait_for("status", lambda m: m.code == BehaviorStatus.PREEMPTED)
+        status = rec.status.newest(lambda m: m.code == BehaviorStatus.PREEMPTED)
         self.assertEqual(status.behavior, "operator_test")
         code, out = operator("pause")
         self.assertEqual(code, 1, out)
@@ -100,10 +82,9 @@ class TestBehaviorRunner(unittest.TestCase):
         self.assertIn("no_such_parameter", out)
         code, out = operator("start", "operator_test", "autonomy=full", "hold_s=0.2")
         self.assertEqual(code, 0, out)
-        status = rec.wait_for("status", lambda m: m.code == BehaviorStatus.FINISHED)
+        status = rec.status.newest(lambda m: m.code == BehaviorStatus.FINISHED)
         self.assertEqual(status.outcome, "finished")
-        with rec.lock:
-            codes = [m.code for m in rec.status]
+        codes = [m.code for m in rec.status.since(0)]
         self.assertIn(BehaviorStatus.RUNNING, codes)
 
 

@@ -18,19 +18,9 @@ from flex_nav.ros.node import init_node
 WAIT_S = 60.0  # [s] the sim and two classifiers start on a shared 2-core machine
 
 
-class Latest(MessageLog):
-    """Every message of a topic, and the newest one meeting a condition."""
-
-    def __init__(self, topic, msg_type=ObstacleClass):
-        super().__init__(topic, msg_type, queue_size=None, wait_s=WAIT_S)
-
-    def newest(self, predicate):
-        """The newest message meeting ``predicate`` once one did; AssertionError naming the last one after WAIT_S."""
-        if self.wait_for(predicate) is None:
-            received = self.since(0)
-            last = received[-1] if received else None
-            raise AssertionError(f"no matching message in {WAIT_S} s; {len(received)} received, last: {last}")
-        return [m for m in self.since(0) if predicate(m)][-1]
+def latest(topic, msg_type=ObstacleClass):
+    """Every message of ``topic`` from now on (waits of at most WAIT_S)."""
+    return MessageLog(topic, msg_type, queue_size=None, wait_s=WAIT_S)
 
 
 def call(service, data):
@@ -40,7 +30,7 @@ def call(service, data):
 
 class TestObstacleClassifier(unittest.TestCase):
     def test_person_is_published_and_never_safe_to_push(self):
-        msg = Latest("/robot1/obstacle_class").newest(lambda m: m.votes >= 3)
+        msg = latest("/robot1/obstacle_class").newest(lambda m: m.votes >= 3)
         self.assertEqual(msg.label, "person")
         self.assertEqual(msg.window, 5)
         self.assertEqual(list(msg.labels), ["person", "movable", "clear"])
@@ -56,7 +46,7 @@ class TestObstacleClassifier(unittest.TestCase):
         self.assertIn("person", fresh.message)
 
     def test_box_is_published_and_safe_to_push(self):
-        msg = Latest("/robot2/obstacle_class").newest(lambda m: m.votes >= 3)
+        msg = latest("/robot2/obstacle_class").newest(lambda m: m.votes >= 3)
         self.assertEqual(msg.label, "movable")
         self.assertEqual(msg.frame_label, "movable")
         answer = call("/robot2/safe_to_push", False)
@@ -80,12 +70,12 @@ class TestObstacleClassifier(unittest.TestCase):
         self.assertTrue(0.5 < centre < 0.92, f"depth in the image centre {centre} m")
 
     def test_without_depth_images_nothing_is_classified_or_safe(self):
-        log = Latest("/rosout_agg", Log)
-        Latest("/robot2/obstacle_class").newest(lambda m: m.votes >= 3)  # colour and depth frames are flowing
+        log = latest("/rosout_agg", Log)
+        latest("/robot2/obstacle_class").newest(lambda m: m.votes >= 3)  # colour and depth frames are flowing
         warning = log.newest(lambda m: m.name == "/robot2/classifier_without_depth" and m.level == Log.WARN
                             and "no colour image has had a depth image" in m.msg)  # repeated every 5 s
         self.assertIn("on /robot2/camera/depth/not_published within 0.1 s", warning.msg)
-        without = Latest("/robot2/obstacle_class_without_depth")
+        without = latest("/robot2/obstacle_class_without_depth")
         answer = call("/robot2/safe_to_push_without_depth", False)
         self.assertFalse(answer.success, answer.message)
         self.assertIn("no camera image classified yet", answer.message)
