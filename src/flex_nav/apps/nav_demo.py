@@ -63,6 +63,7 @@ class RobotRun:
     plans: List[Any] = field(default_factory=list)
     distance_m: float = 0.0
     waiting_for_goal: bool = False
+    localized: bool = False  # its localizer said so (``localized: ...`` on localizer/status)
     pose: Optional[Tuple[float, float, float]] = None
     failed_reason: str = ""
     finished: bool = False
@@ -139,11 +140,14 @@ def plan_robots(world: Any, profiles: Sequence[str], laps: int, lap: Sequence[st
 class DemoMonitor:
     """The demo's ROS node: sends goals, follows the behaviors and records what happens."""
 
-    def __init__(self, runs: List[RobotRun]) -> None:
+    def __init__(self, runs: List[RobotRun], localizer: bool = True) -> None:
+        """``localizer``: the robots run flex_nav's localizer, and a robot gets goals only once it is localized
+        (False: the simulator's oracle publishes map -> odom from the start)."""
         import rospy  # noqa: PLC0415 - rospy only once the master is up
         from geometry_msgs.msg import PointStamped, PoseStamped, PoseWithCovarianceStamped  # noqa: PLC0415
         from nav_msgs.msg import Odometry  # noqa: PLC0415
         from nav_msgs.msg import Path as PathMsg  # noqa: PLC0415
+        from std_msgs.msg import String  # noqa: PLC0415
 
         from flex_nav.msg import BehaviorActivity, BehaviorLog, BehaviorStatus, BehaviorTransition  # noqa: PLC0415
 
@@ -157,7 +161,10 @@ class DemoMonitor:
         self.localization = {run.name: LocalizationErrors() for run in runs}
         for run in runs:
             ns = f"/{run.name}"
+            run.localized = not localizer
             self.subs.append(rospy.Subscriber(f"{ns}/amcl_pose", PoseWithCovarianceStamped, self._on_estimate,
+                                              callback_args=run, queue_size=10))
+            self.subs.append(rospy.Subscriber(f"{ns}/localizer/status", String, self._on_localizer_status,
                                               callback_args=run, queue_size=10))
             self.goal_pubs[run.name] = rospy.Publisher(f"{ns}/{GOAL_TOPIC}", PoseStamped, queue_size=1)
             self.subs += [
@@ -178,6 +185,13 @@ class DemoMonitor:
 
     def _say(self, run: RobotRun, text: str) -> None:
         print(f"[sim {self.sim_s():7.1f} s] {run.name}: {text}", flush=True)
+
+    def _on_localizer_status(self, msg: Any, run: RobotRun) -> None:
+        localized = msg.data.startswith("localized")
+        with self.lock:
+            changed, run.localized = localized != run.localized, localized
+        if changed:
+            self._say(run, f"localizer: {msg.data}")
 
     def _on_estimate(self, msg: Any, run: RobotRun) -> None:
         with self.lock:
@@ -274,7 +288,7 @@ class DemoMonitor:
 
     def all_waiting(self) -> bool:
         with self.lock:
-            return all(run.waiting_for_goal for run in self.runs)
+            return all(run.waiting_for_goal and run.localized for run in self.runs)
 
     def done(self) -> bool:
         with self.lock:
@@ -353,14 +367,18 @@ def world_map(world_name: str) -> Path:
 
 def wait_until_ready(monitor: DemoMonitor, processes: List[ManagedProcess], timeout_s: float = STARTUP_TIMEOUT_S
                      ) -> Optional[str]:
-    """Wait until every robot's behavior waits for a goal; the reason if it did not happen, else None."""
+    """Wait until every robot's behavior waits for a goal and its localizer is localized; the reason if it did
+    not happen, else None."""
     deadline = time.monotonic() + timeout_s
     while not monitor.all_waiting():
         dead = [p for p in processes if not p.running()]
         if dead:
             return f"{' '.join(dead[0].argv[:4])} exited (log {dead[0].log_path})"
         if time.monotonic() > deadline:
-            return f"not ready after {timeout_s:.0f} s"
+            with monitor.lock:
+                late = [f"{r.name} ({'waits for a goal' if r.waiting_for_goal else 'behavior not ready'}, "
+                        f"{'localized' if r.localized else 'not localized'})" for r in monitor.runs]
+            return f"not ready after {timeout_s:.0f} s: {', '.join(late)}"
         time.sleep(0.2)
     return None
 
@@ -407,7 +425,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
         init_node("nav_demo")
         import rospy  # noqa: PLC0415
 
-        monitor = DemoMonitor(runs)
+        monitor = DemoMonitor(runs, localizer=args.localization == "localizer")
         deadline = time.monotonic() + args.timeout
         try:
             problem = wait_until_ready(monitor, processes)

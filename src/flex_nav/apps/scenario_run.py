@@ -66,8 +66,8 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
 class ScenarioMonitor(DemoMonitor):
     """The demo monitor plus what the scenario table needs: pushes and contacts with people."""
 
-    def __init__(self, runs: List[RobotRun]) -> None:
-        super().__init__(runs)
+    def __init__(self, runs: List[RobotRun], localizer: bool = True) -> None:
+        super().__init__(runs, localizer)
         from flex_nav.msg import SimEvent  # noqa: PLC0415
 
         self.pushes_tried = 0
@@ -139,7 +139,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
         init_node("scenario_run")
         import rospy  # noqa: PLC0415
 
-        monitor = ScenarioMonitor([run])
+        monitor = ScenarioMonitor([run], localizer=args.localization == "localizer")
         problem = wait_until_ready(monitor, processes, STARTUP_TIMEOUT_S)
         if problem is not None:
             print(f"scenario_run: startup failed: {problem}; logs in {args.out / 'logs'}", file=sys.stderr)
