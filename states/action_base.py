@@ -21,7 +21,8 @@
 
 from __future__ import annotations
 
-from typing import Any, Dict, Optional, Sequence
+from dataclasses import dataclass, field
+from typing import Any, Dict, Mapping, Optional, Sequence
 
 from actionlib_msgs.msg import GoalStatus
 
@@ -81,39 +82,68 @@ class ServerLossWatch:
         return now_s - self._lost_since_s >= SERVER_LOST_S
 
 
+@dataclass(frozen=True)
+class ActionServer:
+    """The action server a state sends its goals to, validated once, when built (a message names the state and its
+    flat parameter): ``spec`` its action type, ``name`` (``action_name``: a legal ROS name, relative to the
+    behavior's namespace), ``server_timeout_s`` [s] (> 0: how long after entry it may take to connect) and
+    ``timeout_s`` [s] (>= 0: how long after sending a goal may run without result; 0: no limit)."""
+
+    owner: str  # the state's class name, for messages
+    spec: ActionType
+    name: str
+    server_timeout_s: float
+    timeout_s: float
+
+    def __post_init__(self) -> None:
+        owner = self.owner
+        validation.name(owner, "action_name", self.name)
+        connect_s = validation.number(owner, "server_timeout_s", self.server_timeout_s, positive=True, unit="[s]")
+        goal_s = validation.number(owner, "timeout_s", self.timeout_s, minimum=0.0, unit="[s]")
+        object.__setattr__(self, "server_timeout_s", connect_s)  # ints made floats, in a frozen record
+        object.__setattr__(self, "timeout_s", goal_s)
+
+
+@dataclass(frozen=True)
+class GoalOutcomes:
+    """The state's outcome for the end of a goal: ``success`` (status SUCCEEDED and code SUCCESS), the outcome of
+    each other result code by its name (``code_outcomes``), ``failure`` for anything else (no server, a timeout, a
+    code not mapped) and ``cancelled`` for a goal cancelled by someone else (``failure`` when None)."""
+
+    success: str
+    failure: str
+    code_outcomes: Mapping[str, str] = field(default_factory=dict)
+    cancelled: Optional[str] = None
+
+
 class ActionClientBase(State):
     """Base of the action-client states (not a state by itself; see the module docstring)."""
 
     def __init__(
         self,
+        server: ActionServer,
         *,
-        spec: ActionType,
-        action_name: str,
-        server_timeout_s: float,
-        timeout_s: float,
         outcomes: Sequence[str],
-        success: str,
-        failure: str,
-        code_outcomes: Dict[str, str],
-        cancelled: Optional[str] = None,
+        results: GoalOutcomes,
         input_keys: Sequence[str] = (),
         output_keys: Sequence[str] = (),
     ) -> None:
         super().__init__(outcomes=outcomes, input_keys=input_keys, output_keys=output_keys)
-        owner = type(self).__name__
+        spec = server.spec
         self._spec = spec
-        self._action_name = validation.name(owner, "action_name", action_name)
-        self._server_timeout_s = validation.number(owner, "server_timeout_s", server_timeout_s, positive=True,
-                                                   unit="[s]")
-        self._timeout_s = validation.number(owner, "timeout_s", timeout_s, minimum=0.0, unit="[s]")
-        self._success = success
-        self._failure = failure
-        self._cancelled = cancelled if cancelled is not None else failure
+        self._action_name = server.name
+        self._server_timeout_s = server.server_timeout_s
+        self._timeout_s = server.timeout_s
+        self._success = results.success
+        self._failure = results.failure
+        self._cancelled = results.cancelled if results.cancelled is not None else results.failure
         codes = spec.result_codes
         self._code_outcomes: Dict[int, str] = {}
-        for code_name, outcome in code_outcomes.items():
+        for code_name, outcome in results.code_outcomes.items():
             if code_name not in codes:
-                raise ConfigError(f"{owner}: {spec.name} has no result code {code_name} (codes: {', '.join(codes)})")
+                raise ConfigError(
+                    f"{server.owner}: {spec.name} has no result code {code_name} (codes: {', '.join(codes)})"
+                )
             self._code_outcomes[codes[code_name]] = outcome
         self._success_code = codes["SUCCESS"]
         self._client: Optional[ActionClientLike] = None

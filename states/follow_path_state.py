@@ -8,10 +8,13 @@ from flex_nav.action_types import action_type
 from flex_nav.behavior.userdata import UserDataView, unwrap
 from flex_nav.exceptions import ConfigError
 from flex_nav.msg import FollowPathGoal
-from flex_nav_states.action_base import ActionClientBase
+from flex_nav_states.action_base import ActionClientBase, ActionServer, GoalOutcomes
 from flex_nav_states.messages import describe
 
 FOLLOW_PATH = action_type("FollowPath")
+FOLLOW_OUTCOMES = GoalOutcomes(  # of the states that have a server follow a path (FollowPath, FollowTopic)
+    success="done", failure="failed", code_outcomes={"FAILURE": "failed", "PREEMPT": "preempted"}, cancelled="preempted"
+)
 
 
 class FollowPathState(ActionClientBase):
@@ -33,15 +36,9 @@ class FollowPathState(ActionClientBase):
     def __init__(self, action_name: str = "pure_pursuit_path", server_timeout_s: float = 5.0,
                  timeout_s: float = 0.0) -> None:
         super().__init__(
-            spec=FOLLOW_PATH,
-            action_name=action_name,
-            server_timeout_s=server_timeout_s,
-            timeout_s=timeout_s,
+            ActionServer(type(self).__name__, FOLLOW_PATH, action_name, server_timeout_s, timeout_s),
             outcomes=list(self.OUTCOMES),
-            success="done",
-            failure="failed",
-            cancelled="preempted",
-            code_outcomes={"FAILURE": "failed", "PREEMPT": "preempted"},
+            results=FOLLOW_OUTCOMES,
             input_keys=["plan"],
         )
 

@@ -12,7 +12,8 @@ from flex_nav.action_types import action_type
 from flex_nav.behavior.userdata import UserDataView
 from flex_nav.msg import FollowTopicGoal
 from flex_nav_states import validation
-from flex_nav_states.action_base import ActionClientBase
+from flex_nav_states.action_base import ActionClientBase, ActionServer
+from flex_nav_states.follow_path_state import FOLLOW_OUTCOMES
 from flex_nav_states.messages import stamp_s
 from flex_nav_states.proxy_types import SubscriptionLike, proxies_of
 
@@ -49,15 +50,9 @@ class FollowTopicState(ActionClientBase):
                  server_timeout_s: float = 5.0, timeout_s: float = 0.0, *, fresh_path_s: float = 0.0,
                  follow_next_path: bool = False) -> None:
         super().__init__(
-            spec=FOLLOW_TOPIC,
-            action_name=action_name,
-            server_timeout_s=server_timeout_s,
-            timeout_s=timeout_s,
+            ActionServer(type(self).__name__, FOLLOW_TOPIC, action_name, server_timeout_s, timeout_s),
             outcomes=["done", "failed", "preempted"],
-            success="done",
-            failure="failed",
-            cancelled="preempted",
-            code_outcomes={"FAILURE": "failed", "PREEMPT": "preempted"},
+            results=FOLLOW_OUTCOMES,
         )
         owner = type(self).__name__
         self._path_topic = validation.name(owner, "path_topic", path_topic)

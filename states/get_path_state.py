@@ -8,10 +8,13 @@ from flex_nav.action_types import action_type
 from flex_nav.behavior.userdata import UserDataView, unwrap
 from flex_nav.exceptions import ConfigError
 from flex_nav.msg import GetPathGoal
-from flex_nav_states.action_base import ActionClientBase
+from flex_nav_states.action_base import ActionClientBase, ActionServer, GoalOutcomes
 from flex_nav_states.messages import describe
 
 GET_PATH = action_type("GetPath")
+GET_PATH_OUTCOMES = GoalOutcomes(
+    success="planned", failure="failed", code_outcomes={"EMPTY": "empty", "FAILURE": "failed"}
+)
 
 
 class GetPathState(ActionClientBase):
@@ -32,14 +35,9 @@ class GetPathState(ActionClientBase):
     def __init__(self, action_name: str = "get_path_server", server_timeout_s: float = 5.0,
                  timeout_s: float = 30.0) -> None:
         super().__init__(
-            spec=GET_PATH,
-            action_name=action_name,
-            server_timeout_s=server_timeout_s,
-            timeout_s=timeout_s,
+            ActionServer(type(self).__name__, GET_PATH, action_name, server_timeout_s, timeout_s),
             outcomes=["planned", "empty", "failed"],
-            success="planned",
-            failure="failed",
-            code_outcomes={"EMPTY": "empty", "FAILURE": "failed"},
+            results=GET_PATH_OUTCOMES,
             input_keys=["goal"],
             output_keys=["plan"],
         )
