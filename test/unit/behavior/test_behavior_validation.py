@@ -66,33 +66,33 @@ def test_bad_autonomy_level():
         sm.add("A", state(), transitions={"done": "finished", "failed": "failed"}, autonomy={"done": "medium"})
 
 
-def test_missing_transition():
-    sm = machine()
-    sm.add("A", state(), transitions={"done": "finished"})
-    with pytest.raises(
+ENDS = {"done": "finished", "failed": "failed"}  # transitions of a state that ends the machine
+
+INVALID_MACHINES = {  # test id: (the states added, label and transitions; the error validate() raises; its message)
+    "missing_transition": (
+        [("A", {"done": "finished"})],
         MissingTransitionError,
-        match=r"outcome 'failed' of state 'A' has no transition \(valid targets: A, finished, failed\)",
-    ):
-        sm.validate()
-
-
-def test_unreachable_state():
-    sm = machine()
-    sm.add("A", state(), transitions={"done": "finished", "failed": "failed"})
-    sm.add("Orphan", state(), transitions={"done": "A", "failed": "failed"})
-    with pytest.raises(
-        UnreachableStateError, match=r"state 'Orphan' cannot be reached from the initial state 'A' \(reachable: A\)"
-    ):
-        sm.validate()
-
-
-def test_label_outcome_clash():
-    sm = machine()
-    sm.add("finished", state(), transitions={"done": "finished", "failed": "failed"})
-    with pytest.raises(
+        r"outcome 'failed' of state 'A' has no transition \(valid targets: A, finished, failed\)",
+    ),
+    "unreachable_state": (
+        [("A", ENDS), ("Orphan", {"done": "A", "failed": "failed"})],
+        UnreachableStateError,
+        r"state 'Orphan' cannot be reached from the initial state 'A' \(reachable: A\)",
+    ),
+    "label_outcome_clash": (
+        [("finished", ENDS)],
         LabelClashError,
-        match=r"state label 'finished' is also an outcome of the machine \(outcomes: finished, failed\)",
-    ):
+        r"state label 'finished' is also an outcome of the machine \(outcomes: finished, failed\)",
+    ),
+}
+
+
+@pytest.mark.parametrize(("added", "error", "match"), INVALID_MACHINES.values(), ids=INVALID_MACHINES.keys())
+def test_validate_names_the_problem(added, error, match):
+    sm = machine()
+    for label, transitions in added:
+        sm.add(label, state(), transitions=transitions)
+    with pytest.raises(error, match=match):
         sm.validate()
 
 
