@@ -34,7 +34,14 @@ import time
 from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Set, Tuple
 
 from flex_nav.compat.smach._hooks import HOOKS
-from flex_nav.compat.smach.container import Container, check_state_interface, listed, run_child, smach_construction
+from flex_nav.compat.smach.container import (
+    Container,
+    check_state_interface,
+    labelled_child,
+    listed,
+    run_child,
+    smach_construction,
+)
 from flex_nav.compat.smach.user_data import Remapper, UserData, remapping_of
 from flex_nav.compat.smach.util import is_shutdown
 from flex_nav.exceptions import InvalidStateError, InvalidTransitionError, InvalidUserCodeError
@@ -106,10 +113,7 @@ class Concurrence(Container):
         return dict(self._states)
 
     def __getitem__(self, key: str) -> Any:
-        try:
-            return self._states[key]
-        except KeyError:
-            raise KeyError(f"Concurrence has no child {key!r} (children: {listed(list(self._states))})") from None
+        return labelled_child(self._states, key, "Concurrence has no child", "children")
 
     def get_initial_states(self) -> List[str]:
         return list(self._states)

@@ -23,7 +23,7 @@ when it finishes.
 from __future__ import annotations
 
 import threading
-from typing import Any, Callable, Collection, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Callable, Collection, Dict, List, Mapping, Optional, Sequence, Tuple
 
 from flex_nav.compat._construction import OpenedStack, construction_method
 from flex_nav.compat.smach._hooks import HOOKS
@@ -244,6 +244,14 @@ def check_state_interface(label: object, state: object, container: str) -> str:
             f"got {type(state).__name__}"
         )
     return label
+
+
+def labelled_child(children: Mapping[str, Any], key: str, missing: str, labels: str) -> Any:
+    """The child labelled ``key``; a KeyError saying ``missing`` and listing the ``labels`` otherwise."""
+    try:
+        return children[key]
+    except KeyError:
+        raise KeyError(f"{missing} {key!r} ({labels}: {listed(list(children))})") from None
 
 
 def listed(values: Sequence[Any]) -> str:

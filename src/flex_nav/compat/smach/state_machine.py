@@ -34,7 +34,14 @@ import threading
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
 from flex_nav.compat.smach._hooks import HOOKS
-from flex_nav.compat.smach.container import Container, check_state_interface, listed, run_child, smach_construction
+from flex_nav.compat.smach.container import (
+    Container,
+    check_state_interface,
+    labelled_child,
+    listed,
+    run_child,
+    smach_construction,
+)
 from flex_nav.compat.smach.user_data import Remapper, UserData, remapping_of
 from flex_nav.compat.smach.util import is_shutdown, names
 from flex_nav.exceptions import InvalidStateError, InvalidTransitionError
@@ -141,10 +148,7 @@ class StateMachine(Container):
         return dict(self._states)
 
     def __getitem__(self, key: str) -> Any:
-        try:
-            return self._states[key]
-        except KeyError:
-            raise KeyError(f"state machine has no state {key!r} (states: {listed(list(self._states))})") from None
+        return labelled_child(self._states, key, "state machine has no state", "states")
 
     def set_initial_state(self, initial_states: Sequence[str], userdata: Optional[UserData] = None) -> None:
         """Start at ``initial_states[0]`` next time; merge ``userdata`` into the machine's userdata."""
