@@ -5,23 +5,15 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from unit.behavior.behavior_testlib import child
 
 from flex_nav.behavior.container import Container
-from flex_nav.behavior.state import State
 from flex_nav.behavior.state_machine import StateMachine
 from flex_nav.behavior.yaml_loader import list_behaviors, load_behavior
 from flex_nav_states.move_distance_state import MoveDistanceState
 
 BEHAVIORS = Path(__file__).resolve().parents[2] / "behaviors"
 NAMES = sorted(p.stem for p in BEHAVIORS.glob("*.yaml"))
-
-
-def child(state: State, *labels: str) -> State:
-    """The state at ``labels`` below ``state``, each step a container."""
-    for label in labels:
-        assert isinstance(state, Container), f"{label}: {state!r} is not a container"
-        state = state[label]
-    return state
 
 
 def test_the_issue_behaviors_are_shipped() -> None:

@@ -7,11 +7,12 @@ lifecycle call in a shared Journal, so tests can assert on the exact order of ca
 from __future__ import annotations
 
 import concurrent.futures
-from typing import Any, Callable, Dict, Iterable, List, Optional, Sequence, Tuple
+from typing import Any, Callable, Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
 import pytest
 
-from flex_nav.behavior import BehaviorExecutor, ManualClock, State, StateMachine
+from flex_nav.behavior import Behavior, BehaviorExecutor, ManualClock, State, StateMachine
+from flex_nav.behavior.container import Container
 from flex_nav.exceptions import BehaviorCommandError
 
 
@@ -104,6 +105,14 @@ def chain(journal: Journal, labels: Iterable[str], outcomes: Sequence[str] = ("f
     return sm
 
 
+def child(state: State, *labels: str) -> State:
+    """The state at ``labels`` below ``state``, each step a container."""
+    for label in labels:
+        assert isinstance(state, Container), f"{label}: {state!r} is not a container"
+        state = state[label]
+    return state
+
+
 def one_state(state: State, label: str = "A", **add: Any) -> StateMachine:
     """A machine of the one state ``label``: its done finishes the machine, its failed fails it (``add``: more
     arguments of ``StateMachine.add``, e.g. ``autonomy``)."""
@@ -112,7 +121,7 @@ def one_state(state: State, label: str = "A", **add: Any) -> StateMachine:
     return sm
 
 
-def executor(root: State, **kwargs: Any) -> BehaviorExecutor:
+def executor(root: Union[Behavior, State], **kwargs: Any) -> BehaviorExecutor:
     kwargs.setdefault("clock", ManualClock())
     return BehaviorExecutor(root, **kwargs)
 

@@ -51,7 +51,8 @@ def slow_job(release: threading.Event, discarded: List[int], timeout_s: float) -
 
 
 def test_a_load_over_its_bound_fails_in_time_and_its_late_result_is_discarded() -> None:
-    release, discarded = threading.Event(), []
+    release = threading.Event()
+    discarded: List[int] = []
     job = slow_job(release, discarded, timeout_s=0.2)
     started = time.monotonic()
     job.start()
@@ -69,7 +70,8 @@ def test_a_load_over_its_bound_fails_in_time_and_its_late_result_is_discarded() 
 
 
 def test_a_cancelled_load_answers_cancelled_and_discards_its_result() -> None:
-    release, discarded = threading.Event(), []
+    release = threading.Event()
+    discarded: List[int] = []
     job = slow_job(release, discarded, timeout_s=BOUND_S)
     job.start()
     assert job.cancel("stopped by the operator")

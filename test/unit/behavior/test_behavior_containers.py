@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import threading
+from typing import Any, Set
 
 import pytest
 from unit.behavior.behavior_testlib import Journal, ScriptedState, executor, record_events, spin
@@ -72,17 +73,16 @@ def test_all_children_finished_without_a_matching_condition_fails_loudly():
 
 def test_children_tick_at_their_own_rates_in_one_thread():
     journal = Journal()
-    threads = set()
+    threads: Set[int] = set()
+
+    def note_thread(ud: Any, n: int) -> None:
+        threads.add(threading.get_ident())
+
     cc = ConcurrencyContainer(outcomes=["a"], conditions=[("a", [("Slow", "done")])])
-    fast = cc.add(
-        "Fast", ScriptedState(journal, script=[], rate_hz=10.0, action=lambda ud, n: threads.add(threading.get_ident()))
-    )
-    slow = cc.add(
-        "Slow",
-        ScriptedState(
-            journal, script=[None, None, "done"], rate_hz=2.0, action=lambda ud, n: threads.add(threading.get_ident())
-        ),
-    )
+    fast = ScriptedState(journal, script=[], rate_hz=10.0, action=note_thread)
+    slow = ScriptedState(journal, script=[None, None, "done"], rate_hz=2.0, action=note_thread)
+    cc.add("Fast", fast)
+    cc.add("Slow", slow)
     sm = StateMachine(outcomes=["a"])
     sm.add("CC", cc, transitions={"a": "a"})
     before = threading.active_count()

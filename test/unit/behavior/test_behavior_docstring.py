@@ -5,6 +5,7 @@ from __future__ import annotations
 import importlib
 import inspect
 import pkgutil
+from typing import Any, Dict
 
 import pytest
 
@@ -14,7 +15,7 @@ from flex_nav.behavior.docstring import check_state_doc, constructor_params, par
 from flex_nav.exceptions import ConfigError
 
 # Constructor arguments to instantiate each state class of the package (a new class must be added here).
-SAMPLE_PARAMS = {
+SAMPLE_PARAMS: Dict[str, Dict[str, Any]] = {
     "Wait": {"wait_time_s": 1.0},
     "Log": {"text": "hello", "severity": "warn"},
     "Decision": {"outcomes": ["left", "right"], "choice": "left"},

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import threading
+from typing import List
 
 import pytest
 from unit.behavior.behavior_testlib import (
@@ -30,7 +31,9 @@ from flex_nav.behavior import (
 )
 from flex_nav.behavior.builtin_states import Wait
 from flex_nav.behavior.context import HOLD_REQUEST
+from flex_nav.behavior.events import RequestEvent, TransitionEvent
 from flex_nav.exceptions import BehaviorRuntimeError, ConfigError, NotReadyError
+from flex_nav.testing.fake_proxies import FakeProxies
 
 
 def looping(journal, label="Loop", rate_hz=10.0):
@@ -98,7 +101,7 @@ def test_run_timeout_preempts_or_keeps_running():
 
 
 def test_should_stop_is_checked_while_waiting():
-    stop = []
+    stop: List[bool] = []
     _, ex = looping_executor(should_stop=lambda: bool(stop))
     spin(ex, 2)
     stop.append(True)
@@ -251,7 +254,7 @@ def test_a_failing_hook_fails_the_behavior_after_exiting_states():
         "transition hook test_a_failing_hook_fails_the_behavior_after_exiting_states.<locals>.broken "
         "raised ValueError: publisher gone"
     )
-    assert isinstance(result.error.__cause__, ValueError)
+    assert result.error is not None and isinstance(result.error.__cause__, ValueError)
     assert journal.of("A") == ["start", "enter", "execute", "exit", "stop"]
     assert journal.of("B") == ["start", "stop"]  # activated, never entered: no on_exit
 
@@ -265,8 +268,17 @@ def test_commands_from_another_thread_with_a_real_clock():
     ex = BehaviorExecutor(sm)
     requested = threading.Event()
     entered_b = threading.Event()
-    ex.context.hooks.request.append(lambda e: e.pending and requested.set())
-    ex.context.hooks.transition.append(lambda e: e.target == "B" and entered_b.set())
+
+    def on_request(event: RequestEvent) -> None:
+        if event.pending:
+            requested.set()
+
+    def on_transition(event: TransitionEvent) -> None:
+        if event.target == "B":
+            entered_b.set()
+
+    ex.context.hooks.request.append(on_request)
+    ex.context.hooks.transition.append(on_transition)
     results = []
     runner = threading.Thread(target=lambda: results.append(ex.run(timeout_s=60.0)))
     runner.start()
@@ -367,9 +379,10 @@ def test_current_context_and_proxies_are_per_behavior():
         sm.add("P", Probe(), transitions={"done": "finished"})
         return sm
 
-    BehaviorExecutor(build(), clock=ManualClock(), proxies="robot1").run(timeout_s=1.0)
-    BehaviorExecutor(build(), context=BehaviorContext("r2", clock=ManualClock(), proxies="robot2")).run(timeout_s=1.0)
-    assert seen == [(True, "robot1"), (True, "robot2")]
+    robot1, robot2 = FakeProxies(ManualClock()), FakeProxies(ManualClock())
+    BehaviorExecutor(build(), clock=ManualClock(), proxies=robot1).run(timeout_s=1.0)
+    BehaviorExecutor(build(), context=BehaviorContext("r2", clock=ManualClock(), proxies=robot2)).run(timeout_s=1.0)
+    assert seen == [(True, robot1), (True, robot2)]
     assert current_context() is None
     with pytest.raises(NotReadyError, match="no proxies"):
         BehaviorContext("x").require_proxies()

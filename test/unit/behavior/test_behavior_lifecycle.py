@@ -90,7 +90,7 @@ def test_exception_in_state_code_fails_with_path_and_exits_active_states(where):
     assert result.status is BehaviorStatus.FAILED
     phase = "on_enter" if where == "enter" else "execute"
     assert f"state '/A' (ScriptedState) raised RuntimeError in {phase}: scripted failure in {where}" in result.reason
-    assert isinstance(result.error.__cause__, RuntimeError)
+    assert result.error is not None and isinstance(result.error.__cause__, RuntimeError)
     assert journal.of("A")[-2:] == ["exit", "stop"]
 
 

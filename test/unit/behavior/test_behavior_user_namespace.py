@@ -26,6 +26,8 @@ OLD_ENGINE_METHODS = (
 class Busy(State):
     """Finishes after ``steps`` executions; uses every old engine name as its own (strings, own methods)."""
 
+    _tick: Callable[[], str]  # one of the OLD_ENGINE_METHODS, all set below as the state's own methods
+
     def __init__(self, journal: Journal, steps: int) -> None:
         super().__init__(outcomes=["done", "failed"], input_keys=["goal"], output_keys=["result"])
         self.journal = journal

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import copy
 import enum
-from typing import NamedTuple
+from typing import Any, Dict, NamedTuple
 
 import numpy as np
 import pytest
@@ -90,7 +90,7 @@ def test_read_of_key_without_value_says_which_keys_have_one():
 
 
 def test_view_helpers():
-    seen = {}
+    seen: Dict[str, Any] = {}
 
     def action(ud, n):
         seen["keys"] = ud.keys()
@@ -184,7 +184,7 @@ def test_nested_machine_starts_fresh_on_each_activation():
 
 def test_input_only_values_are_read_only_views_without_copy():
     msg = Message()
-    seen = {}
+    seen: Dict[str, Any] = {}
 
     def action(ud, n):
         view = ud.msg
@@ -262,7 +262,7 @@ def test_protection_follows_input_only_keys_into_nested_machines():
 
 def test_numpy_inputs_are_non_writeable_views():
     cloud = np.zeros((1000, 3))
-    seen = {}
+    seen: Dict[str, Any] = {}
 
     def action(ud, n):
         view = ud.cloud
@@ -331,6 +331,11 @@ def test_concurrent_children_share_the_container_store():
         ud.shared = "from A"
 
     got = []
+
+    def read_shared(ud, n):
+        if n > 1:
+            got.append(ud.shared)
+
     cc = ConcurrencyContainer(
         outcomes=["done"], conditions=[("done", [("A", "done"), ("B", "done")])], output_keys=["shared"]
     )
@@ -341,7 +346,7 @@ def test_concurrent_children_share_the_container_store():
             Journal(),
             input_keys=["shared"],
             script=[None, "done"],
-            action=lambda ud, n: n > 1 and got.append(ud.shared),
+            action=read_shared,
         ),
     )
     sm = StateMachine(outcomes=["done"], output_keys=["shared"])

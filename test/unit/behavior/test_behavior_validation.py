@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any, Dict
+
 import pytest
 from unit.behavior.behavior_testlib import Journal, ScriptedState, executor
 
@@ -140,7 +142,7 @@ def test_undeclared_input_key():
 
 
 def test_input_key_provided_by_sibling_output_or_default_or_container_input():
-    seen = {}
+    seen: Dict[str, Any] = {}
 
     def write_plan(ud, _n):
         ud.plan = "p"

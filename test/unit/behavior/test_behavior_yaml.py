@@ -3,9 +3,12 @@
 from __future__ import annotations
 
 import textwrap
+from functools import partial
 from pathlib import Path
+from typing import List, Tuple
 
 import pytest
+from unit.behavior.behavior_testlib import child
 
 from flex_nav.behavior import (
     Autonomy,
@@ -17,6 +20,7 @@ from flex_nav.behavior import (
     StateMachine,
 )
 from flex_nav.behavior.builtin_states import Calculation, Compare, Log, Wait
+from flex_nav.behavior.events import LogEvent, TransitionEvent
 from flex_nav.behavior.yaml_loader import find_behavior, list_behaviors, load_behavior, load_behavior_text
 from flex_nav.exceptions import BehaviorLoadError, ConfigError
 
@@ -24,10 +28,14 @@ DATA = Path(__file__).resolve().parent / "data"
 STATES = "flex_nav.behavior.builtin_states"
 
 
+def record_transition(into: List[Tuple[float, str, str, str]], event: TransitionEvent) -> None:
+    into.append((event.time_s, event.path, event.outcome, event.target))
+
+
 def run(behavior, **kwargs):
     kwargs.setdefault("clock", ManualClock())
     ex = BehaviorExecutor(behavior, **kwargs)
-    logs = []
+    logs: List[LogEvent] = []
     ex.context.hooks.log.append(logs.append)
     return ex, ex.run(timeout_s=60.0, stop_on_timeout=False), logs
 
@@ -58,9 +66,9 @@ def test_parameters_are_overridable_at_load_time():
 
 def test_guarded_wait_uses_concurrency_priority_and_a_sub_behavior_by_name():
     behavior = load_behavior("guarded_wait", search_path=[DATA])
-    nav = behavior.root["Guarded"]
+    nav = child(behavior.root, "Guarded")
     assert isinstance(nav, ConcurrencyContainer)
-    recover = nav["Guard"]["Recover"]
+    recover = child(nav, "Guard", "Recover")
     assert isinstance(recover, PriorityContainer)
     announce = recover["Announce"]
     assert isinstance(announce, StateMachine) and list(announce.children) == ["Say", "Pause"]
@@ -90,8 +98,8 @@ def test_same_behavior_built_from_python_runs_the_same():
     results = []
     for behavior in (yaml_behavior, root):
         ex = BehaviorExecutor(behavior, clock=ManualClock())
-        transitions = []
-        ex.context.hooks.transition.append(lambda e, t=transitions: t.append((e.time_s, e.path, e.outcome, e.target)))
+        transitions: List[Tuple[float, str, str, str]] = []
+        ex.context.hooks.transition.append(partial(record_transition, transitions))
         results.append((ex.run(timeout_s=10.0), transitions))
     assert results[0] == results[1]
 
@@ -137,8 +145,10 @@ def test_yaml_words_stay_names_in_names_and_values_in_values(tmp_path):
     """
     behavior = load_behavior_text(textwrap.dedent(text), "words.yaml")
     assert behavior.parameters == {"flag": True}
-    assert behavior.root["A"].outcomes == ("on", "off")
-    assert behavior.root.autonomy_of("A") == {"on": Autonomy.OFF, "off": Autonomy.FULL}
+    root = behavior.root
+    assert isinstance(root, StateMachine)
+    assert root["A"].outcomes == ("on", "off")
+    assert root.autonomy_of("A") == {"on": Autonomy.OFF, "off": Autonomy.FULL}
 
 
 def test_dollar_escapes_a_literal_dollar():
@@ -437,8 +447,9 @@ def test_sub_behavior_named_by_a_parameter(tmp_path):
         "behavior: outer\nparameters:\n  way: {type: str, default: left}\n  nothing: {type: float, default: 1.0}\n"
         "outcomes: [finished]\nstates:\n  Go:\n    behavior: $way\n    transitions: {done: finished}\n"
     )
-    assert load_behavior(outer).root["Go"]["S"]._text == "went left"
-    assert load_behavior(outer, parameters={"way": "right"}).root["Go"]["S"]._text == "went right"
+    for way, text in ((None, "went left"), ("right", "went right")):
+        said = child(load_behavior(outer, parameters={"way": way} if way else None).root, "Go", "S")
+        assert isinstance(said, Log) and said._text == text
     with pytest.raises(BehaviorLoadError, match=r"outer.yaml:8: state 'Go': behavior .* 'nowhere' is not valid"):
         load_behavior(outer, parameters={"way": "nowhere"})
     bad = tmp_path / "bad.yaml"
