@@ -1,17 +1,21 @@
 """Helpers for the compatibility-layer tests: a fake per-behavior ROS hub, data paths (no ROS; fixtures: conftest).
 
-FakeHub implements the part of flex_nav.behavior.proxies.Proxies the FlexBE proxies use (RosProxies implements
-all of it: mypy checks it, test_states_package compares their parameters). Tests drive it directly:
-``sub.inject(msg)`` as if a message arrived, ``client.finish(state, result)`` as if the server answered.
+FakeHub implements flex_nav.behavior.proxies.Proxies, as RosProxies does (mypy checks it: the end of this module).
+Tests drive it directly: ``sub.inject(msg)`` as if a message arrived, ``client.finish(state, result)`` as if the
+server answered.
 """
 
 from __future__ import annotations
 
 import collections
+import math
 from pathlib import Path
-from typing import Any, Callable, Deque, Dict, List, Optional
+from typing import TYPE_CHECKING, Any, Callable, Deque, Dict, List, Optional
 
 from flex_nav.exceptions import NotReadyError
+
+if TYPE_CHECKING:
+    from flex_nav.behavior.proxies import Proxies
 
 DATA_DIR = Path(__file__).resolve().parents[2] / "data" / "compat"
 
@@ -52,6 +56,10 @@ class FakeSubscription:
 
     def has_msg(self) -> bool:
         return self._last is not None
+
+    def age_s(self) -> float:
+        """[s] 0 once a message was injected (as if it arrived now), inf before."""
+        return 0.0 if self._last is not None else math.inf
 
     def last(self) -> Any:
         return self._last
@@ -190,3 +198,7 @@ class FakeHub:
 
     def get_service_caller(self, name: str) -> Optional[FakeServiceCaller]:
         return self.services.get(name)
+
+
+if TYPE_CHECKING:  # mypy: FakeHub (and so its publisher, subscription, action client, service caller) is a Proxies
+    _CONFORMS: Proxies = FakeHub()

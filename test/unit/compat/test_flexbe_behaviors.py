@@ -8,6 +8,7 @@ for the behavior's connections).
 from __future__ import annotations
 
 import logging
+from typing import List
 
 import pytest
 from unit.compat.compat_testlib import FakeHub
@@ -15,6 +16,7 @@ from unit.compat.compat_testlib import FakeHub
 from flex_nav.behavior import Autonomy, BehaviorContext, BehaviorExecutor, BehaviorStatus, ManualClock, using_context
 from flex_nav.behavior import PriorityContainer as EnginePriority
 from flex_nav.behavior import StateMachine as EngineStateMachine
+from flex_nav.behavior.events import LogEvent
 from flex_nav.exceptions import (
     BehaviorConstructionError,
     ConfigError,
@@ -26,7 +28,7 @@ from flex_nav.exceptions import (
 
 def context(name="test", autonomy=Autonomy.FULL, hub=None):
     ctx = BehaviorContext(name, clock=ManualClock(), proxies=hub if hub is not None else FakeHub(), autonomy=autonomy)
-    logs = []
+    logs: List[LogEvent] = []
     ctx.hooks.log.append(logs.append)
     return ctx, logs
 
@@ -206,7 +208,7 @@ def priority_behavior(guard_first):
         outcomes=["finished"], conditions=[("finished", [("Work", "done"), ("Guard", "finished")])]
     )
     guard = PriorityContainer(outcomes=["finished"])
-    assert isinstance(guard, EnginePriority) and isinstance(guard, OperatableStateMachine)
+    assert issubclass(PriorityContainer, EnginePriority) and issubclass(PriorityContainer, OperatableStateMachine)
     with guard:
         OperatableStateMachine.add("Stop", Ticks("stop", 3), transitions={"done": "finished"})
     with cc:

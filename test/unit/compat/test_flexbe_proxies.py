@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+from typing import List
+
 import pytest
 from unit.compat.compat_testlib import ABORTED, ACTIVE, PREEMPTED, SUCCEEDED, FakeHub
 
 from flex_nav.behavior import Autonomy, BehaviorContext, BehaviorExecutor, BehaviorStatus, ManualClock, using_context
+from flex_nav.behavior.events import LogEvent
 from flex_nav.exceptions import NotReadyError
 
 
@@ -20,7 +23,7 @@ def context(name="test", hub=None):
     ctx = BehaviorContext(
         name, clock=ManualClock(), proxies=hub if hub is not None else FakeHub(), autonomy=Autonomy.FULL
     )
-    logs = []
+    logs: List[LogEvent] = []
     ctx.hooks.log.append(logs.append)
     return ctx, logs
 
@@ -104,7 +107,7 @@ def test_subscriber_cache_buffer_and_callbacks():
     with using_context(ctx):
         from flex_nav.compat.flexbe_core.proxy import ProxySubscriberCached  # noqa: PLC0415
 
-        received = []
+        received: List[Topic] = []
         sub = ProxySubscriberCached({"/cached": Topic})
         sub.subscribe("/buffered", Topic, callback=received.append, buffered=True)
         cached, buffered = ctx.proxies.subscriptions["/cached"], ctx.proxies.subscriptions["/buffered"]

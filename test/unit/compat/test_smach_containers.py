@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import threading
+from typing import Any, Callable, Dict, Optional
 
 import pytest
 
@@ -38,16 +39,30 @@ class Waiter(smach.State):
         raise AssertionError("neither preempted nor released")
 
 
+def once_started(waiter: Waiter, outcome: str) -> Callable[[Any], Optional[str]]:
+    """A CBState callback: ``outcome`` once ``waiter`` has started (None, not an outcome, if it does not in WAIT_S)."""
+
+    def wait(ud: Any) -> Optional[str]:
+        return outcome if waiter.started.wait(WAIT_S) else None
+
+    return wait
+
+
 # --- Sequence -------------------------------------------------------------------------------------------
 def test_sequence_connects_states_in_order_and_the_last_falls_through():
     order = []
+
+    def step(name: str) -> Callable[[Any], str]:
+        def run(ud: Any) -> str:
+            order.append(name)
+            return "succeeded"
+
+        return run
+
     seq = smach.Sequence(outcomes=["succeeded", "aborted"], connector_outcome="succeeded")
     with seq:
         for name in ("A", "B", "C"):
-            smach.Sequence.add(
-                name,
-                smach.CBState(lambda ud, n=name: order.append(n) or "succeeded", outcomes=["succeeded", "aborted"]),
-            )
+            smach.Sequence.add(name, smach.CBState(step(name), outcomes=["succeeded", "aborted"]))
     assert seq.execute() == "succeeded"
     assert order == ["A", "B", "C"]
     assert seq._transitions["A"]["succeeded"] == "B" and seq._transitions["C"]["succeeded"] is None
@@ -80,7 +95,7 @@ def test_concurrence_outcome_policy_is_validated_at_construction():
     with pytest.raises(smach.InvalidStateError, match="outcome_map names outcome 'x'"):
         smach.Concurrence(outcomes=["a"], default_outcome="a", outcome_map={"x": {"C": "done"}})
     with pytest.raises(smach.InvalidStateError, match="outcome_cb 3 is not callable"):
-        smach.Concurrence(outcomes=["a"], default_outcome="a", outcome_cb=3)
+        smach.Concurrence(outcomes=["a"], default_outcome="a", outcome_cb=3)  # type: ignore[arg-type]  # on purpose
 
 
 def test_concurrence_consistency_checks_children_named_in_the_outcome_map():
@@ -161,7 +176,11 @@ def test_outcome_cb_returning_unregistered_outcome_or_raising_fails_loudly():
         smach.Concurrence.add("A", cb_state("done"))
     with pytest.raises(smach.InvalidTransitionError, match=r"returned 'zzz'.*\(a, b\)"):
         cc.execute()
-    cc = smach.Concurrence(outcomes=["a"], default_outcome="a", outcome_cb=lambda outcomes: 1 / 0)
+
+    def broken(outcomes: Dict[str, Optional[str]]) -> Optional[str]:
+        raise ZeroDivisionError("a bug in the callback")
+
+    cc = smach.Concurrence(outcomes=["a"], default_outcome="a", outcome_cb=broken)
     with cc:
         smach.Concurrence.add("A", cb_state("done"))
     with pytest.raises(smach.InvalidUserCodeError, match=r"outcome_cb.*ZeroDivisionError"):
@@ -183,9 +202,7 @@ def test_child_termination_cb_true_preempts_the_others():
         child_termination_cb=stop_when_monitor_fires,
     )
     with cc:
-        smach.Concurrence.add(
-            "MONITOR", smach.CBState(lambda ud: waiter.started.wait(WAIT_S) and "fired", outcomes=["fired"])
-        )
+        smach.Concurrence.add("MONITOR", smach.CBState(once_started(waiter, "fired"), outcomes=["fired"]))
         smach.Concurrence.add("WORK", waiter)
     assert cc.execute() == "stopped"
     assert seen[0] == {"MONITOR": "fired", "WORK": None}  # unfinished children are None
@@ -201,13 +218,13 @@ def test_child_termination_cb_list_preempts_only_the_listed_children():
         return False
 
     cc = smach.Concurrence(outcomes=["ok"], default_outcome="ok", child_termination_cb=on_child_done)
-    outcomes = {}
+    outcomes: Dict[str, Optional[str]] = {}
     cc.register_termination_cb(lambda ud, states, outcome: outcomes.update(cc_outcome=outcome))
     with cc:
-        smach.Concurrence.add("TRIGGER", smach.CBState(lambda ud: first.started.wait(WAIT_S) and "go", outcomes=["go"]))
+        smach.Concurrence.add("TRIGGER", smach.CBState(once_started(first, "go"), outcomes=["go"]))
         smach.Concurrence.add("FIRST", first)
         smach.Concurrence.add("SECOND", second)
-    result = {}
+    result: Dict[str, Optional[str]] = {}
     thread = threading.Thread(target=lambda: result.update(outcome=cc.execute()), daemon=True)
     thread.start()
     assert second.started.wait(WAIT_S)
@@ -259,7 +276,7 @@ def test_preempting_the_concurrence_preempts_every_child_and_is_serviced():
     with cc:
         smach.Concurrence.add("A", a)
         smach.Concurrence.add("B", b)
-    result = {}
+    result: Dict[str, Optional[str]] = {}
     thread = threading.Thread(target=lambda: result.update(outcome=cc.execute()), daemon=True)
     thread.start()
     assert a.started.wait(WAIT_S) and b.started.wait(WAIT_S)
@@ -324,7 +341,12 @@ def iterator(items, body, **kwargs):
 
 def test_iterator_runs_the_state_once_per_item_then_returns_exhausted_outcome():
     seen = []
-    body = smach.CBState(lambda ud: seen.append(ud.item) or "next", outcomes=["next"], input_keys=["item"])
+
+    def see(ud: Any) -> str:
+        seen.append(ud.item)
+        return "next"
+
+    body = smach.CBState(see, outcomes=["next"], input_keys=["item"])
     it = iterator(lambda: iter("abc"), body, loop_outcomes=["next"])
     assert it.execute() == "succeeded"
     assert seen == ["a", "b", "c"]
@@ -334,11 +356,12 @@ def test_iterator_runs_the_state_once_per_item_then_returns_exhausted_outcome():
 
 def test_iterator_break_outcome_is_mapped_through_final_outcome_map():
     seen = []
-    body = smach.CBState(
-        lambda ud: seen.append(ud.item) or ("stop" if ud.item == 2 else "next"),
-        outcomes=["next", "stop"],
-        input_keys=["item"],
-    )
+
+    def see_until_two(ud: Any) -> str:
+        seen.append(ud.item)
+        return "stop" if ud.item == 2 else "next"
+
+    body = smach.CBState(see_until_two, outcomes=["next", "stop"], input_keys=["item"])
     it = iterator([1, 2, 3], body, break_outcomes=["stop"], final_outcome_map={"stop": "aborted"})
     assert it.execute() == "aborted"
     assert seen == [1, 2]
@@ -360,7 +383,7 @@ def test_iterator_validates_outcomes_at_construction_and_consistency():
 def test_iterator_preempt_stops_the_loop_after_the_running_state_returns():
     waiter = Waiter()
     it = iterator(range(5), waiter, loop_outcomes=["done"], final_outcome_map={"preempted": "aborted"})
-    result = {}
+    result: Dict[str, Optional[str]] = {}
     thread = threading.Thread(target=lambda: result.update(outcome=it.execute()), daemon=True)
     thread.start()
     assert waiter.started.wait(WAIT_S)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import threading
+from typing import Any, List, Tuple
 
 import pytest
 
@@ -255,7 +256,7 @@ def test_execute_is_not_reentrant():
 
 # --- callbacks and introspection ---------------------------------------------------------------------------------
 def test_start_transition_termination_callbacks_get_smach_arguments():
-    events = []
+    events: List[Tuple[Any, ...]] = []
     sm = machine(("A", Scripted(["next"], outcomes=["next"]), {"next": "B"}), ("B", Scripted(["done"]), {}))
     sm.register_start_cb(lambda ud, initial, tag: events.append(("start", initial, tag)), ["s"])
     sm.register_transition_cb(lambda ud, active, tag: events.append(("transition", active, tag)), ["t"])
@@ -276,13 +277,13 @@ def test_callback_that_raises_fails_the_machine():
 def test_active_states_and_is_running_during_execution():
     seen = []
     sm = smach.StateMachine(outcomes=["done"])
+
+    def look(ud: Any) -> str:
+        seen.append((sm.get_active_states(), sm.is_running()))
+        return "done"
+
     with sm:
-        smach.StateMachine.add(
-            "A",
-            smach.CBState(
-                lambda ud: seen.append((sm.get_active_states(), sm.is_running())) or "done", outcomes=["done"]
-            ),
-        )
+        smach.StateMachine.add("A", smach.CBState(look, outcomes=["done"]))
     assert sm.get_active_states() == [] and not sm.is_running()
     sm.execute()
     assert seen == [(["A"], True)]
@@ -290,9 +291,9 @@ def test_active_states_and_is_running_during_execution():
 
 
 def test_set_initial_state_with_userdata_and_invalid_choices():
+    seen: List[Any] = []
     a = Scripted(["done"])
     b = Scripted(["done"], input_keys=["v"], action=lambda ud: seen.append(ud.v))
-    seen = []
     sm = machine(("A", a, {}), ("B", b, {}))
     starts = []
     sm.register_start_cb(lambda ud, initial: starts.append(initial))

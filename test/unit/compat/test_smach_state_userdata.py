@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import pytest
 
 from flex_nav.compat import smach
@@ -35,7 +37,7 @@ def test_a_bare_string_as_list_of_outcomes_is_refused():
     with pytest.raises(smach.InvalidStateError, match="not the string 'done'"):
         smach.State(outcomes="done")
     with pytest.raises(smach.InvalidStateError, match="non-empty strings"):
-        smach.State(outcomes=["ok", 3])
+        smach.State(outcomes=["ok", 3])  # type: ignore[list-item]  # on purpose
 
 
 def test_base_execute_is_abstract():
@@ -119,7 +121,7 @@ def test_cb_interface_on_a_method_binds_self():
 
 def test_cbstate_refuses_a_non_callable():
     with pytest.raises(smach.InvalidStateError, match="needs a callable"):
-        smach.CBState("not a function", outcomes=["done"])
+        smach.CBState("not a function", outcomes=["done"])  # type: ignore[arg-type]  # on purpose
 
 
 def test_has_smach_interface_false_for_plain_function():
@@ -210,11 +212,12 @@ def test_remapper_input_only_values_are_read_only_views_and_io_values_are_writab
 
 
 def test_remapper_missing_declared_key_is_a_key_error_and_empty_list_remapping_is_accepted():
-    view = smach.Remapper(smach.UserData(), ["goal"], [], [])  # smach_ros passes [] for "no remapping"
+    no_remapping: Any = []  # what smach_ros passes for "no remapping", outside the declared Mapping
+    view = smach.Remapper(smach.UserData(), ["goal"], [], no_remapping)
     with pytest.raises(KeyError, match="'goal' has no value yet"):
         view.goal  # noqa: B018
     with pytest.raises(smach.InvalidUserCodeError, match="must be a mapping"):
-        smach.Remapper(smach.UserData(), ["a"], [], [("a", "b")])
+        smach.Remapper(smach.UserData(), ["a"], [], [("a", "b")])  # type: ignore[arg-type]  # on purpose
 
 
 def test_remapper_over_a_remapper_reaches_the_outer_userdata():
@@ -251,7 +254,7 @@ def test_set_loggers_routes_messages_in_smach_argument_order(restore_hooks):
     smach.logerr("e")
     assert seen == [("info", "i"), ("warn", "w"), ("debug", "d"), ("error", "e")]
     with pytest.raises(ValueError, match="error logger must be callable"):
-        smach.set_loggers(print, print, print, "nope")
+        smach.set_loggers(print, print, print, "nope")  # type: ignore[arg-type]  # on purpose
 
 
 def test_shutdown_check(restore_hooks):
@@ -259,4 +262,4 @@ def test_shutdown_check(restore_hooks):
     smach.set_shutdown_check(lambda: True)
     assert smach.is_shutdown() is True
     with pytest.raises(ValueError, match="needs a callable"):
-        smach.set_shutdown_check(True)
+        smach.set_shutdown_check(True)  # type: ignore[arg-type]  # on purpose

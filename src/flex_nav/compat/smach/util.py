@@ -60,6 +60,8 @@ class CBInterface:
     method.
     """
 
+    __name__: str  # the callback's, as functools.update_wrapper copies it (with its __doc__ and __wrapped__)
+
     def __init__(
         self,
         cb: Callable[..., Any],
