@@ -83,3 +83,38 @@ def test_low_autonomy_waits_for_the_operator_and_preempt_stops_the_robot(tmp_pat
     )
     assert outcome.returncode == 0, outcome.output[-6000:]
     assert "SCENARIO PASSED" in outcome.output
+
+
+KIDNAP_AT_S = 35.0  # [s] simulated: on the east leg (g1 -> g2), about 3 m from the teleport's target
+KIDNAP_TO = (4.0, 1.9, 90.0)  # [m, m, deg] between the low step and the island
+STOPPED_MPS = 0.02  # [m/s] ground-truth speed counted as standing still
+
+
+@pytest.mark.ros
+def test_kidnapped_robot_is_lost_stops_and_is_found_again(tmp_path: Path) -> None:
+    import rosbag  # noqa: PLC0415 - Debian's rosbag, only for the system tests
+
+    world = tmp_path / "lab.yaml"  # the lab (same name, same map) with a teleport mid-lap
+    x, y, yaw = KIDNAP_TO
+    event = f"{{at: {KIDNAP_AT_S}, action: teleport, target: robot1, pose: [{x}, {y}, {yaw}]}}"
+    world.write_text((REPO_ROOT / "sim" / "worlds" / "lab.yaml").read_text() + f"events:\n  - {event}\n")
+    _code, output, summary = run_demo(tmp_path / "out", "--world", str(world))
+    statuses, truth = [], []
+    with rosbag.Bag(str(tmp_path / "out" / "run.bag")) as bag:
+        for topic, msg, recorded in bag.read_messages(["/robot1/localizer/status", "/robot1/ground_truth"]):
+            if topic.endswith("status"):  # recorded on simulated time (use_sim_time)
+                statuses.append((recorded.to_sec(), msg.data))
+            else:
+                truth.append((msg.header.stamp.to_sec(), msg.pose.pose.position.x, msg.pose.pose.position.y,
+                              msg.twist.twist.linear.x))
+    lost = [t for t, text in statuses if text.startswith("lost") and t > KIDNAP_AT_S]
+    assert lost, f"never reported lost after the kidnapping at {KIDNAP_AT_S} s: {statuses}\n{output[-4000:]}"
+    found = [t for t, text in statuses if text.startswith("localized") and t > lost[0]]
+    assert found, f"not localized again after {lost[0]:.1f} s: {statuses}\n{output[-4000:]}"
+    # stopped within the controllers' localization_timeout (1 s) + braking after it was lost, until found again
+    standing = [abs(v) for t, _x, _y, v in truth if lost[0] + 2.0 < t < found[0]]
+    assert all(v < STOPPED_MPS for v in standing), f"moved while lost: max {max(standing):.3f} m/s"
+    # the rest of the lap is driven on the recovered pose (the goal it was on may be given up while lost)
+    assert int(summary["reached"]) >= 3, output[-5000:]
+    print(f"kidnapped at {KIDNAP_AT_S:.1f} s, lost at {lost[0]:.1f} s, found at {found[0]:.1f} s; goals "
+          f"{summary['reached']}/{summary['total']}; {output.strip().splitlines()[-1]}")

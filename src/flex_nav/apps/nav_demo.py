@@ -346,16 +346,16 @@ def start_system(stack: contextlib.ExitStack, args: argparse.Namespace, runs: Li
 def start_recorder(stack: contextlib.ExitStack, bag: Path, robots: Sequence[str], env: Mapping[str, str],
                    log_path: Path) -> ManagedProcess:
     """Record the robots' ground truth, localization estimates, odometry, plans, bumper hits, commands and behavior
-    topics (plus /tf and /map) to ``bag``; registered on ``stack`` so that it stops before what was registered
+    topics (plus /tf, /map and the world's events) to ``bag``; registered on ``stack`` so that it stops before what was registered
     earlier."""
     topics = [t for name in robots for t in (
         f"/{name}/ground_truth", f"/{name}/amcl_pose", f"/{name}/odom", f"/{name}/get_path_server/plan",
-        f"/{name}/bumper_hits",
+        f"/{name}/bumper_hits", f"/{name}/localizer/status",
         f"/{name}/cmd_vel", f"/{name}/behavior_runner/transitions", f"/{name}/behavior_runner/status")]
     # the recorder itself (not the rosbag wrapper script), so SIGINT reaches it and it closes the bag
     recorder = "/usr/lib/rosbag/record" if Path("/usr/lib/rosbag/record").is_file() else "rosbag"
     proc = ManagedProcess([recorder, *([] if recorder != "rosbag" else ["record"]), "-O", str(bag),
-                           "/tf", "/map", *topics], env=env, log_path=log_path)
+                           "/tf", "/map", "/sim_events", *topics], env=env, log_path=log_path)
     stack.callback(proc.stop, 10.0)  # stopped first (LIFO): SIGINT lets rosbag close the bag file
     return proc
 

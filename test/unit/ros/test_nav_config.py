@@ -9,10 +9,11 @@ import pytest
 import yaml
 from harness import REPO_ROOT
 
+from flex_nav.localization import FilterParams
 from flex_nav.nav.control.pure_pursuit import PurePursuitParams
 from flex_nav.nav.costmap.inflation import InflationParams
 from flex_nav.nav.planning.planner import PlannerParams
-from flex_nav.nodes import follow_server, get_path_server, pure_pursuit_controller
+from flex_nav.nodes import follow_server, get_path_server, localizer, pure_pursuit_controller
 from flex_nav.ros import costmap_ros
 from flex_nav_sim.profiles import load_profile
 
@@ -33,8 +34,16 @@ def load(name: str) -> dict:
     return config
 
 
-def test_one_config_per_profile():
-    assert sorted(p.stem for p in (REPO_ROOT / "config").glob("*.yaml")) == sorted(PROFILES)
+def test_one_config_per_profile_and_the_localizers():
+    assert sorted(p.stem for p in (REPO_ROOT / "config").glob("*.yaml")) == sorted([*PROFILES, "localizer"])
+
+
+def test_the_localizer_config_names_only_its_parameters():
+    config = load("localizer")
+    filter_values = {k: v for k, v in config.items() if k in localizer.FILTER_PARAMS}
+    assert set(config) - set(filter_values) <= set(localizer.NODE_PARAMS), set(config) - set(filter_values)
+    params = FilterParams.from_mapping(filter_values, owner="config/localizer.yaml")
+    assert params.recovery_alpha_fast > 0.0  # a kidnapped robot must be noticed
 
 
 @pytest.mark.parametrize("name", sorted(PROFILES))

@@ -11,8 +11,8 @@ from typing import Any, Dict, List, Tuple
 import pytest
 
 REPO_ROOT = Path(__file__).resolve().parents[3]
-ROBOT_NODES = ["bumper_relay", "follow_path_server", "follow_topic_server", "get_path_server", "pure_pursuit_path",
-               "pure_pursuit_topic"]
+ROBOT_NODES = ["bumper_relay", "follow_path_server", "follow_topic_server", "get_path_server", "localizer",
+               "pure_pursuit_path", "pure_pursuit_topic"]
 
 
 def load(launch: str, *args: str) -> Tuple[List[str], Dict[str, Any]]:
@@ -63,3 +63,23 @@ def test_the_simulators_twist_relay_takes_a_heartbeat_timeout() -> None:
     assert params["/rosout_disable_topics_generation"] is True
     _nodes, params = load("sim.launch")
     assert params["/robot1/twist_relay/heartbeat_timeout"] == 0.0
+
+
+def test_the_robot_part_localizes_in_its_namespace_unless_told_not_to() -> None:
+    nodes, params = load("flex_nav_robot.launch", "robot:=robot7", "part:=robot")
+    assert "localizer" in nodes
+    assert params["/robot7/localizer/odom_frame_id"] == "robot7/odom"
+    assert params["/robot7/localizer/base_frame_id"] == "robot7/base_footprint"
+    assert params["/robot7/localizer/global_frame_id"] == "map"
+    assert params["/robot7/localizer/recovery_alpha_fast"] == 0.1  # config/localizer.yaml
+    nodes, _params = load("flex_nav_robot.launch", "localizer:=false")
+    assert "localizer" not in nodes
+
+
+def test_the_simulator_launch_leaves_map_to_odom_to_the_localizer_unless_oracle() -> None:
+    _nodes, params = load("sim.launch")
+    assert params["/sim/publish_map_odom"] is False
+    _nodes, params = load("sim.launch", "oracle:=true")
+    assert params["/sim/publish_map_odom"] is True
+    _nodes, params = load("sim_multi.launch")
+    assert params["/sim/publish_map_odom"] is False
