@@ -345,9 +345,9 @@ def start_system(stack: contextlib.ExitStack, args: argparse.Namespace, runs: Li
 
 def start_recorder(stack: contextlib.ExitStack, bag: Path, robots: Sequence[str], env: Mapping[str, str],
                    log_path: Path) -> ManagedProcess:
-    """Record the robots' ground truth, localization estimates, odometry, plans, bumper hits, commands and behavior
-    topics (plus /tf, /map and the world's events) to ``bag``; registered on ``stack`` so that it stops before what was registered
-    earlier."""
+    """Record the robots' ground truth, localization estimates and status, odometry, plans, bumper hits, commands
+    and behavior topics (plus /tf, /map and the world's events) to ``bag``; registered on ``stack`` so that it
+    stops before what was registered earlier."""
     topics = [t for name in robots for t in (
         f"/{name}/ground_truth", f"/{name}/amcl_pose", f"/{name}/odom", f"/{name}/get_path_server/plan",
         f"/{name}/bumper_hits", f"/{name}/localizer/status",

@@ -475,5 +475,5 @@ def test_teleport_world_event(tmp_path: Path) -> None:
         assert "teleported to (-1.00, 1.00, 180 deg)" in events[0].detail
         assert sim.truth_pose("r1")[:2] == pytest.approx((-1.0, 1.0), abs=2e-3)
     bad = make_world(tmp_path, "events:\n  - {at: 0.5, action: teleport, target: r9, pose: [0, 1]}\n")
-    with pytest.raises(ConfigError, match="teleport event target.*r9.*r1"):
+    with pytest.raises(ConfigError, match=r"teleport event target.*r9.*r1"):
         Simulation(bad, [spawn()], seed=0, sensors=NO_CAMERA)
