@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs the benchmarks: installs the bench-only references (bench/requirements.txt) into the project
-# venv, then runs the benches (all but the classifier's by default, or the ones named: bench/run.sh planner).
+# venv, then runs the benches (all but the classifier's and the localization accuracy run by default, or the ones
+# named: bench/run.sh planner localization_accuracy).
 # Each bench prints its figures and the ratio to a reference measured in the same run.
 set -euo pipefail
 REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -11,13 +12,13 @@ if [ ! -x "$PY" ]; then
 fi
 "$PY" -m pip install --quiet --disable-pip-version-check -r "$REPO/bench/requirements.txt"
 names=("$@")
-ALL=(costmap planner pure_pursuit controller_latency engine smach_compat sim)
+ALL=(costmap planner pure_pursuit controller_latency engine smach_compat sim localization)
 if [ "${#names[@]}" -eq 0 ]; then names=("${ALL[@]}"); fi
 status=0
 for name in "${names[@]}"; do
   script="$REPO/bench/bench_${name}.py"
   if [ ! -f "$script" ]; then
-    echo "[bench] no such bench: $script (valid: ${ALL[*]} classifier)" >&2
+    echo "[bench] no such bench: $script (valid: ${ALL[*]} classifier localization_accuracy)" >&2
     exit 2
   fi
   echo "=== bench_${name} ==="
