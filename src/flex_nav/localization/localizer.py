@@ -21,6 +21,7 @@ call sequence (one numpy Generator draws every random number).
 from __future__ import annotations
 
 import math
+import time
 from typing import Optional
 
 import numpy as np
@@ -257,3 +258,18 @@ def _covariance_root(covariance: np.ndarray) -> np.ndarray:
             f"{float(values.min()):.3g}), got {cov.tolist()}"
         )
     return np.asarray(vectors * np.sqrt(np.maximum(values, 0.0)))
+
+
+def warm_up() -> float:
+    """Run every compiled kernel of the localizer once on a tiny map, so that numba compiles them into its cache
+    (or loads them from it); returns the wall time it took [s]. For an installer's warm-up step."""
+    started = time.monotonic()
+    occupancy = np.zeros((20, 20), dtype=np.int8)
+    occupancy[0, :] = 100
+    localizer = Localizer(FilterParams(min_particles=10, max_particles=20), GridMap(occupancy, 0.1), seed=0)
+    localizer.update((0.0, 0.0, 0.0), None)
+    localizer.set_pose((1.0, 1.0, 0.0), np.diag([0.01, 0.01, 0.01]))
+    scan = ScanBeams(np.full(5, 1.0), np.linspace(-2.0, -1.0, 5), (0.0, 0.0, 0.0), 0.1, 5.0)
+    localizer.update((0.0, 0.0, 0.0), scan)
+    localizer.update((0.2, 0.0, 0.0), scan)
+    return time.monotonic() - started

@@ -89,11 +89,6 @@ class FilterParams:
             )
         validation.number(owner, "lost_std_xy", self.lost_std_xy, positive=True, unit="[m]")
 
-    @property
-    def recovery_enabled(self) -> bool:
-        """True if random particles are injected (both recovery rates > 0)."""
-        return self.recovery_alpha_slow > 0.0
-
     @classmethod
     def from_mapping(cls, values: Mapping[str, Any], owner: str) -> FilterParams:
         """Params from a dict (e.g. a node's private ROS parameters); ``owner`` (``"amcl"``, a node name) starts

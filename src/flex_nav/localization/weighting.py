@@ -21,16 +21,6 @@ MIN_ESS_FRACTION_COARSE = 0.1  # [-] the same while the sensor model is widened 
 _BISECTIONS = 12  # the scale is found to 1/4096
 
 
-def log_sum_exp(values: np.ndarray) -> float:
-    """log(sum(exp(values))), without overflow; -inf for an empty or all -inf input."""
-    if values.size == 0:
-        return -math.inf
-    high = float(values.max())
-    if not math.isfinite(high):
-        return high
-    return high + math.log(float(np.exp(values - high).sum()))
-
-
 def ess_fraction(log_weights: np.ndarray) -> float:
     """Effective sample size 1 / sum(w²) of the normalised ``exp(log_weights)``, divided by their number."""
     w = np.exp(log_weights - float(log_weights.max()))

@@ -11,6 +11,7 @@ from flex_nav.exceptions import ConfigError
 from flex_nav.localization import FilterParams, Kernel, Localizer, LocalizerStatus
 from flex_nav.localization.estimate import CONVERGED_FRACTION
 from flex_nav.localization.free_space import FREE_MAX
+from flex_nav.localization.localizer import warm_up
 
 START = (1.5, 1.2, 0.0)
 TIGHT = np.diag([0.02**2, 0.02**2, 0.02**2])
@@ -217,3 +218,7 @@ def test_set_map_keeps_the_particles(grid):
     localizer.set_map(other)
     np.testing.assert_array_equal(localizer.particles, before)
     assert localizer.field.grid is other
+
+
+def test_warm_up_runs_the_kernels():
+    assert 0.0 < warm_up() < 120.0

@@ -47,11 +47,6 @@ def test_bad_values_name_the_field_and_the_value(changes, message):
     assert str(err.value) == message
 
 
-def test_recovery_enabled_with_both_rates():
-    assert not FilterParams().recovery_enabled
-    assert FilterParams(recovery_alpha_slow=0.001, recovery_alpha_fast=0.1).recovery_enabled
-
-
 def test_from_mapping_takes_amcl_names_and_integers_for_floats():
     params = FilterParams.from_mapping({"min_particles": 100, "max_particles": 2000, "kld_err": 0.05,
                                         "update_min_d": 1, "laser_max_beams": 30}, "amcl")

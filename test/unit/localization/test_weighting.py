@@ -9,15 +9,8 @@ from flex_nav.localization.weighting import (
     MIN_ESS_FRACTION,
     MIN_ESS_FRACTION_COARSE,
     ess_fraction,
-    log_sum_exp,
     tempering_scale,
 )
-
-
-def test_log_sum_exp_without_overflow():
-    assert log_sum_exp(np.array([1000.0, 1000.0])) == pytest.approx(1000.0 + math.log(2.0))
-    assert log_sum_exp(np.array([-2000.0, -2000.0 + math.log(3.0)])) == pytest.approx(-2000.0 + math.log(4.0))
-    assert log_sum_exp(np.array([-math.inf])) == -math.inf
 
 
 def test_ess_fraction():
