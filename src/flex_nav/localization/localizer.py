@@ -7,8 +7,9 @@ last one, or a no-motion update was asked for):
    sets the count, low-variance resampling draws the particles, and Augmented MCL replaces some with random
    poses in free space when the scans have lately fitted worse than in the long run;
 2. move every particle by the odometry since the last update (``motion_model``);
-3. weight every particle by the likelihood of the scan (``sensor_model``), and derive the estimate and the
-   status from the weighted cloud.
+3. weight every particle by the likelihood of the scan (``sensor_model``; the Gaussian widened while the cloud
+   is wide, the update tempered where it would leave too few effective particles: ``weighting``), and derive
+   the estimate and the status from the weighted cloud (``estimate``).
 
 Resampling at the start of the next update rather than at the end of this one (the order of Probabilistic
 Robotics' MCL) leaves the weighted cloud in place between updates: the estimate is the weighted mean, which
@@ -36,13 +37,14 @@ from flex_nav.localization.estimate import (
     weighted_mean_and_covariance,
 )
 from flex_nav.localization.free_space import FreeSpace
+from flex_nav.localization.jit import Kernel
 from flex_nav.localization.likelihood_field import LikelihoodField
 from flex_nav.localization.motion_model import decompose, sample_motion
 from flex_nav.localization.params import FilterParams
 from flex_nav.localization.recovery import RecoveryAverages
 from flex_nav.localization.resampling import low_variance_indices
 from flex_nav.localization.scan import ScanBeams, select_beams
-from flex_nav.localization.sensor_model import Kernel, SensorModel, annealed_sigma
+from flex_nav.localization.sensor_model import SensorModel, annealed_sigma
 from flex_nav.localization.weighting import reweigh
 from flex_nav.nav.angles import wrap_angle
 from flex_nav.nav.costmap.grid_map import GridMap
@@ -53,8 +55,9 @@ _PSD_TOLERANCE = 1e-12  # relative: eigenvalues down to -this * largest count as
 
 
 class Localizer:
-    """KLD-sampling Monte Carlo localization; see the module docstring. ``kernel`` picks the sensor model's
-    implementation (the compiled one, or the plain-numpy reference the benchmark compares it with)."""
+    """KLD-sampling Monte Carlo localization; see the module docstring. ``kernel`` picks the implementation of the
+    hot loops (sensor model, motion model, estimate): the compiled one, or the plain-numpy twins the benchmark
+    compares it with (same maths, same results)."""
 
     def __init__(
         self, params: FilterParams, grid: GridMap, seed: Optional[int] = None, *, kernel: Kernel = Kernel.NUMBA

@@ -222,3 +222,14 @@ def test_set_map_keeps_the_particles(grid):
 
 def test_warm_up_runs_the_kernels():
     assert 0.0 < warm_up() < 120.0
+
+
+def test_restart_odometry_applies_no_motion_across_the_break(grid):
+    localizer = started(grid)
+    scan = scan_at(grid, START)
+    assert localizer.update((0.0, 0.0, 0.0), scan)
+    before = localizer.particles.copy()
+    localizer.restart_odometry()
+    assert not localizer.update((-7.0, 3.0, 2.0), scan)  # a restarted odometry source: only stored
+    np.testing.assert_array_equal(localizer.particles, before)
+    assert localizer.update((-6.9, 3.0, 2.0), scan)  # 10 cm from the new reference
