@@ -47,6 +47,8 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     parser.add_argument("--sim-limit", type=float, default=150.0, help="[s] simulated time bound of one goal")
     parser.add_argument("--out", type=Path, default=None, help="output directory (default out/scenarios-<time>)")
     parser.add_argument("--resume", action="store_true", help="keep the runs in --out that have a result.json")
+    parser.add_argument("--localization", choices=("localizer", "oracle"), default="localizer",
+                        help="map -> odom from flex_nav's localizer (default) or the simulator's ground truth")
     args = parser.parse_args(argv)
     args.scenario_list = [s for s in args.scenarios.split(",") if s]
     args.behavior_list = [b for b in args.behaviors.split(",") if b]
@@ -74,7 +76,8 @@ def progress(done: int, total: int, started: float, label: str) -> None:
 
 def run_one(args: argparse.Namespace, world: str, behavior: str, seed: int, out: Path) -> Optional[RunResult]:
     command = [sys.executable, "-m", "flex_nav.apps.scenario_run", "--world", world, "--behavior", behavior,
-               "--seed", str(seed), "--rtf", str(args.rtf), "--sim-limit", str(args.sim_limit), "--out", str(out)]
+               "--seed", str(seed), "--rtf", str(args.rtf), "--sim-limit", str(args.sim_limit), "--out", str(out),
+               "--localization", args.localization]
     out.mkdir(parents=True, exist_ok=True)
     with open(out / "run.log", "w") as log:
         try:
