@@ -34,10 +34,11 @@ the filter's (:class:`flex_nav.localization.FilterParams`: ``min_particles``, ``
   ~transform_timeout float  0.1 [s]         bound on waiting for the odometry and laser transforms
 
 Bad input is logged (throttled) with the field that is wrong and nothing wrong is published: beams that are NaN,
-infinite or outside the range limits are dropped beam by beam; a scan in a frame tf cannot place, a scan before
-the map or before an initial pose, an ``initialpose`` in another frame or with a NaN or unnormalised quaternion or
-a covariance that is not positive semi-definite are ignored; a scan stamped before the previous one (time went
-back: a restarted simulation or a looped bag) restarts the odometry reference instead of applying a jump.
+-inf or outside the range limits are dropped beam by beam (+inf, "no return" in REP 117, is skipped quietly); a
+scan in a frame tf cannot place, a scan before the map or before an initial pose, an ``initialpose`` in another
+frame or with a NaN or unnormalised quaternion or a covariance that is not positive semi-definite are ignored; a
+scan stamped before the previous one (time went back: a restarted simulation or a looped bag) restarts the
+odometry reference instead of applying a jump.
 """
 
 from __future__ import annotations
@@ -83,11 +84,13 @@ def planar_covariance(flat: Sequence[float]) -> np.ndarray:
 
 
 def invalid_beams(beams: ScanBeams) -> int:
-    """How many beams are NaN, infinite or outside [range_min, range_max] (a max-range reading is not bad input:
-    the filter skips it, as amcl's likelihood field does, but it is not worth a warning)."""
+    """How many beams are NaN, -inf or a finite value outside [range_min, range_max]. A +inf beam ("no return
+    within range", REP 117) and a max-range reading are not bad input: the filter skips them, as amcl's likelihood
+    field does, without a warning."""
+    ranges = beams.ranges
     with np.errstate(invalid="ignore"):
-        good = np.isfinite(beams.ranges) & (beams.ranges >= beams.range_min) & (beams.ranges <= beams.range_max)
-    return int(beams.ranges.size - np.count_nonzero(good))
+        good = (ranges == np.inf) | ((ranges >= beams.range_min) & (ranges <= beams.range_max))
+    return int(ranges.size - np.count_nonzero(good))
 
 
 class LocalizerNode:
@@ -269,7 +272,7 @@ class LocalizerNode:
             return
         bad = invalid_beams(beams)
         if bad:
-            self._complain("beams", f"scan: {bad} of {len(beams.ranges)} beams NaN, infinite or outside "
+            self._complain("beams", f"scan: {bad} of {len(beams.ranges)} beams NaN, -inf or outside "
                                     f"[{beams.range_min:g}, {beams.range_max:g}] m: dropped")
         estimate = localizer.estimate()
         self._follow_status(estimate)
