@@ -16,6 +16,8 @@ SUMMARY = re.compile(
     r"goals reached: (?P<reached>\d+)/(?P<total>\d+), bumper recoveries: (?P<recoveries>\d+), "
     r"sim time: (?P<sim>[\d.]+) s, wall time: (?P<wall>[\d.]+) s"
 )
+LOCALIZATION = re.compile(r"localization: median (?P<median>[\d.]+) cm, p95 (?P<p95>[\d.]+) cm, max (?P<max>[\d.]+) cm "
+                          r"\(heading median (?P<heading>[\d.]+) deg")
 RUN_TIMEOUT_S = 420.0  # [s] wall bound of one system run (a lap takes ~45-80 s of wall time here)
 
 
@@ -37,6 +39,11 @@ def test_flex_planner_lap_with_bumper_recovery(tmp_path: Path, profile: str) -> 
     assert summary["reached"] == summary["total"] == "4", output[-5000:]
     assert int(summary["recoveries"]) >= 1, "the low step must be found by the bumper and recovered from"
     assert "BUMPER hit" in output and "/Recovery --done--> CountReplan" in output
+    # driven on flex_nav's localizer (the simulator's oracle is off): the accuracy targets on the lap
+    error = LOCALIZATION.search(output)
+    assert error is not None, output[-3000:]
+    assert float(error["median"]) <= 3.0 and float(error["p95"]) <= 8.0, error.group(0)
+    assert float(error["heading"]) <= 1.0, error.group(0)
     assert (tmp_path / "run.png").stat().st_size > 10_000
     assert (tmp_path / "run.bag").stat().st_size > 10_000
 
