@@ -1,11 +1,13 @@
 """What the localizer reports: a status, and the pose with its covariance from the weighted particles.
 
 The spread of the cloud, the standard deviation along its widest horizontal direction (the square root of the
-larger eigenvalue of the weighted x/y covariance), decides the status after every sensor update: above
-``lost_std_xy`` a localized filter is LOST; a lost one (after global localization, or recovered by random
-particles) is LOCALIZED again once the spread is down to ``CONVERGED_FRACTION * lost_std_xy`` (a margin, so that
-the status does not flicker at the threshold). A pose given by ``set_pose`` is LOCALIZED whatever its
-covariance until the first sensor update has weighed it; global localization starts LOST.
+larger eigenvalue of the weighted x/y covariance), and how well the scans fit the estimate
+(:mod:`~flex_nav.localization.consistency`) decide the status after every sensor update: above ``lost_std_xy``, or
+with the scans no longer fitting, a localized filter is LOST; a lost one (after global localization, or recovered
+by random particles) is LOCALIZED again once the spread is down to ``CONVERGED_FRACTION * lost_std_xy`` (a margin,
+so that the status does not flicker at the threshold) and the scans fit the estimate well and distinctly. A pose
+given by ``set_pose`` is LOCALIZED whatever its covariance until the sensor updates have weighed it; global
+localization starts LOST.
 """
 
 from __future__ import annotations
@@ -26,7 +28,7 @@ _TWO_PI = 2.0 * math.pi
 class LocalizerStatus(enum.Enum):
     UNINITIALIZED = "uninitialized"  # no pose given and no global localization asked for yet
     LOCALIZED = "localized"  # the estimate can be used
-    LOST = "lost"  # the cloud is spread wider than lost_std_xy (or still converging from global localization)
+    LOST = "lost"  # the cloud is spread wider than lost_std_xy, the scans do not fit it, or it is still converging
 
 
 class Estimate(NamedTuple):

@@ -6,10 +6,13 @@ last one, or a no-motion update was asked for):
 1. resample, if the previous update left that due (every ``resample_interval`` sensor updates): KLD-sampling
    sets the count, low-variance resampling draws the particles, and Augmented MCL replaces some with random
    poses in free space when the scans have lately fitted worse than in the long run;
-2. move every particle by the odometry since the last update (``motion_model``);
+2. move every particle by the odometry since the last update (``motion_model``); on a no-motion update (the
+   robot has not moved past the thresholds) jitter the resampled particles instead (``roughening``), so that a
+   cloud standing still does not collapse onto one pose;
 3. weight every particle by the likelihood of the scan (``sensor_model``; the Gaussian widened while the cloud
    is wide, the update tempered where it would leave too few effective particles: ``weighting``), and derive
-   the estimate and the status from the weighted cloud (``estimate``).
+   the estimate from the weighted cloud (``estimate``) and the status from its spread and from how well the
+   scans fit the estimate (``consistency``).
 
 Resampling at the start of the next update rather than at the end of this one (the order of Probabilistic
 Robotics' MCL) leaves the weighted cloud in place between updates: the estimate is the weighted mean, which
@@ -29,6 +32,7 @@ import numpy as np
 
 from flex_nav.exceptions import ConfigError
 from flex_nav.localization import kld
+from flex_nav.localization.consistency import MatchHistory, distinct_fit, match_fraction
 from flex_nav.localization.estimate import (
     CONVERGED_FRACTION,
     Estimate,
@@ -43,7 +47,8 @@ from flex_nav.localization.motion_model import decompose, sample_motion
 from flex_nav.localization.params import FilterParams
 from flex_nav.localization.recovery import RecoveryAverages
 from flex_nav.localization.resampling import low_variance_indices
-from flex_nav.localization.scan import ScanBeams, select_beams
+from flex_nav.localization.roughening import roughen
+from flex_nav.localization.scan import ScanBeams, SelectedBeams, select_beams
 from flex_nav.localization.sensor_model import SensorModel, annealed_sigma
 from flex_nav.localization.weighting import reweigh
 from flex_nav.nav.angles import wrap_angle
@@ -78,6 +83,8 @@ class Localizer:
         self._sensor_updates = 0  # since the last resampling
         self._resample_due = False
         self._last_dropped = 0
+        self._matches = MatchHistory(params.lost_match_updates)
+        self._last_match = math.nan
         self.set_map(grid)
 
     # --- set-up ------------------------------------------------------------------------------------------------
@@ -136,13 +143,16 @@ class Localizer:
             return False
         beams = select_beams(scan, p.laser_max_beams)
         self._last_dropped = beams.dropped
-        if self._resample_due:
+        sigma = annealed_sigma(p.laser_sigma_hit, spread_xy(self._estimate.covariance))
+        resampled = self._resample_due
+        if resampled:
             self._resample()
         sample_motion(self._particles, motion, self._alphas, self._rng, self.kernel)
+        if resampled and not moved:
+            roughen(self._particles, sigma, self._rng)
         self._odom_filter = odom
         if beams.x.size == 0:  # nothing to weigh with: the motion is applied, the sensor update waits
             return False
-        sigma = annealed_sigma(p.laser_sigma_hit, spread_xy(self._estimate.covariance))
         log_likelihood = self.sensor_model.log_likelihoods(
             self._particles, beams, float(scan.range_max), sigma, self.kernel
         )
@@ -153,7 +163,7 @@ class Localizer:
         self._sensor_updates += 1
         if self._sensor_updates >= p.resample_interval:
             self._resample_due = True
-        self._refresh_estimate()
+        self._refresh_estimate(beams, float(scan.range_max))
         return True
 
     def estimate(self) -> Estimate:
@@ -185,6 +195,18 @@ class Localizer:
     def status(self) -> LocalizerStatus:
         return self._status
 
+    @property
+    def match_fraction(self) -> float:
+        """Share of the last sensor update's beams that fit the map from its estimate (``consistency``); NaN before
+        the first update after a start."""
+        return self._last_match
+
+    @property
+    def match_fraction_mean(self) -> float:
+        """Mean match fraction over the consecutive updates of a tight cloud that the status is judged on (up to
+        ``lost_match_updates`` of them); NaN when there are none (the cloud is wide, or no update yet)."""
+        return self._matches.mean()
+
     # --- internals ----------------------------------------------------------------------------------------------
     def _start(self, particles: np.ndarray, status: LocalizerStatus) -> None:
         self._particles = np.ascontiguousarray(particles, dtype=np.float64)
@@ -196,7 +218,9 @@ class Localizer:
         self._sensor_updates = 0
         self._resample_due = False
         self._recovery.reset()
-        self._refresh_estimate(judge=False)  # a pose given is trusted until the scans have had a say
+        self._matches.clear()
+        self._last_match = math.nan
+        self._refresh_estimate()  # a pose given is trusted until the scans have had a say
 
     def _resample(self) -> None:
         p = self.params
@@ -219,15 +243,34 @@ class Localizer:
         self._sensor_updates = 0
         self._resample_due = False
 
-    def _refresh_estimate(self, judge: bool = True) -> None:
-        """The estimate of the current weighted cloud; with ``judge``, the status from its spread too."""
+    def _refresh_estimate(self, beams: Optional[SelectedBeams] = None, range_max: float = math.inf) -> None:
+        """The estimate of the current weighted cloud; after a sensor update with ``beams``, the status too.
+
+        LOCALIZED -> LOST when the spread exceeds lost_std_xy, or when the scans have stopped fitting the estimate
+        (mean match fraction of ``lost_match_updates`` consecutive updates of a tight cloud below
+        lost_match_fraction). LOST -> LOCALIZED when the spread is down to ``CONVERGED_FRACTION * lost_std_xy`` and
+        the mean match fraction of as many updates reaches converged_match_fraction, and the scan fits the estimate
+        distinctly better than the poses around it (``consistency.distinct_fit``)."""
+        p = self.params
         pose, covariance = weighted_mean_and_covariance(self._particles, self._weights, self.kernel)
         spread = spread_xy(covariance)
-        lost = self.params.lost_std_xy
-        if judge and self._status is LocalizerStatus.LOCALIZED and spread > lost:
-            self._status = LocalizerStatus.LOST
-        elif judge and self._status is LocalizerStatus.LOST and spread <= CONVERGED_FRACTION * lost:
-            self._status = LocalizerStatus.LOCALIZED
+        if beams is not None:
+            self._last_match = match_fraction(self.field, pose, beams, p.lost_match_distance)
+            tight = spread <= CONVERGED_FRACTION * p.lost_std_xy
+            if tight and math.isfinite(self._last_match):
+                self._matches.add(self._last_match)
+            else:
+                self._matches.clear()
+            judged = self._matches.full
+            fit = self._matches.mean()
+            if self._status is LocalizerStatus.LOCALIZED:
+                if spread > p.lost_std_xy or (judged and fit < p.lost_match_fraction):
+                    self._status = LocalizerStatus.LOST
+            elif (
+                self._status is LocalizerStatus.LOST and tight and judged and fit >= p.converged_match_fraction
+                and distinct_fit(self.sensor_model, pose, beams, range_max, self.kernel)
+            ):
+                self._status = LocalizerStatus.LOCALIZED
         self._estimate = Estimate(pose, covariance, len(self._particles), self._status)
 
 

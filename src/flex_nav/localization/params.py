@@ -15,7 +15,7 @@ from typing import Any, Dict, Mapping
 from flex_nav import validation
 from flex_nav.exceptions import ConfigError, choices_message
 
-_INTEGERS = ("min_particles", "max_particles", "laser_max_beams", "resample_interval")
+_INTEGERS = ("min_particles", "max_particles", "laser_max_beams", "resample_interval", "lost_match_updates")
 
 
 @dataclass(frozen=True)
@@ -53,6 +53,15 @@ class FilterParams:
     recovery_alpha_fast: float = 0.0  # [-] e.g. 0.1
     # --- status (not in amcl)
     lost_std_xy: float = 0.5  # [m] spread of the cloud above which the filter reports itself lost
+    # scan consistency (consistency.py): the share of beams ending within lost_match_distance of a mapped obstacle,
+    # seen from the estimate, averaged over lost_match_updates updates of a tight cloud. Below lost_match_fraction a
+    # localized filter is lost (a kidnapped robot); a lost one is localized again only at converged_match_fraction.
+    # On the right pose the lab lap's worst mean was 0.78 (TurtleBot 4 in people crossing, s6); a kidnapped cloud
+    # fell to 0.1-0.3 (bench_localization_accuracy.py, bench/README.md)
+    lost_match_distance: float = 0.1  # [m] (two cells of a 5 cm map: map rasterisation, range noise, a cm of error)
+    lost_match_fraction: float = 0.5  # [-]
+    lost_match_updates: int = 5  # [updates] (0.5 s at 0.5 m/s with an update every 5 cm; every scan standing still)
+    converged_match_fraction: float = 0.85  # [-]
 
     def __post_init__(self) -> None:
         owner = "localization"
@@ -88,6 +97,16 @@ class FilterParams:
                 f"particles, or both 0 to disable them, got {slow}"
             )
         validation.number(owner, "lost_std_xy", self.lost_std_xy, positive=True, unit="[m]")
+        validation.number(owner, "lost_match_distance", self.lost_match_distance, positive=True, unit="[m]")
+        validation.number(owner, "lost_match_fraction", self.lost_match_fraction, minimum=0.0, maximum=1.0)
+        validation.integer(owner, "lost_match_updates", self.lost_match_updates, minimum=1)
+        validation.number(owner, "converged_match_fraction", self.converged_match_fraction, minimum=0.0,
+                          maximum=1.0)
+        if self.converged_match_fraction < self.lost_match_fraction:
+            raise ConfigError(
+                f"{owner}: converged_match_fraction must be >= lost_match_fraction ({self.lost_match_fraction}), "
+                f"got {self.converged_match_fraction}"
+            )
 
     @classmethod
     def from_mapping(cls, values: Mapping[str, Any], owner: str) -> FilterParams:

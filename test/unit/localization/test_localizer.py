@@ -12,6 +12,7 @@ from flex_nav.localization import FilterParams, Kernel, Localizer, LocalizerStat
 from flex_nav.localization.estimate import CONVERGED_FRACTION
 from flex_nav.localization.free_space import FREE_MAX
 from flex_nav.localization.localizer import warm_up
+from flex_nav.nav.planar import compose_poses, inverse_pose
 
 START = (1.5, 1.2, 0.0)
 TIGHT = np.diag([0.02**2, 0.02**2, 0.02**2])
@@ -233,3 +234,98 @@ def test_restart_odometry_applies_no_motion_across_the_break(grid):
     assert not localizer.update((-7.0, 3.0, 2.0), scan)  # a restarted odometry source: only stored
     np.testing.assert_array_equal(localizer.particles, before)
     assert localizer.update((-6.9, 3.0, 2.0), scan)  # 10 cm from the new reference
+
+
+def kidnapped(grid, params=None, seed=0, updates=12):
+    """A filter tracking at START, then the robot is carried to another pose: odometry moves on 6 cm a step as
+    if it were still driving east from START, the scans come from the new place (driving north). Returns the filter
+    and its status after each update."""
+    localizer = started(grid, params, seed=seed)
+    rng = np.random.default_rng(seed)
+    localizer.update((0.0, 0.0, 0.0), scan_at(grid, START))
+    for i in range(1, 6):
+        assert localizer.update((0.06 * i, 0.0, 0.0), scan_at(grid, (START[0] + 0.06 * i, START[1], 0.0), rng, 0.01))
+    assert localizer.status is LocalizerStatus.LOCALIZED
+    elsewhere = (4.0, 1.2, math.pi / 2)
+    statuses = []
+    for i in range(1, updates + 1):
+        odom = (0.3 + 0.06 * i, 0.0, 0.0)
+        truth = (elsewhere[0], elsewhere[1] + 0.06 * i, elsewhere[2])
+        assert localizer.update(odom, scan_at(grid, truth, rng, 0.01))
+        statuses.append(localizer.status)
+    return localizer, statuses
+
+
+def test_kidnapped_robot_is_lost_within_the_match_window(grid):
+    localizer, statuses = kidnapped(grid)
+    first_lost = statuses.index(LocalizerStatus.LOST)
+    assert first_lost <= FilterParams().lost_match_updates  # the window of fractions, no more
+    assert localizer.match_fraction < FilterParams().lost_match_fraction
+
+
+def test_kidnapped_tight_cloud_stays_lost_while_the_scans_do_not_fit(grid):
+    localizer, statuses = kidnapped(grid, updates=30)
+    first_lost = statuses.index(LocalizerStatus.LOST)
+    assert all(s is LocalizerStatus.LOST for s in statuses[first_lost:]) or (
+        # it may find the new place by itself (the cloud spread); then only where the scans fit
+        localizer.match_fraction_mean >= FilterParams().converged_match_fraction
+    )
+
+
+def test_spread_rule_alone_misses_the_kidnap(grid):
+    params = FilterParams(lost_match_fraction=0.0, converged_match_fraction=0.0)  # the match rule off
+    localizer, statuses = kidnapped(grid, params, updates=8)
+    assert LocalizerStatus.LOST not in statuses  # what the match rule is for: the cloud stays tight
+    assert localizer.match_fraction < FilterParams().lost_match_fraction
+
+
+def test_unmapped_things_blocking_part_of_the_scan_are_no_kidnap(grid):
+    localizer = started(grid)
+    rng = np.random.default_rng(4)
+    poses = path_poses(LAP[:2])
+    odom = (0.0, 0.0, 0.0)
+    for before, after in zip(poses[:-1], poses[1:]):
+        odom = compose_poses(odom, compose_poses(inverse_pose(before), after))
+        scan = scan_at(grid, after, rng, 0.01)
+        ranges = scan.ranges.copy()
+        ranges[100:190] = np.minimum(ranges[100:190], 0.6)  # a third of the view blocked 60 cm ahead (a person)
+        localizer.update(odom, scan._replace(ranges=ranges))
+        assert localizer.status is LocalizerStatus.LOCALIZED
+    assert 0.5 < localizer.match_fraction_mean < 0.8
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_global_localization_standing_still_converges_on_the_pose(grid, seed):
+    localizer = Localizer(FilterParams(), grid, seed=seed)
+    localizer.update((0.0, 0.0, 0.0), None)
+    localizer.global_localization()
+    rng = np.random.default_rng(seed)
+    for _ in range(100):
+        localizer.request_nomotion_update()
+        assert localizer.update((0.0, 0.0, 0.0), scan_at(grid, START, rng, 0.01))
+        if localizer.status is LocalizerStatus.LOCALIZED:
+            break
+    assert localizer.status is LocalizerStatus.LOCALIZED
+    x, y, yaw = localizer.estimate().pose
+    assert math.hypot(x - START[0], y - START[1]) < 0.05 and abs(yaw - START[2]) < math.radians(3.0)
+    assert localizer.match_fraction_mean >= FilterParams().converged_match_fraction
+
+
+def test_lost_filter_with_a_tight_cloud_returns_only_where_the_scans_fit(grid):
+    # a tight cloud 30 cm off the robot, declared lost: the cloud is tight but the scans do not fit it
+    localizer = started(grid, pose=(START[0] + 0.3, START[1], 0.0))
+    localizer._status = LocalizerStatus.LOST  # as after a kidnap
+    rng = np.random.default_rng(1)
+    statuses = []
+    for _ in range(40):
+        localizer.request_nomotion_update()
+        localizer.update((0.0, 0.0, 0.0), scan_at(grid, START, rng, 0.01))
+        x, _, _ = localizer.estimate().pose
+        statuses.append((localizer.status, abs(x - START[0])))
+    assert all(status is LocalizerStatus.LOST for status, _ in statuses[:10])
+    assert all(error < 0.1 for status, error in statuses if status is LocalizerStatus.LOCALIZED)
+
+
+def test_match_fraction_is_nan_before_a_sensor_update(grid):
+    localizer = started(grid)
+    assert math.isnan(localizer.match_fraction) and math.isnan(localizer.match_fraction_mean)

@@ -39,6 +39,13 @@ def test_defaults_are_valid_and_frozen():
          "localization: recovery_alpha_slow must be > 0 and < recovery_alpha_fast (0.1) for random particles, "
          "or both 0 to disable them, got 0.0"),
         ({"lost_std_xy": 0.0}, "localization: lost_std_xy must be > 0 [m], got 0.0"),
+        ({"lost_match_distance": 0.0}, "localization: lost_match_distance must be > 0 [m], got 0.0"),
+        ({"lost_match_fraction": 1.5}, "localization: lost_match_fraction must be <= 1.0, got 1.5"),
+        ({"lost_match_updates": 0}, "localization: lost_match_updates must be an integer >= 1, got 0"),
+        ({"lost_match_updates": 5.0}, "localization: lost_match_updates must be an integer >= 1, got 5.0"),
+        ({"converged_match_fraction": -0.1}, "localization: converged_match_fraction must be >= 0.0, got -0.1"),
+        ({"lost_match_fraction": 0.7, "converged_match_fraction": 0.6},
+         "localization: converged_match_fraction must be >= lost_match_fraction (0.7), got 0.6"),
     ],
 )
 def test_bad_values_name_the_field_and_the_value(changes, message):
@@ -49,10 +56,12 @@ def test_bad_values_name_the_field_and_the_value(changes, message):
 
 def test_from_mapping_takes_amcl_names_and_integers_for_floats():
     params = FilterParams.from_mapping({"min_particles": 100, "max_particles": 2000, "kld_err": 0.05,
-                                        "update_min_d": 1, "laser_max_beams": 30}, "amcl")
+                                        "update_min_d": 1, "laser_max_beams": 30, "lost_match_updates": 3,
+                                        "lost_match_fraction": 0}, "amcl")
     assert params.min_particles == 100 and params.max_particles == 2000
     assert params.update_min_d == 1.0 and isinstance(params.update_min_d, float)
     assert params.laser_max_beams == 30
+    assert params.lost_match_updates == 3 and params.lost_match_fraction == 0.0
 
 
 def test_from_mapping_unknown_key_lists_the_valid_names():
