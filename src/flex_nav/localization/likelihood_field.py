@@ -44,6 +44,7 @@ class LikelihoodField:
         self.grid = grid
         self.max_dist = float(max_dist)
         occupied = grid.occupancy >= OCCUPIED_MIN
+        self.occupied = occupied  # (H, W) bool
         self.known = grid.occupancy >= 0  # (H, W) bool: False for unknown cells
         # (H, W) float64 [m]: centre to the nearest occupied cell's centre (0 on occupied cells)
         self.distance = _distance_to_zeros(~occupied, grid.resolution, self.max_dist)

@@ -32,7 +32,13 @@ import numpy as np
 
 from flex_nav.exceptions import ConfigError
 from flex_nav.localization import kld
-from flex_nav.localization.consistency import MatchHistory, distinct_fit, match_fraction
+from flex_nav.localization.consistency import (
+    CONVERGED_CLEAR_FRACTION,
+    MatchHistory,
+    clear_fraction,
+    distinct_fit,
+    match_fraction,
+)
 from flex_nav.localization.estimate import (
     CONVERGED_FRACTION,
     Estimate,
@@ -249,8 +255,9 @@ class Localizer:
         LOCALIZED -> LOST when the spread exceeds lost_std_xy, or when the scans have stopped fitting the estimate
         (mean match fraction of ``lost_match_updates`` consecutive updates of a tight cloud below
         lost_match_fraction). LOST -> LOCALIZED when the spread is down to ``CONVERGED_FRACTION * lost_std_xy`` and
-        the mean match fraction of as many updates reaches converged_match_fraction, and the scan fits the estimate
-        distinctly better than the poses around it (``consistency.distinct_fit``)."""
+        the mean match fraction of as many updates reaches converged_match_fraction, the scan fits the estimate
+        distinctly better than the poses around it (``consistency.distinct_fit``) and its rays do not pass through
+        walls (``consistency.clear_fraction``)."""
         p = self.params
         pose, covariance = weighted_mean_and_covariance(self._particles, self._weights, self.kernel)
         spread = spread_xy(covariance)
@@ -269,6 +276,7 @@ class Localizer:
             elif (
                 self._status is LocalizerStatus.LOST and tight and judged and fit >= p.converged_match_fraction
                 and distinct_fit(self.sensor_model, pose, beams, range_max, self.kernel)
+                and clear_fraction(self.field, pose, beams, p.lost_match_distance) >= CONVERGED_CLEAR_FRACTION
             ):
                 self._status = LocalizerStatus.LOCALIZED
         self._estimate = Estimate(pose, covariance, len(self._particles), self._status)

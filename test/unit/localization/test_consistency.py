@@ -8,7 +8,7 @@ import pytest
 from unit.localization.room import RANGE_MAX, asymmetric_room, scan_at
 
 from flex_nav.localization import FilterParams, GridMap, Kernel
-from flex_nav.localization.consistency import MatchHistory, distinct_fit, match_fraction
+from flex_nav.localization.consistency import MatchHistory, clear_fraction, distinct_fit, match_fraction
 from flex_nav.localization.likelihood_field import LikelihoodField
 from flex_nav.localization.scan import SelectedBeams, select_beams
 from flex_nav.localization.sensor_model import SensorModel
@@ -86,6 +86,28 @@ def test_distinct_fit_refuses_a_pose_a_corridor_does_not_pin():
     beams = beams_at(corridor, pose)
     assert match_fraction(model.field, pose, beams, 0.1) == pytest.approx(1.0)
     assert not distinct_fit(model, pose, beams, RANGE_MAX)
+
+
+def test_rays_are_clear_on_the_true_pose_not_through_a_wall(grid, field):
+    beams = beams_at(grid, START)
+    assert clear_fraction(field, START, beams, 0.1) == pytest.approx(1.0)
+    # 30 cm south: the beams that end on the south wall now end beyond it, their rays through it
+    shifted = clear_fraction(field, (START[0], START[1] - 0.3, 0.0), beams, 0.1)
+    assert 0.3 < shifted < 0.9
+    assert math.isnan(clear_fraction(field, START, SelectedBeams(np.empty(0), np.empty(0), 0), 0.1))
+
+
+def test_a_thin_wall_fits_from_behind_but_the_rays_cross_it():
+    occupancy = np.zeros((60, 60), dtype=np.int8)
+    occupancy[40, :] = 100  # a wall one cell thick along y = 2.0 .. 2.05 m, free on both sides
+    thin = GridMap(occupancy, 0.05)
+    field = LikelihoodField(thin, 2.0)
+    truth = (1.5, 1.5, math.pi / 2)
+    beams = beams_at(thin, truth)
+    behind = (1.5, 1.6, math.pi / 2)  # the end points 10 cm further on: on the wall's far edge
+    assert match_fraction(field, behind, beams, 0.1) == pytest.approx(1.0)
+    assert clear_fraction(field, truth, beams, 0.1) == pytest.approx(1.0)
+    assert clear_fraction(field, behind, beams, 0.1) < 0.75
 
 
 def test_history_keeps_the_last_fractions():
