@@ -101,6 +101,7 @@ class Localizer:
         self.sensor_model = SensorModel(self.params, self.field)
         self.free_space = FreeSpace(grid)
         self._recovery.reset()
+        self._matches.clear()  # fractions measured on the old map
 
     def set_pose(self, pose: Pose2D, covariance: np.ndarray) -> None:
         """Start from a Gaussian cloud around ``pose`` (map frame) for the robot where the latest odometry given to
