@@ -329,3 +329,11 @@ def test_lost_filter_with_a_tight_cloud_returns_only_where_the_scans_fit(grid):
 def test_match_fraction_is_nan_before_a_sensor_update(grid):
     localizer = started(grid)
     assert math.isnan(localizer.match_fraction) and math.isnan(localizer.match_fraction_mean)
+
+
+def test_set_map_forgets_the_match_fractions(grid):
+    localizer = started(grid)
+    localizer.update((0.0, 0.0, 0.0), scan_at(grid, START))
+    assert localizer.match_fraction_mean == pytest.approx(1.0)
+    localizer.set_map(grid)
+    assert math.isnan(localizer.match_fraction_mean)
