@@ -14,15 +14,18 @@ Services ``global_localization`` and ``request_nomotion_update`` (std_srvs/Empty
 
 The node never publishes a transform it does not believe: before an initial pose (``initialpose``,
 ``~initial_pose_*`` parameters or ``global_localization``) and while the filter reports itself lost (its
-particle spread beyond ``~lost_std_xy``) it publishes no ``map -> odom``, so the controllers'
-``localization_timeout`` stops the robot. With ``~lost_recovery`` ``global`` (the default) a lost filter
-spreads its particles over the free space and runs a sensor update on every scan until it converges again.
+particle spread beyond ``~lost_std_xy``, or the scans no longer end on the map: fewer than ``~lost_match_fraction``
+of the beams within ``~lost_match_distance`` over ``~lost_match_updates`` updates) it publishes no
+``map -> odom``, so the controllers' ``localization_timeout`` stops the robot. With ``~lost_recovery`` ``global``
+(the default) a lost filter spreads its particles over the free space and runs a sensor update on every scan
+until it converges again.
 
 Private parameters (amcl's names and units where the meaning is the same; see the README's "Localization"):
 the filter's (:class:`flex_nav.localization.FilterParams`: ``min_particles``, ``max_particles``, ``kld_err``,
 ``kld_z``, ``odom_alpha1..4``, ``laser_z_hit``, ``laser_z_rand``, ``laser_sigma_hit`` [m],
 ``laser_likelihood_max_dist`` [m], ``laser_max_beams``, ``update_min_d`` [m], ``update_min_a`` [rad],
-``resample_interval``, ``recovery_alpha_slow``, ``recovery_alpha_fast``, ``lost_std_xy`` [m]) and
+``resample_interval``, ``recovery_alpha_slow``, ``recovery_alpha_fast``, ``lost_std_xy`` [m],
+``lost_match_distance`` [m], ``lost_match_fraction``, ``lost_match_updates``, ``converged_match_fraction``) and
   ~global_frame_id  str    map             ~odom_frame_id str  odom      ~base_frame_id str  base_footprint
   ~transform_tolerance  float  0.1 [s]      post-dating of map -> odom
   ~tf_broadcast      bool   true            publish map -> odom (false: estimate only, as amcl's)
@@ -300,14 +303,23 @@ class LocalizerNode:
         if estimate.status is not LocalizerStatus.LOST or self._global_running:
             return
         recover = self.lost_recovery == "global"
-        rospy.logerr("localizer: LOST: particle spread %.2f m > %.2f m (~lost_std_xy); map -> odom no longer "
-                     "published%s", std_xy, self.params.lost_std_xy, "; global localization" if recover else "")
-        self._set_status(f"lost: particle spread {std_xy:.2f} m > {self.params.lost_std_xy:.2f} m"
-                         + ("; global localization" if recover else ""))
+        assert self._filter is not None
+        why = self._lost_reason(std_xy, self._filter.match_fraction_mean)
+        rospy.logerr("localizer: LOST: %s; map -> odom no longer published%s", why,
+                     "; global localization" if recover else "")
+        self._set_status(f"lost: {why}" + ("; global localization" if recover else ""))
         if recover:
             assert self._filter is not None
             self._filter.global_localization()
             self._global_running = True
+
+    def _lost_reason(self, std_xy: float, match_mean: float) -> str:
+        """Which rule declared the filter lost: the cloud's spread or scans that stopped matching the map."""
+        p = self.params
+        if std_xy > p.lost_std_xy:
+            return f"particle spread {std_xy:.2f} m > {p.lost_std_xy:.2f} m (~lost_std_xy)"
+        return (f"only {match_mean:.0%} of the beams end within {p.lost_match_distance:.2f} m of the map "
+                f"(< {p.lost_match_fraction:.0%} over {p.lost_match_updates} updates, ~lost_match_fraction)")
 
     def _laser_pose(self, frame: str) -> Optional[Pose2D]:
         frame = frame.lstrip("/")
