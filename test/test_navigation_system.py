@@ -4,6 +4,7 @@ or by the operator scenario script. Each test starts and stops its own private m
 
 from __future__ import annotations
 
+import math
 import re
 import sys
 from pathlib import Path
@@ -92,7 +93,7 @@ def test_low_autonomy_waits_for_the_operator_and_preempt_stops_the_robot(tmp_pat
     assert "SCENARIO PASSED" in outcome.output
 
 
-KIDNAP_AT_S = 35.0  # [s] simulated: on the east leg (g1 -> g2), about 3 m from the teleport's target
+KIDNAP_AT_S = 35.0  # [s] simulated: near g2 on the lap, about 4 m from the teleport's target
 KIDNAP_TO = (4.0, 1.9, 90.0)  # [m, m, deg] between the low step and the island
 STOPPED_MPS = 0.02  # [m/s] ground-truth speed counted as standing still
 
@@ -116,12 +117,22 @@ def test_kidnapped_robot_is_lost_stops_and_is_found_again(tmp_path: Path) -> Non
                               msg.twist.twist.linear.x))
     lost = [t for t, text in statuses if text.startswith("lost") and t > KIDNAP_AT_S]
     assert lost, f"never reported lost after the kidnapping at {KIDNAP_AT_S} s: {statuses}\n{output[-4000:]}"
-    found = [t for t, text in statuses if text.startswith("localized") and t > lost[0]]
+    assert lost[0] - KIDNAP_AT_S <= 1.5, f"lost only {lost[0] - KIDNAP_AT_S:.1f} s after the kidnapping"
+    found = [(t, text) for t, text in statuses if text.startswith("localized") and t > lost[0]]
     assert found, f"not localized again after {lost[0]:.1f} s: {statuses}\n{output[-4000:]}"
-    # stopped within the controllers' localization_timeout (1 s) + braking after it was lost, until found again
-    standing = [abs(v) for t, _x, _y, v in truth if lost[0] + 2.0 < t < found[0]]
+    found_at = found[0][0]
+    # little motion on the wrong pose: from the kidnapping until found again, then none once the controllers'
+    # localization_timeout (1 s, + 0.1 s post-dating + 0.5 s braking) has passed
+    path = [(x, y) for t, x, y, _v in truth if KIDNAP_AT_S + 0.05 < t < found_at]
+    driven = sum(math.dist(a, b) for a, b in zip(path, path[1:]))
+    assert driven < 0.5, f"drove {driven:.2f} m between the kidnapping and the new fix"
+    standing = [abs(v) for t, _x, _y, v in truth if lost[0] + 1.6 < t < found_at]
     assert all(v < STOPPED_MPS for v in standing), f"moved while lost: max {max(standing):.3f} m/s"
+    # the new fix is right (the status names the pose it found)
+    fx, fy = (float(v) for v in found[0][1].split("(")[1].split(",")[:2])
+    tx, ty = next((x, y) for t, x, y, _v in truth if t >= found_at)
+    assert math.hypot(fx - tx, fy - ty) < 0.10, f"relocalized at ({fx}, {fy}), truly at ({tx:.2f}, {ty:.2f})"
     # the rest of the lap is driven on the recovered pose (the goal it was on may be given up while lost)
     assert int(summary["reached"]) >= 3, output[-5000:]
-    print(f"kidnapped at {KIDNAP_AT_S:.1f} s, lost at {lost[0]:.1f} s, found at {found[0]:.1f} s; goals "
-          f"{summary['reached']}/{summary['total']}; {output.strip().splitlines()[-1]}")
+    print(f"kidnapped at {KIDNAP_AT_S:.1f} s, lost at {lost[0]:.1f} s, found at {found_at:.1f} s, driven "
+          f"{driven:.2f} m; goals {summary['reached']}/{summary['total']}; {output.strip().splitlines()[-1]}")
