@@ -3,9 +3,13 @@
 Built by ``pure_pursuit_path`` / ``pure_pursuit_topic`` when ``~yield_to_people`` is true. Subscribes the
 scan (``~people_tracker/scan_topic``, "scan") and, unless ``~people_tracker/map_topic`` is "", the static map
 (latched OccupancyGrid, "map"): scan points within ``~people_tracker/static_tolerance`` [m] (0.15) of a mapped
-obstacle are not tracked. Scan points are carried into the controller's global frame by tf at the scan's
-stamp, then tracked by :class:`flex_nav.perception.moving_obstacles.MovingObstacleTracker` (its parameters by
-name under ``~people_tracker/``). The yield rule's parameters are :class:`flex_nav.nav.control.yielding.YieldParams`
+obstacle are not tracked. Scan points are carried by tf, at the scan's stamp, into the tracking frame
+(``~people_tracker/tracking_frame``; "", the default, is the controller's global frame) and tracked there by
+:class:`flex_nav.perception.moving_obstacles.MovingObstacleTracker` (its parameters by name under
+``~people_tracker/``). The launch files name the robot's odometry frame: a localizer corrects ``map -> odom`` by
+a centimetre or two at every scan, which in the global frame would look like 0.1-0.2 m/s of motion of
+everything the scan sees; the static mask and the tracks handed to the controller are carried into the global
+frame (the newest transform). The yield rule's parameters are :class:`flex_nav.nav.control.yielding.YieldParams`
 by name under ``~yielding/``; ``robot_radius_m`` defaults to the local costmap's inscribed radius and
 ``speed_mps`` to pure pursuit's ``desired_linear_vel``. Publishes std_msgs/Bool ``~yielding``: True on every
 control tick spent giving way, False once when that ends (for a progress monitor, see ``StuckMonitorState``).
@@ -14,6 +18,7 @@ control tick spent giving way, False once when that ends (for a progress monitor
 from __future__ import annotations
 
 import dataclasses
+import math
 import threading
 from typing import List, Optional, Tuple
 
@@ -35,8 +40,15 @@ from flex_nav.ros.params import param_float, param_str, reject_unknown
 TRACKER_NS = "~people_tracker/"
 YIELD_NS = "~yielding"
 TRACKER_FIELDS = tuple(f.name for f in dataclasses.fields(TrackerParams))
-TRACKER_PARAMETERS = ("scan_topic", "map_topic", "static_tolerance", *TRACKER_FIELDS)
+TRACKER_PARAMETERS = ("scan_topic", "map_topic", "static_tolerance", "tracking_frame", *TRACKER_FIELDS)
 TF_WAIT_S = 0.1  # [s] wait for the scan's transform
+
+
+def _carried(pose: Tuple[float, float, float], xs: np.ndarray, ys: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
+    """Points (xs, ys) [m] given in a frame whose pose is ``pose`` (x, y, yaw), in that pose's parent frame."""
+    x, y, yaw = pose
+    c, s = math.cos(yaw), math.sin(yaw)
+    return x + c * xs - s * ys, y + s * xs + c * ys
 
 
 def yield_rule(robot_radius_m: float, speed_mps: float) -> YieldRule:
@@ -58,6 +70,8 @@ class MovingObstaclesROS:
         reject_unknown(TRACKER_NS, TRACKER_PARAMETERS)
         self.tf_buffer = tf_buffer
         self.global_frame = global_frame
+        self.tracking_frame = param_str(TRACKER_NS + "tracking_frame", "").lstrip("/") or global_frame.lstrip("/")
+        self.static_mask: Optional[StaticMask] = None  # in the global frame
         self.static_tolerance_m = param_float(TRACKER_NS + "static_tolerance", 0.15, 0.0, 5.0)
         raw = {name: rospy.get_param(TRACKER_NS + name) for name in TRACKER_FIELDS
                if rospy.has_param(TRACKER_NS + name)}
@@ -86,28 +100,40 @@ class MovingObstaclesROS:
             rospy.logwarn(f"people tracker: map ignored: {err}")
             return
         with self.lock:
-            self.tracker.static_mask = mask
+            self.static_mask = mask
 
     def _on_scan(self, msg: LaserScanMsg) -> None:
         try:
-            tf = self.tf_buffer.lookup_transform(self.global_frame, msg.header.frame_id, msg.header.stamp,
-                                                 rospy.Duration(TF_WAIT_S))
+            laser = self._planar(self.tracking_frame, msg.header.frame_id, msg.header.stamp)
+            to_global = self._planar(self.global_frame, self.tracking_frame, msg.header.stamp)
         except (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.ExtrapolationException) as err:
             rospy.logwarn_throttle(5.0, f"people tracker: scan ignored: no transform {self.global_frame} -> "
-                                        f"{msg.header.frame_id}: {err}")
+                                        f"{self.tracking_frame} -> {msg.header.frame_id}: {err}")
             return
-        t, q = tf.transform.translation, tf.transform.rotation
-        yaw = yaw_of_quaternion(q.x, q.y, q.z, q.w)
+        lx, ly, lyaw = laser
         ranges = np.asarray(msg.ranges, dtype=np.float64)
-        angles = yaw + msg.angle_min + msg.angle_increment * np.arange(ranges.size)
+        angles = lyaw + msg.angle_min + msg.angle_increment * np.arange(ranges.size)
         with np.errstate(invalid="ignore"):
             hit = (ranges >= msg.range_min) & (ranges < msg.range_max)
         dist = np.where(hit, ranges, np.nan)
-        xs = t.x + dist * np.cos(angles)
-        ys = t.y + dist * np.sin(angles)
+        xs = lx + dist * np.cos(angles)
+        ys = ly + dist * np.sin(angles)
         full_circle = abs(msg.angle_increment) * (ranges.size + 1) >= 2.0 * np.pi - 1e-6
         with self.lock:
-            self.tracker.update_scan(xs, ys, (t.x, t.y), msg.header.stamp.to_sec(), wrap=bool(full_circle))
+            mask = self.static_mask
+        if mask is not None and xs.size:  # a dropped point is a gap (NaN): the beam order is kept
+            gx, gy = _carried(to_global, xs, ys)
+            keep = ~mask.explained(gx, gy)
+            xs, ys = np.where(keep, xs, np.nan), np.where(keep, ys, np.nan)
+        with self.lock:
+            self.tracker.update_scan(xs, ys, (lx, ly), msg.header.stamp.to_sec(), wrap=bool(full_circle))
+
+    def _planar(self, target: str, source: str, stamp: rospy.Time) -> Tuple[float, float, float]:
+        if target == source.lstrip("/"):
+            return (0.0, 0.0, 0.0)
+        tf = self.tf_buffer.lookup_transform(target, source, stamp, rospy.Duration(TF_WAIT_S))
+        t, q = tf.transform.translation, tf.transform.rotation
+        return (t.x, t.y, yaw_of_quaternion(q.x, q.y, q.z, q.w))
 
     def report(self, yielded: Optional[YieldDecision]) -> None:
         """One control tick's yield decision (None: not giving way): ``~yielding`` True while giving way (every
@@ -124,7 +150,17 @@ class MovingObstaclesROS:
             self._last_kind = kind
 
     def tracks(self) -> List[Track]:
-        """The confirmed tracks predicted to now (``rospy.get_time()``)."""
+        """The confirmed tracks predicted to now (``rospy.get_time()``), in the global frame (none while the newest
+        transform from the tracking frame is missing)."""
         now = rospy.get_time()
         with self.lock:
-            return self.tracker.tracks(now)
+            tracks = self.tracker.tracks(now)
+        if not tracks or self.tracking_frame == self.global_frame.lstrip("/"):
+            return tracks
+        try:
+            x, y, yaw = self._planar(self.global_frame, self.tracking_frame, rospy.Time(0))
+        except (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.ExtrapolationException):
+            return []
+        c, s = math.cos(yaw), math.sin(yaw)
+        return [dataclasses.replace(t, x=x + c * t.x - s * t.y, y=y + s * t.x + c * t.y,
+                                    vx=c * t.vx - s * t.vy, vy=s * t.vx + c * t.vy) for t in tracks]

@@ -72,6 +72,8 @@ def test_the_robot_part_localizes_in_its_namespace_unless_told_not_to() -> None:
     assert params["/robot7/localizer/base_frame_id"] == "robot7/base_footprint"
     assert params["/robot7/localizer/global_frame_id"] == "map"
     assert params["/robot7/localizer/recovery_alpha_fast"] == 0.1  # config/localizer.yaml
+    for controller in ("pure_pursuit_path", "pure_pursuit_topic"):  # people are tracked in the smooth odom frame
+        assert params[f"/robot7/{controller}/people_tracker/tracking_frame"] == "robot7/odom"
     nodes, _params = load("flex_nav_robot.launch", "localizer:=false")
     assert "localizer" not in nodes
 
