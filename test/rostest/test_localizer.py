@@ -3,7 +3,8 @@
 
 The tests run in the order of their names (unittest sorts them): localize from the simulator's initialpose,
 follow a turn, ignore bad initial poses, drop bad beams and unknown scan frames (through the probe localizer),
-then kidnap the robot: lost, no map -> odom, global localization finds it again.
+then kidnap the robot: lost, no map -> odom, global localization finds it again; last, global localization on
+request (the global_localization service) with the robot standing.
 """
 
 import math
@@ -16,7 +17,7 @@ import numpy as np
 import rospy
 import rostest
 import tf2_ros
-from geometry_msgs.msg import PoseWithCovarianceStamped, Twist, Vector3
+from geometry_msgs.msg import PoseArray, PoseWithCovarianceStamped, Twist, Vector3
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import LaserScan
@@ -83,6 +84,7 @@ class TestLocalizer(unittest.TestCase):
         cls.probe_estimate = Latest("/probe/amcl_pose", PoseWithCovarianceStamped)
         cls.rosout = Latest("/rosout_agg", Log)
         cls.scans = Latest("/robot1/scan", LaserScan)
+        cls.cloud = Latest("/robot1/particlecloud", PoseArray)
         cls.cmd = rospy.Publisher("/robot1/cmd_vel", Twist, queue_size=1)
         cls.initial = rospy.Publisher("/robot1/initialpose", PoseWithCovarianceStamped, queue_size=1)
         cls.probe_initial = rospy.Publisher("/probe/initialpose", PoseWithCovarianceStamped, queue_size=1,
@@ -132,8 +134,16 @@ class TestLocalizer(unittest.TestCase):
 
     def test_2_follows_a_turn_in_place(self):
         before = self.estimate.count()
+        clouds = self.cloud.count()
         self.drive(0.0, 1.0, 4.0)
         self.estimate.wait(what="an estimate after the turn", after=before + 5)
+        # the particles, published with every update once someone listens: in the map frame, at least min_particles
+        cloud = self.cloud.wait(what="a particle cloud after the turn", after=clouds)
+        self.assertEqual(cloud.header.frame_id, "map")
+        self.assertGreaterEqual(len(cloud.poses), 500)
+        truth = planar(self.truth.wait().pose.pose)
+        xs = [p.position.x for p in cloud.poses]
+        self.assertLess(abs(sum(xs) / len(xs) - truth[0]), 0.1)
         time.sleep(0.5)
         position, heading = self.error_now()
         self.assertLess(position, 0.05)
@@ -203,7 +213,7 @@ class TestLocalizer(unittest.TestCase):
         teleport.wait_for_service(WAIT_S)
         nomotion = rospy.ServiceProxy("/robot1/request_nomotion_update", Empty)
         mark = self.status.count()
-        answer = teleport(robot="robot1", x=4.0, y=1.8, yaw=math.pi)
+        answer = teleport(robot="robot1", x=4.0, y=1.9, yaw=math.pi / 2)
         self.assertTrue(answer.ok, answer.message)
         deadline = time.monotonic() + WAIT_S
         while self.status.first_arrival(lambda m: m.data.startswith("lost"), mark) is None:
@@ -211,11 +221,11 @@ class TestLocalizer(unittest.TestCase):
             nomotion()  # the robot stands: ask for the sensor updates that reveal the kidnapping
             time.sleep(0.15)
         lost_at = self.status.first_arrival(lambda m: m.data.startswith("lost"), mark)
-        # global localization (started by the lost filter) needs motion: turn in place, as a recovery would
+        # global localization (started by the lost filter) with the robot standing: a sensor update every scan
         deadline = time.monotonic() + WAIT_S
         while self.status.first_arrival(lambda m: m.data.startswith("localized"), mark) is None:
             self.assertLess(time.monotonic(), deadline, f"not found again; status {self.status.wait().data}")
-            self.drive(0.0, 0.8, 1.0)
+            time.sleep(0.2)
         found_at = self.status.first_arrival(lambda m: m.data.startswith("localized"), mark)
         self.assertGreater(found_at, lost_at)
         # no map -> odom while lost: the controllers' localization_timeout stops the robot
@@ -223,12 +233,25 @@ class TestLocalizer(unittest.TestCase):
             while_lost = [t for msg, t in zip(tf_seen.messages, tf_seen.arrived) if lost_at + 0.05 < t < found_at
                           and any(tf.child_frame_id == "robot1/odom" for tf in msg.transforms)]
         self.assertEqual(while_lost, [], "map -> robot1/odom published while lost")
-        self.drive(0.0, 0.8, 3.0)  # a little more turning settles the estimate
         time.sleep(0.5)
         position, heading = self.error_now()
         self.assertLess(position, 0.10)
         self.assertLess(heading, math.radians(5.0))
         self.assertLess(self.map_to_odom_age_s(), 0.5)
+
+    def test_6_global_localization_service(self):
+        mark = self.status.count()
+        rospy.ServiceProxy("/robot1/global_localization", Empty)()
+        self.status.wait(lambda m: m.data.startswith("localizing: global"), what="status 'localizing: global ...'",
+                         after=mark)
+        deadline = time.monotonic() + WAIT_S
+        while self.status.first_arrival(lambda m: m.data.startswith("localized"), mark) is None:
+            self.assertLess(time.monotonic(), deadline, f"global localization did not converge; {self.status.wait()}")
+            time.sleep(0.2)  # standing still: the node runs a sensor update on every scan
+        time.sleep(0.5)
+        position, heading = self.error_now()
+        self.assertLess(position, 0.10)
+        self.assertLess(heading, math.radians(5.0))
 
 
 if __name__ == "__main__":
