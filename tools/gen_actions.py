@@ -18,6 +18,7 @@ import shutil
 import subprocess
 import sys
 from pathlib import Path
+from typing import Any
 
 REPO = Path(__file__).resolve().parent.parent
 ACTION_DIR = REPO / "action"
@@ -57,7 +58,6 @@ def inputs_hash(actions: list[Path]) -> str:
 def generate_messages(actions: list[Path]) -> str:
     """Expand the actions and copy the plain messages into BUILD_DIR, generate them all into OUT_DIR, one file at
     a time; the problem, or '' on success."""
-    import genpy.generate_initpy
     import genpy.generator
 
     BUILD_DIR.mkdir(parents=True, exist_ok=True)
@@ -73,35 +73,32 @@ def generate_messages(actions: list[Path]) -> str:
 
     for msg in sorted(MSG_DIR.glob("*.msg")):
         shutil.copyfile(msg, BUILD_DIR / msg.name)
-    OUT_DIR.mkdir(parents=True, exist_ok=True)
-    for old in OUT_DIR.glob("_[A-Z]*.py"):
-        old.unlink()
-    generator = genpy.generator.MsgGenerator()
-    for msg_file in sorted(BUILD_DIR.glob("*.msg")):
-        genpy.generator.reset_var()
-        status = generator.generate_messages(PACKAGE, [str(msg_file)], str(OUT_DIR), SEARCH_PATH)
-        if status:
-            return f"genpy failed on {msg_file.name} (status {status})"
-    status = genpy.generate_initpy.write_modules(str(OUT_DIR))
-    return f"writing {OUT_DIR}/__init__.py failed (status {status})" if status else ""
+    return generate_python(genpy.generator.MsgGenerator(), sorted(BUILD_DIR.glob("*.msg")), OUT_DIR)
 
 
 def generate_services() -> str:
-    """Generate ``srv/*.srv`` into SRV_OUT_DIR, one file at a time; the problem, or '' on success."""
+    """Generate ``srv/*.srv`` into SRV_OUT_DIR; the problem, or '' on success."""
+    import genpy.generator
+
+    return generate_python(genpy.generator.SrvGenerator(), sorted(SRV_DIR.glob("*.srv")), SRV_OUT_DIR)
+
+
+def generate_python(generator: Any, sources: list[Path], out_dir: Path) -> str:
+    """Replace the generated modules of ``out_dir`` by those of ``sources``, one file at a time (genpy's state
+    reset before each, as catkin does), and its ``__init__.py``; the problem, or '' on success."""
     import genpy.generate_initpy
     import genpy.generator
 
-    SRV_OUT_DIR.mkdir(parents=True, exist_ok=True)
-    for old in SRV_OUT_DIR.glob("_[A-Z]*.py"):
+    out_dir.mkdir(parents=True, exist_ok=True)
+    for old in out_dir.glob("_[A-Z]*.py"):
         old.unlink()
-    generator = genpy.generator.SrvGenerator()
-    for srv_file in sorted(SRV_DIR.glob("*.srv")):
+    for source in sources:
         genpy.generator.reset_var()
-        status = generator.generate_messages(PACKAGE, [str(srv_file)], str(SRV_OUT_DIR), SEARCH_PATH)
+        status = generator.generate_messages(PACKAGE, [str(source)], str(out_dir), SEARCH_PATH)
         if status:
-            return f"genpy failed on {srv_file.name} (status {status})"
-    status = genpy.generate_initpy.write_modules(str(SRV_OUT_DIR))
-    return f"writing {SRV_OUT_DIR}/__init__.py failed (status {status})" if status else ""
+            return f"genpy failed on {source.name} (status {status})"
+    status = genpy.generate_initpy.write_modules(str(out_dir))
+    return f"writing {out_dir}/__init__.py failed (status {status})" if status else ""
 
 
 def main() -> int:

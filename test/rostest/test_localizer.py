@@ -69,6 +69,15 @@ class Latest:
             return len(self.messages)
 
 
+def initial_pose(frame, x, w):
+    """An initialpose message in ``frame`` at (x, 0) with quaternion (0, 0, 0, w)."""
+    msg = PoseWithCovarianceStamped()
+    msg.header.frame_id = frame
+    msg.pose.pose.position.x = x
+    msg.pose.pose.orientation.w = w
+    return msg
+
+
 def planar(pose):
     q = pose.orientation
     return pose.position.x, pose.position.y, yaw_of_quaternion(q.x, q.y, q.z, q.w)
@@ -152,23 +161,11 @@ class TestLocalizer(unittest.TestCase):
     def test_3_bad_initial_poses_are_ignored(self):
         mark = self.rosout.count()
         status_before = self.status.wait().data
-        wrong_frame = PoseWithCovarianceStamped()
-        wrong_frame.header.frame_id = "robot1/odom"
-        wrong_frame.pose.pose.position.x = 5.0
-        wrong_frame.pose.pose.orientation.w = 1.0
-        self.initial.publish(wrong_frame)
+        self.initial.publish(initial_pose("robot1/odom", 5.0, 1.0))
         self.logged("initialpose ignored: header.frame_id 'robot1/odom' is not the global frame 'map'", mark)
-        not_normalised = PoseWithCovarianceStamped()
-        not_normalised.header.frame_id = "map"
-        not_normalised.pose.pose.position.x = 5.0
-        not_normalised.pose.pose.orientation.w = 2.0
-        self.initial.publish(not_normalised)
+        self.initial.publish(initial_pose("map", 5.0, 2.0))
         self.logged("is not normalised", mark)
-        not_finite = PoseWithCovarianceStamped()
-        not_finite.header.frame_id = "map"
-        not_finite.pose.pose.position.x = math.nan
-        not_finite.pose.pose.orientation.w = 1.0
-        self.initial.publish(not_finite)
+        self.initial.publish(initial_pose("map", math.nan, 1.0))
         self.logged("is not finite", mark)
         time.sleep(1.0)
         self.assertEqual(self.status.wait().data.split(":")[0], status_before.split(":")[0])
