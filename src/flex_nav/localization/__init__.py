@@ -12,6 +12,8 @@ filter: odometry motion model, likelihood-field laser model, Augmented MCL recov
 - :mod:`~flex_nav.localization.free_space`       uniform poses over free cells
 - :mod:`~flex_nav.localization.estimate`         Estimate, LocalizerStatus, weighted mean and covariance
 - :mod:`~flex_nav.localization.consistency`      do the scans fit the estimate: the match fraction behind LOST
+- :mod:`~flex_nav.localization.pose_search`      the whole map searched for poses that fit a scan as well
+- :mod:`~flex_nav.localization.hypotheses`       rival poses tracked until the scans tell them apart
 - :mod:`~flex_nav.localization.roughening`       jitter on no-motion updates, so a still cloud does not collapse
 - :mod:`~flex_nav.localization.localizer`        Localizer, the filter
 - :mod:`~flex_nav.localization.jit`              numba with an on-disk cache where it can; Kernel (numba or numpy)

@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import math
 import time
-from typing import Optional
+from typing import List, Optional
 
 import numpy as np
 
@@ -47,10 +47,12 @@ from flex_nav.localization.estimate import (
     weighted_mean_and_covariance,
 )
 from flex_nav.localization.free_space import FreeSpace
+from flex_nav.localization.hypotheses import Hypotheses
 from flex_nav.localization.jit import Kernel
 from flex_nav.localization.likelihood_field import LikelihoodField
 from flex_nav.localization.motion_model import decompose, sample_motion
 from flex_nav.localization.params import FilterParams
+from flex_nav.localization.pose_search import PoseSearch, ScoredPose, distinct, refine
 from flex_nav.localization.recovery import RecoveryAverages
 from flex_nav.localization.resampling import low_variance_indices
 from flex_nav.localization.roughening import roughen
@@ -59,10 +61,12 @@ from flex_nav.localization.sensor_model import SensorModel, annealed_sigma
 from flex_nav.localization.weighting import reweigh
 from flex_nav.nav.angles import wrap_angle
 from flex_nav.nav.costmap.grid_map import GridMap
-from flex_nav.nav.planar import Pose2D
+from flex_nav.nav.planar import Pose2D, compose_poses, inverse_pose
 
 _SYMMETRY_TOLERANCE = 1e-9  # relative, for the covariance given to set_pose
 _PSD_TOLERANCE = 1e-12  # relative: eigenvalues down to -this * largest count as 0 (rounding)
+AMBIGUITY_MARGIN = 10.0  # [-] tempered log-likelihood: another pose fitting the scans within this is a rival
+RESEED_STD = (0.05, 0.05, 0.05)  # [m, m, rad] the cloud restarted on the pose the scans chose among rivals
 
 
 class Localizer:
@@ -91,6 +95,7 @@ class Localizer:
         self._last_dropped = 0
         self._matches = MatchHistory(params.lost_match_updates)
         self._last_match = math.nan
+        self._hypotheses = Hypotheses(AMBIGUITY_MARGIN)
         self.set_map(grid)
 
     # --- set-up ------------------------------------------------------------------------------------------------
@@ -100,6 +105,8 @@ class Localizer:
         self.field = LikelihoodField(grid, self.params.laser_likelihood_max_dist)
         self.sensor_model = SensorModel(self.params, self.field)
         self.free_space = FreeSpace(grid)
+        self.pose_search = PoseSearch(self.sensor_model)
+        self._hypotheses.clear()
         self._recovery.reset()
         self._matches.clear()  # fractions measured on the old map
 
@@ -114,11 +121,14 @@ class Localizer:
         draws = mean + self._rng.standard_normal((p.max_particles, 3)) @ root.T
         draws[:, 2] = np.arctan2(np.sin(draws[:, 2]), np.cos(draws[:, 2]))
         count = kld.sample_count(kld.bin_keys(draws), p.kld_err, p.kld_z, p.min_particles, p.max_particles)
+        self._hypotheses.clear()
         self._start(draws[:count], LocalizerStatus.LOCALIZED)
 
     def global_localization(self) -> None:
         """Start from max_particles poses uniform over the free cells, with uniform headings. The status is LOST
-        until the cloud has converged."""
+        until the cloud has converged on a pose that no other pose of the map rivals (``pose_search``,
+        ``hypotheses``)."""
+        self._hypotheses.clear()
         self._start(self.free_space.sample(self.params.max_particles, self._rng), LocalizerStatus.LOST)
 
     def restart_odometry(self) -> None:
@@ -157,6 +167,7 @@ class Localizer:
         sample_motion(self._particles, motion, self._alphas, self._rng, self.kernel)
         if resampled and not moved:
             roughen(self._particles, sigma, self._rng)
+        odom_step = compose_poses(inverse_pose(self._odom_filter), odom)  # in the robot's frame
         self._odom_filter = odom
         if beams.x.size == 0:  # nothing to weigh with: the motion is applied, the sensor update waits
             return False
@@ -170,7 +181,7 @@ class Localizer:
         self._sensor_updates += 1
         if self._sensor_updates >= p.resample_interval:
             self._resample_due = True
-        self._refresh_estimate(beams, float(scan.range_max))
+        self._refresh_estimate(beams, float(scan.range_max), odom_step)
         return True
 
     def estimate(self) -> Estimate:
@@ -201,6 +212,12 @@ class Localizer:
     @property
     def status(self) -> LocalizerStatus:
         return self._status
+
+    @property
+    def rivals(self) -> List[ScoredPose]:
+        """While a lost filter's cloud has converged on a pose that other poses of the map rival (they fit the scans
+        as well, within AMBIGUITY_MARGIN): every such pose with its accumulated score, best first; else empty."""
+        return self._hypotheses.tracked if self._hypotheses.active else []
 
     @property
     def match_fraction(self) -> float:
@@ -250,15 +267,19 @@ class Localizer:
         self._sensor_updates = 0
         self._resample_due = False
 
-    def _refresh_estimate(self, beams: Optional[SelectedBeams] = None, range_max: float = math.inf) -> None:
-        """The estimate of the current weighted cloud; after a sensor update with ``beams``, the status too.
+    def _refresh_estimate(
+        self, beams: Optional[SelectedBeams] = None, range_max: float = math.inf, odom_step: Pose2D = (0.0, 0.0, 0.0)
+    ) -> None:
+        """The estimate of the current weighted cloud; after a sensor update with ``beams`` (taken ``odom_step`` on
+        from the previous update's), the status too.
 
         LOCALIZED -> LOST when the spread exceeds lost_std_xy, or when the scans have stopped fitting the estimate
         (mean match fraction of ``lost_match_updates`` consecutive updates of a tight cloud below
         lost_match_fraction). LOST -> LOCALIZED when the spread is down to ``CONVERGED_FRACTION * lost_std_xy`` and
         the mean match fraction of as many updates reaches converged_match_fraction, the scan fits the estimate
-        distinctly better than the poses around it (``consistency.distinct_fit``) and its rays do not pass through
-        walls (``consistency.clear_fraction``)."""
+        distinctly better than the poses around it (``consistency.distinct_fit``), its rays do not pass through
+        walls (``consistency.clear_fraction``), and no other pose of the map rivals it
+        (:meth:`_chosen_among_rivals`)."""
         p = self.params
         pose, covariance = weighted_mean_and_covariance(self._particles, self._weights, self.kernel)
         spread = spread_xy(covariance)
@@ -274,13 +295,50 @@ class Localizer:
             if self._status is LocalizerStatus.LOCALIZED:
                 if spread > p.lost_std_xy or (judged and fit < p.lost_match_fraction):
                     self._status = LocalizerStatus.LOST
-            elif (
-                self._status is LocalizerStatus.LOST and tight and judged and fit >= p.converged_match_fraction
-                and distinct_fit(self.sensor_model, pose, beams, range_max, self.kernel)
-                and clear_fraction(self.field, pose, beams, p.lost_match_distance) >= CONVERGED_CLEAR_FRACTION
-            ):
-                self._status = LocalizerStatus.LOCALIZED
+            elif self._status is LocalizerStatus.LOST:
+                self._hypotheses.observe(odom_step, self.sensor_model, beams, range_max, self.kernel)
+                if (
+                    tight and judged and fit >= p.converged_match_fraction
+                    and distinct_fit(self.sensor_model, pose, beams, range_max, self.kernel)
+                    and clear_fraction(self.field, pose, beams, p.lost_match_distance) >= CONVERGED_CLEAR_FRACTION
+                ):
+                    chosen = self._chosen_among_rivals(pose, beams, range_max)
+                    if chosen is not None and distinct(chosen, pose):
+                        self._restart_around(chosen)  # the cloud sits on a pose the scans have ruled out
+                        return
+                    if chosen is not None:
+                        self._status = LocalizerStatus.LOCALIZED
+                        self._hypotheses.clear()
         self._estimate = Estimate(pose, covariance, len(self._particles), self._status)
+
+    def _chosen_among_rivals(self, pose: Pose2D, beams: SelectedBeams, range_max: float) -> Optional[Pose2D]:
+        """(LOST, the cloud converged on ``pose``) The pose the scans single out: ``pose`` itself when no other pose
+        of the map explains them as well; None while rivals are still in the running.
+
+        The first time: ``pose_search`` looks for poses distinct from ``pose`` fitting this scan within
+        AMBIGUITY_MARGIN (and whose rays do not cross walls); with none, ``pose`` is chosen. With some, all are
+        tracked (``hypotheses``) from then on, each update, until one leads every other by the margin: that one is
+        chosen, wherever the cloud is."""
+        p = self.params
+        if not self._hypotheses.tracked:
+            estimate = refine(self.sensor_model, pose, beams, range_max, kernel=self.kernel)
+            rivals = [
+                rival for rival in self.pose_search.alternatives(beams, range_max, estimate, AMBIGUITY_MARGIN,
+                                                                 self.kernel)
+                if clear_fraction(self.field, rival.pose, beams, p.lost_match_distance) >= CONVERGED_CLEAR_FRACTION
+            ]
+            self._hypotheses.start([estimate, *rivals])
+        if self._hypotheses.active:
+            return None
+        leader = self._hypotheses.leader.pose
+        return pose if not distinct(leader, pose) else leader
+
+    def _restart_around(self, pose: Pose2D) -> None:
+        """Restart the cloud (as many particles) around ``pose``, RESEED_STD wide; still LOST: the usual checks
+        follow."""
+        draws = np.asarray(pose) + self._rng.standard_normal((len(self._particles), 3)) * np.asarray(RESEED_STD)
+        draws[:, 2] = np.arctan2(np.sin(draws[:, 2]), np.cos(draws[:, 2]))
+        self._start(draws, LocalizerStatus.LOST)
 
 
 def _finite_pose(pose: Pose2D, what: str) -> Pose2D:

@@ -129,6 +129,7 @@ class LocalizerNode:
         self._map_to_odom: Optional[Pose2D] = None  # the transform last believed
         self._global_running = False  # global localization under way: a sensor update on every scan
         self._status = ""
+        self._rivals_reported = 0  # rival poses last reported while relocalizing
         self._logged_at: Dict[str, float] = {}
 
         self.tf_buffer = tf2_ros.Buffer(cache_time=rospy.Duration(30.0))
@@ -300,7 +301,10 @@ class LocalizerNode:
                 self._set_status(f"localized: ({x:.2f}, {y:.2f}, {math.degrees(yaw):.0f} deg), "
                                  f"spread {std_xy:.3f} m")
             return
-        if estimate.status is not LocalizerStatus.LOST or self._global_running:
+        if estimate.status is LocalizerStatus.LOST and self._global_running:
+            self._report_rivals()
+            return
+        if estimate.status is not LocalizerStatus.LOST:
             return
         recover = self.lost_recovery == "global"
         assert self._filter is not None
@@ -312,6 +316,21 @@ class LocalizerNode:
             assert self._filter is not None
             self._filter.global_localization()
             self._global_running = True
+
+    def _report_rivals(self) -> None:
+        """(lock held, relocalizing) Log and publish it when the cloud has converged on a pose that other poses of
+        the map rival (the filter stays lost until the scans tell them apart), and when that changes."""
+        assert self._filter is not None
+        rivals = self._filter.rivals
+        if len(rivals) == self._rivals_reported:
+            return
+        self._rivals_reported = len(rivals)
+        if not rivals:
+            return
+        poses = ", ".join(f"({r.pose[0]:.2f}, {r.pose[1]:.2f}, {math.degrees(r.pose[2]):.0f} deg)" for r in rivals)
+        rospy.logwarn("localizer: %d poses fit the scans as well: %s; still lost until the scans tell them apart "
+                      "(move the robot, or give it a pose)", len(rivals), poses)
+        self._set_status(f"lost: ambiguous: {len(rivals)} poses fit the scans: {poses}; global localization")
 
     def _lost_reason(self, std_xy: float, match_mean: float) -> str:
         """Which rule declared the filter lost: the cloud's spread or scans that stopped matching the map."""

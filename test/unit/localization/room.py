@@ -40,6 +40,29 @@ def asymmetric_room() -> GridMap:
     return GridMap(occupancy, RESOLUTION, (0.0, 0.0, 0.0))
 
 
+def symmetric_room(marker: bool = False) -> GridMap:
+    """A 6 m x 4 m room (walls one cell thick) with a 2.4 m x 0.4 m island in its middle: the same under a half turn
+    about the centre :data:`CENTRE`, cell for cell. ``marker`` adds a 30 cm pillar near the south-west corner that
+    breaks the symmetry (seen from :data:`SOUTH`, not from its mirror)."""
+    cells_x, cells_y = int(7.0 / RESOLUTION), int(5.0 / RESOLUTION)
+    occupancy = np.full((cells_y, cells_x), -1, dtype=np.int8)
+
+    def fill(x0: float, y0: float, x1: float, y1: float, value: int) -> None:
+        occupancy[round(y0 / RESOLUTION):round(y1 / RESOLUTION), round(x0 / RESOLUTION):round(x1 / RESOLUTION)] = value
+
+    fill(0.45, 0.45, 6.55, 4.55, 100)  # walls ...
+    fill(0.5, 0.5, 6.5, 4.5, 0)  # ... around the free room
+    fill(2.3, 2.3, 4.7, 2.7, 100)  # the island
+    if marker:
+        fill(1.0, 0.8, 1.3, 1.1, 100)
+    return GridMap(occupancy, RESOLUTION, (0.0, 0.0, 0.0))
+
+
+CENTRE = (3.5, 2.5)  # [m] of symmetric_room
+SOUTH = (3.0, 1.6, math.pi / 2)  # between the island and the south wall, facing the island
+NORTH = (4.0, 3.4, -math.pi / 2)  # its mirror image
+
+
 def cast(grid: GridMap, pose: Pose2D, rng: Optional[np.random.Generator] = None, noise: float = 0.0) -> np.ndarray:
     """Ranges [m] of a scan from the robot at ``pose`` (map frame): the first occupied cell along each beam of
     :data:`ANGLES` (steps of a quarter cell), +inf if none within RANGE_MAX, plus Gaussian noise of std ``noise``."""
