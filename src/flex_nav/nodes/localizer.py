@@ -49,13 +49,12 @@ from __future__ import annotations
 import dataclasses
 import math
 import threading
-import time
-from typing import Dict, List, Optional, Sequence, Tuple
+from typing import List, Optional, Sequence, Tuple
 
 import numpy as np
 import rospy
 import tf2_ros
-from geometry_msgs.msg import PoseArray, PoseWithCovarianceStamped, TransformStamped
+from geometry_msgs.msg import PoseArray, PoseWithCovarianceStamped
 from nav_msgs.msg import OccupancyGrid
 from sensor_msgs.msg import LaserScan
 from std_msgs.msg import String
@@ -64,13 +63,13 @@ from std_srvs.srv import Empty, EmptyRequest, EmptyResponse
 from flex_nav.exceptions import ConfigError
 from flex_nav.localization import Estimate, FilterParams, Localizer, LocalizerStatus, ScanBeams
 from flex_nav.nav.planar import Pose2D, compose_poses, inverse_pose
-from flex_nav.nav.pose_checks import pose_problem, quaternion_of_yaw, yaw_of_quaternion
+from flex_nav.nav.pose_checks import pose_problem, yaw_of_quaternion
 from flex_nav.ros.conversions import grid_map_of, pose_of_xy_yaw
 from flex_nav.ros.node import run_node
 from flex_nav.ros.params import param_bool, param_float, param_int, param_str, reject_unknown
+from flex_nav.ros.scan_input import Complaints, ScanInput, invalid_beams, transform_msg
 
 NODE_NAME = "localizer"
-LOG_THROTTLE_S = 2.0  # [s] wall: one kind of complaint is logged at most this often
 FILTER_PARAMS = tuple(f.name for f in dataclasses.fields(FilterParams))
 NODE_PARAMS = (
     "global_frame_id", "odom_frame_id", "base_frame_id", "transform_tolerance", "tf_broadcast",
@@ -84,16 +83,6 @@ COVARIANCE_INDEX = ((0, 1, 5), (6, 7, 11), (30, 31, 35))  # (x, y, yaw) rows of 
 def planar_covariance(flat: Sequence[float]) -> np.ndarray:
     """The (3, 3) x, y, yaw block of a geometry_msgs 6x6 row-major covariance."""
     return np.array([[flat[i] for i in row] for row in COVARIANCE_INDEX], dtype=np.float64)
-
-
-def invalid_beams(beams: ScanBeams) -> int:
-    """How many beams are NaN, -inf or a finite value outside [range_min, range_max]. A +inf beam ("no return
-    within range", REP 117) and a max-range reading are not bad input: the filter skips them, as amcl's likelihood
-    field does, without a warning."""
-    ranges = beams.ranges
-    with np.errstate(invalid="ignore"):
-        good = (ranges == np.inf) | ((ranges >= beams.range_min) & (ranges <= beams.range_max))
-    return int(ranges.size - np.count_nonzero(good))
 
 
 class LocalizerNode:
@@ -125,15 +114,16 @@ class LocalizerNode:
         self._pending_pose: Optional[Tuple[Pose2D, np.ndarray]] = self.initial_pose
         self._pending_global = False
         self._last_scan_stamp: Optional[rospy.Time] = None
-        self._laser_poses: Dict[str, Pose2D] = {}  # laser frame -> its pose in the base frame (static)
         self._map_to_odom: Optional[Pose2D] = None  # the transform last believed
         self._global_running = False  # global localization under way: a sensor update on every scan
         self._status = ""
         self._rivals_reported = 0  # rival poses last reported while relocalizing
-        self._logged_at: Dict[str, float] = {}
+        self._complain = Complaints(NODE_NAME)
 
         self.tf_buffer = tf2_ros.Buffer(cache_time=rospy.Duration(30.0))
         self.tf_listener = tf2_ros.TransformListener(self.tf_buffer)
+        self.scan_input = ScanInput(self.tf_buffer, self.odom_frame, self.base_frame, self.transform_timeout,
+                                    self._complain, laser_range=(self.laser_min_range, self.laser_max_range))
         self.tf_broadcaster = tf2_ros.TransformBroadcaster()
         self.pub_pose = rospy.Publisher("amcl_pose", PoseWithCovarianceStamped, queue_size=2)
         self.pub_cloud = rospy.Publisher("particlecloud", PoseArray, queue_size=2)
@@ -244,11 +234,11 @@ class LocalizerNode:
         if not ready:
             self._complain("no_map", "scan ignored: no map yet on topic " + self.sub_map.resolved_name)
             return
-        laser_pose = self._laser_pose(scan.header.frame_id)
-        odom = self._odom_pose(scan.header.stamp)
+        laser_pose = self.scan_input.laser_pose(scan.header.frame_id)
+        odom = self.scan_input.odom_pose(scan.header.stamp)
         if laser_pose is None or odom is None:
             return
-        beams = self._beams(scan, laser_pose)
+        beams = self.scan_input.beams(scan, laser_pose)
         with self._lock:
             self._update(scan.header.stamp, odom, beams)
 
@@ -340,40 +330,6 @@ class LocalizerNode:
         return (f"only {match_mean:.0%} of the beams end within {p.lost_match_distance:.2f} m of the map "
                 f"(< {p.lost_match_fraction:.0%} over {p.lost_match_updates} updates, ~lost_match_fraction)")
 
-    def _laser_pose(self, frame: str) -> Optional[Pose2D]:
-        frame = frame.lstrip("/")
-        known = self._laser_poses.get(frame)
-        if known is not None:
-            return known
-        if not frame:
-            self._complain("scan_frame", "scan ignored: its header.frame_id is empty")
-            return None
-        try:
-            tf = self.tf_buffer.lookup_transform(self.base_frame, frame, rospy.Time(0), self.transform_timeout)
-        except (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.ExtrapolationException) as err:
-            self._complain("scan_frame", f"scan ignored: its frame '{frame}' cannot be placed in the base frame "
-                                         f"'{self.base_frame}': {err}")
-            return None
-        pose = _planar(tf)
-        self._laser_poses[frame] = pose
-        return pose
-
-    def _odom_pose(self, stamp: rospy.Time) -> Optional[Pose2D]:
-        try:
-            tf = self.tf_buffer.lookup_transform(self.odom_frame, self.base_frame, stamp, self.transform_timeout)
-        except (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.ExtrapolationException) as err:
-            self._complain("odom", f"scan ignored: no odometry '{self.odom_frame}' -> '{self.base_frame}' at the "
-                                   f"scan's stamp {stamp.to_sec():.3f} s: {err}")
-            return None
-        return _planar(tf)
-
-    def _beams(self, scan: LaserScan, laser_pose: Pose2D) -> ScanBeams:
-        ranges = np.asarray(scan.ranges, dtype=np.float64)
-        angles = scan.angle_min + scan.angle_increment * np.arange(len(ranges), dtype=np.float64)
-        range_min = self.laser_min_range if self.laser_min_range > 0.0 else float(scan.range_min)
-        range_max = self.laser_max_range if self.laser_max_range > 0.0 else float(scan.range_max)
-        return ScanBeams(ranges, angles, laser_pose, range_min, range_max)
-
     # -- outputs ------------------------------------------------------------------------------------------------
     def _publish_estimate(self, stamp: rospy.Time, estimate: Estimate) -> None:
         msg = PoseWithCovarianceStamped()
@@ -394,36 +350,16 @@ class LocalizerNode:
             self.pub_cloud.publish(cloud)
 
     def _publish_transform(self, stamp: rospy.Time, map_to_odom: Pose2D) -> None:
-        tf = TransformStamped()
-        tf.header.stamp = stamp
-        tf.header.frame_id = self.global_frame
-        tf.child_frame_id = self.odom_frame
-        tf.transform.translation.x, tf.transform.translation.y = map_to_odom[0], map_to_odom[1]
-        r = tf.transform.rotation
-        r.x, r.y, r.z, r.w = quaternion_of_yaw(map_to_odom[2])
-        self.tf_broadcaster.sendTransform(tf)
+        self.tf_broadcaster.sendTransform(transform_msg(stamp, self.global_frame, self.odom_frame, map_to_odom))
 
     def _set_status(self, status: str) -> None:
         if status != self._status:
             self._status = status
             self.pub_status.publish(String(data=status))
 
-    def _complain(self, kind: str, message: str, throttle: bool = True) -> None:
-        """Log a warning naming the bad input; one kind at most every LOG_THROTTLE_S unless ``throttle`` is off."""
-        now = time.monotonic()
-        if throttle and now - self._logged_at.get(kind, -LOG_THROTTLE_S) < LOG_THROTTLE_S:
-            return
-        self._logged_at[kind] = now
-        rospy.logwarn("localizer: %s", message)
-
-
-def _planar(tf: TransformStamped) -> Pose2D:
-    t, q = tf.transform.translation, tf.transform.rotation
-    return (t.x, t.y, yaw_of_quaternion(q.x, q.y, q.z, q.w))
-
 
 def main() -> int:
     return run_node(NODE_NAME, LocalizerNode)
 
 
-__all__: List[str] = ["LocalizerNode", "main", "planar_covariance"]
+__all__: List[str] = ["LocalizerNode", "invalid_beams", "main", "planar_covariance"]
