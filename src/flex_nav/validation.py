@@ -11,11 +11,14 @@ the states and the simulator validate with this module.
 
 from __future__ import annotations
 
+import dataclasses
 import math
-from typing import Any, Collection, List, Optional
+from typing import Any, Collection, List, Mapping, Optional, Type, TypeVar
 
 from flex_nav.exceptions import ConfigError, choices_message
 from flex_nav.nav.control.topic_name import topic_name_problem
+
+P = TypeVar("P")
 
 SHOWN_CHARS = 80  # a bad value longer than this (repr) is cut in messages
 
@@ -150,3 +153,22 @@ def names(owner: str, what: str, value: Any, *, allow_empty: bool = True) -> Lis
     if dupes:
         raise ConfigError(f"{owner}: {what} repeats {', '.join(dupes)}")
     return result
+
+
+def dataclass_from_mapping(cls: Type[P], values: Mapping[str, Any], owner: str) -> P:
+    """A parameter dataclass from a dict (e.g. a node's private ROS parameters). ``owner`` (a node name) starts the
+    message of an unknown key, which lists the valid names. An integer given for a ``float`` field is taken (YAML
+    and rosparam write ``1`` for ``1.0``); everything else is left to the dataclass's own checks."""
+    kinds = {f.name: f.type for f in dataclasses.fields(cls)}  # type: ignore[arg-type]
+    for key in values:
+        if key not in kinds:
+            raise ConfigError(choices_message(f"{owner}: parameter", key, list(kinds)))
+    converted = {
+        key: float(value) if kinds[key] in ("float", float) and isinstance(value, int) and not isinstance(value, bool)
+        else value
+        for key, value in values.items()
+    }
+    try:
+        return cls(**converted)
+    except ConfigError as err:
+        raise ConfigError(f"{owner}: {err}") from err

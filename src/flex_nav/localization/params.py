@@ -9,13 +9,11 @@ why (tuned on the simulated TurtleBot 2, Create 2 and TurtleBot 4 in the lab wor
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields
-from typing import Any, Dict, Mapping
+from dataclasses import dataclass
+from typing import Any, Mapping
 
 from flex_nav import validation
-from flex_nav.exceptions import ConfigError, choices_message
-
-_INTEGERS = ("min_particles", "max_particles", "laser_max_beams", "resample_interval", "lost_match_updates")
+from flex_nav.exceptions import ConfigError
 
 
 @dataclass(frozen=True)
@@ -113,15 +111,4 @@ class FilterParams:
         """Params from a dict (e.g. a node's private ROS parameters); ``owner`` (``"amcl"``, a node name) starts
         the message of an unknown key, which lists the valid names. An integer given for a float field is taken;
         a float for an integer field is refused by the field's check."""
-        kinds = {f.name: f.type for f in fields(cls)}
-        for key in values:
-            if key not in kinds:
-                raise ConfigError(choices_message(f"{owner}: parameter", key, list(kinds)))
-        converted: Dict[str, Any] = {}
-        for key, value in values.items():
-            as_float = key not in _INTEGERS and isinstance(value, int) and not isinstance(value, bool)
-            converted[key] = float(value) if as_float else value
-        try:
-            return cls(**converted)
-        except ConfigError as err:
-            raise ConfigError(f"{owner}: {err}") from err
+        return validation.dataclass_from_mapping(cls, values, owner)
