@@ -37,7 +37,7 @@ from flex_nav.exceptions import ConfigError
 from flex_nav.localization.scan import ScanBeams
 from flex_nav.mapping.occupancy import OccupancyParams, ScanRays, rasterize, scan_rays
 from flex_nav.mapping.pose_graph import EdgeKind, PoseGraph
-from flex_nav.mapping.scan_matcher import Match, MatcherParams, ScanMatcher, Window
+from flex_nav.mapping.scan_matcher import Lookup, Match, MatcherParams, ScanMatcher, Window
 from flex_nav.nav.angles import wrap_angle
 from flex_nav.nav.costmap.grid_map import GridMap
 from flex_nav.nav.planar import Pose2D, compose_poses, inverse_pose
@@ -164,10 +164,12 @@ class GraphSlam:
         p = self.params
         last = len(self.keyframes) - 1
         chain = list(range(max(0, last - p.scan_buffer_size + 1), last + 1))
-        match = self._match(chain, rays, Window(self.graph.pose(last), p.loop_search_space_dimension / 2.0,
-                                                2.0 * p.coarse_search_angle_offset))
-        if match is None or match.response < p.loop_match_minimum_response_fine:
+        window = Window(self.graph.pose(last), p.loop_search_space_dimension / 2.0, 2.0 * p.coarse_search_angle_offset)
+        lookup = self.matcher.lookup(self._points(chain), window.xy + self.occupancy.max_free_range)
+        unique = self._unique_match(lookup, _hits(rays), window)
+        if unique is None:
             return False
+        match = unique[0]
         self._append(odom, rays, match.pose, match.covariance, kind=EdgeKind.SCAN_MATCH,
                      travel=self.keyframes[last].travel + _distance(self.graph.pose(last), match.pose))
         self._reanchor = False
@@ -229,15 +231,10 @@ class GraphSlam:
         rays = self.keyframes[new].rays
         window = Window(self.graph.pose(new), p.loop_search_space_dimension / 2.0, p.coarse_search_angle_offset)
         lookup = self.matcher.lookup(self._points(chain), window.xy + self.occupancy.max_free_range)
-        points = _hits(rays)
-        match = self.matcher.match(lookup, points, window)
-        if match is None or match.response < p.loop_match_minimum_response_fine:
+        unique = self._unique_match(lookup, _hits(rays), window)
+        if unique is None:
             return None
-        second = self.matcher.match(lookup, points, window,
-                                    exclude=(match.pose, p.loop_match_uniqueness_radius, math.pi))
-        second_response = 0.0 if second is None else second.response
-        if second_response >= p.loop_match_uniqueness_ratio * match.response:
-            return None
+        match, second_response = unique
         relative = compose_poses(inverse_pose(self.graph.pose(old)), match.pose)
         # the other way: the old scan against the new keyframe's neighbourhood placed where the match put the new
         # keyframe; it must come back to the old keyframe's pose
@@ -253,6 +250,21 @@ class GraphSlam:
             return None
         closure = LoopClosure(old, new, match.response, second_response)
         return closure, relative, match.covariance
+
+    def _unique_match(self, lookup: Lookup, points: np.ndarray, window: Window) -> Optional[Tuple[Match, float]]:
+        """The best match of ``points`` in ``window`` and the best response outside ``loop_match_uniqueness_radius``
+        of it, if the first reaches ``loop_match_minimum_response_fine`` and the second stays below
+        ``loop_match_uniqueness_ratio`` of it; else None (no fit, or the scene repeats within the window)."""
+        p = self.params
+        match = self.matcher.match(lookup, points, window)
+        if match is None or match.response < p.loop_match_minimum_response_fine:
+            return None
+        second = self.matcher.match(lookup, points, window,
+                                    exclude=(match.pose, p.loop_match_uniqueness_radius, math.pi))
+        second_response = 0.0 if second is None else second.response
+        if second_response >= p.loop_match_uniqueness_ratio * match.response:
+            return None
+        return match, second_response
 
     # --- maps and frames ---------------------------------------------------------------------------------------
     def _points(self, indices: List[int], corrected: Optional[Dict[int, Pose2D]] = None) -> np.ndarray:
