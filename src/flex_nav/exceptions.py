@@ -31,6 +31,11 @@ class InstallError(FlexNavError):
     """The installation is incomplete (e.g. the action classes were not generated)."""
 
 
+class MappingError(FlexNavError):
+    """The mapper cannot build its map: the pose graph cannot be optimized (a node no chain of edges ties to the
+    first, or the solver failed; flex_nav.mapping.pose_graph)."""
+
+
 def choices_message(what: str, bad: object, valid: Iterable[object]) -> str:
     """Format ``"<what> 'bad' is not valid (valid: a, b, c)"`` with the choices sorted as given."""
     listed = ", ".join(repr(v) if not isinstance(v, str) else v for v in valid)
