@@ -39,15 +39,15 @@ after optimizing (weight below 1/2): the ones the map set aside.
 **Why Levenberg-Marquardt.** ``optimize`` runs gtsam's Levenberg-Marquardt (COLAMD ordering, sparse Cholesky) on
 the whole graph from the current estimate, until the cost decreases by less than 1e-5 relative. Measured on
 bench/bench_pose_graph.py's 500-node graph with 34 closures: 15 ms from the odometry (6 iterations), 3-4 ms from
-an optimized estimate. iSAM2 took as long to reach the same cost in batch (18 ms, 6 updates: a Gauss-Newton step
-each), and added node by node (0.07 ms a node, 3 ms at a closure) it lagged behind the optimum (cost 60.24 against
-59.62; its relinearisation is lazy). LM's damping copes with the large first residuals of a closure after a long
+an optimized estimate. iSAM2 took as long to reach the same cost in batch (18-22 ms, 6 updates: a Gauss-Newton
+step each), and added node by node (0.07 ms a node, 3-5 ms at a closure) it lagged behind the optimum (cost 60.24
+against 59.62; its relinearisation is lazy). LM's damping copes with the large first residuals of a closure after a long
 drift, and its stopping rule makes "optimized" mean converged. (METIS ordering was no faster.)
 
 **Why gtsam.** The field's factor-graph library (Georgia Tech; the back end of many SLAM systems): exact SE(2)
 factors and Jacobians, robust noise models, sparse elimination in C++. 500 poses optimize in 15 ms, under a tenth
-of the 200 ms budget; the same model solved by a plain sparse Gauss-Newton in numpy + scipy.sparse took 3.6 times
-as long (bench/README.md).
+of the 200 ms budget; the same model solved by a plain sparse Gauss-Newton in numpy + scipy.sparse took 3.6-5.2
+times as long (bench/README.md).
 
 The graph is saved as plain JSON (:meth:`PoseGraph.to_dict`, :meth:`PoseGraph.from_dict`): lists, floats and
 strings, never a pickle. No global state: every graph owns its gtsam factor graph and estimate.
