@@ -130,8 +130,14 @@ class OccupancyGrid:
         c, s = math.cos(pose[2]), math.sin(pose[2])
         ox, oy = self.origin
         lx, ly, _ = compose_poses(pose, (rays.origin[0], rays.origin[1], 0.0))
-        xs = (pose[0] + c * rays.end_x - s * rays.end_y - ox) * inv
-        ys = (pose[1] + s * rays.end_x + c * rays.end_y - oy) * inv
+        # a hit marks the cell half a cell behind the surface it measured: the surface of a wall lies on a cell
+        # edge as often as not, and the obstacle is behind it (without this, range noise splits every wall over
+        # two cells, the one in front of it included)
+        dx, dy = rays.end_x - rays.origin[0], rays.end_y - rays.origin[1]
+        extend = np.where(rays.hit, 0.5 * p.resolution / np.maximum(np.hypot(dx, dy), 1e-9), 0.0)
+        end_x, end_y = rays.end_x + extend * dx, rays.end_y + extend * dy
+        xs = (pose[0] + c * end_x - s * end_y - ox) * inv
+        ys = (pose[1] + s * end_x + c * end_y - oy) * inv
         _trace(self.log_odds, (lx - ox) * inv, (ly - oy) * inv, np.ascontiguousarray(xs), np.ascontiguousarray(ys),
                np.ascontiguousarray(rays.hit), p.log_odds_occupied, p.log_odds_free, p.log_odds_clamp)
 

@@ -115,9 +115,9 @@ def test_too_few_points_give_no_match(reference):
 
 def test_a_beam_clears_the_cells_it_passes_and_marks_the_one_it_hits():
     params = OccupancyParams(resolution=0.1, padding=0.0)
-    scan = ScanBeams(np.array([2.0, np.inf]), np.array([0.0, math.pi / 2]), (0.0, 0.0, 0.0), 0.05, 3.0)
+    scan = ScanBeams(np.array([1.97, np.inf]), np.array([0.0, math.pi / 2]), (0.0, 0.0, 0.0), 0.05, 3.0)
     grid = rasterize(params, [(0.05, 0.05, 0.0)], [scan_rays(scan, 1.0)]).to_grid_map()
-    row, col = grid.world_to_cell(2.05, 0.05)
+    row, col = grid.world_to_cell(2.05, 0.05)  # the surface at x = 2.02: its cell
     assert grid.occupancy[row, col] == OCCUPIED
     for x in np.arange(0.05, 2.0, 0.1):  # along the hit beam
         assert grid.occupancy[grid.world_to_cell(x, 0.05)] == FREE, x
@@ -129,7 +129,7 @@ def test_a_beam_clears_the_cells_it_passes_and_marks_the_one_it_hits():
 
 def test_a_cell_seen_free_more_often_than_hit_turns_free():
     params = OccupancyParams(resolution=0.1, padding=0.5)
-    hit_once = scan_rays(ScanBeams(np.array([1.0]), np.array([0.0]), (0.0, 0.0, 0.0), 0.05, 3.0), 3.0)
+    hit_once = scan_rays(ScanBeams(np.array([0.98]), np.array([0.0]), (0.0, 0.0, 0.0), 0.05, 3.0), 3.0)  # ends in [1.0, 1.1)
     passed = scan_rays(ScanBeams(np.array([2.0]), np.array([0.0]), (0.0, 0.0, 0.0), 0.05, 3.0), 3.0)
     pose = (0.05, 0.05, 0.0)
     grid = rasterize(params, [pose] * 4, [hit_once] + [passed] * 3).to_grid_map()
