@@ -184,12 +184,7 @@ class PoseGraph:
     def add_edge(self, i: int, j: int, relative: Pose2D, covariance: np.ndarray, kind: EdgeKind) -> None:
         """Add the measurement ``relative`` (pose of node ``j`` in node ``i``'s frame) with its (3, 3)
         ``covariance`` over x [m], y [m], yaw [rad]; a LOOP edge gets the loop kernel."""
-        for name, node in (("i", i), ("j", j)):
-            if isinstance(node, bool) or not isinstance(node, (int, np.integer)) or not 0 <= node < self.node_count:
-                valid = f"0..{self.node_count - 1}" if self.node_count else "none: the graph has no node yet"
-                raise ConfigError(
-                    f"{OWNER}: edge node {name} = {validation.shown(node)} is not a node (valid: {valid})")
-        i, j = int(i), int(j)
+        i, j = self._check_node(i, "edge node i"), self._check_node(j, "edge node j")
         if i == j:
             raise ConfigError(f"{OWNER}: an edge must join two nodes, got i = j = {i}")
         if not isinstance(kind, EdgeKind):
@@ -205,6 +200,13 @@ class PoseGraph:
         cov.flags.writeable = False
         self._edges.append(Edge(i, j, measured, cov, kind))
         self._join(i, j)
+
+    def _check_node(self, node: object, what: str) -> int:
+        """``node`` as an int if it is a node's id, or ConfigError naming it and the valid ids."""
+        if isinstance(node, bool) or not isinstance(node, (int, np.integer)) or not 0 <= node < self.node_count:
+            valid = f"0..{self.node_count - 1}" if self.node_count else "none: the graph has no node yet"
+            raise ConfigError(f"{OWNER}: {what} = {validation.shown(node)} is not a node (valid: {valid})")
+        return int(node)
 
     def _robust(self, gaussian: Any) -> Any:
         estimator = gtsam.noiseModel.mEstimator
@@ -232,10 +234,7 @@ class PoseGraph:
 
     def pose(self, i: int) -> Pose2D:
         """The current estimate of node ``i`` (the initial guess until optimized), yaw in (-pi, pi]."""
-        if isinstance(i, bool) or not isinstance(i, (int, np.integer)) or not 0 <= i < self.node_count:
-            valid = f"0..{self.node_count - 1}" if self.node_count else "none: the graph has no node yet"
-            raise ConfigError(f"{OWNER}: node {validation.shown(i)} is not a node (valid: {valid})")
-        pose = self._values.atPose2(int(i))
+        pose = self._values.atPose2(self._check_node(i, "node"))
         return (float(pose.x()), float(pose.y()), float(pose.theta()))
 
     def poses(self) -> np.ndarray:

@@ -152,6 +152,8 @@ def test_the_first_node_stays_anchored_and_ids_count_up():
     assert graph.pose(0) == pytest.approx((1.0, 2.0, 0.5), abs=1e-6)
     assert graph.pose(2) == pytest.approx((1.0 + 1.8 * math.cos(0.5), 2.0 + 1.8 * math.sin(0.5), 0.5), abs=1e-6)
     np.testing.assert_array_equal(graph.poses()[1], graph.pose(1))
+    with pytest.raises(ConfigError, match=r"node = 3 is not a node \(valid: 0..2\)"):
+        graph.pose(3)
     assert graph.node_count == 3 and graph.loop_count == 0 and len(graph.edges) == 2
 
 
