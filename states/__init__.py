@@ -23,7 +23,11 @@ Modules (one state or one small family each):
   :mod:`obstacle_class_state` (person / movable / clear from the obstacle classifier), :mod:`push_state`
   (push a distance, fails fast on a heavy object, never pushes a person), :mod:`wait_path_clear_state`;
 - operator: :mod:`operator_decision_state`, :mod:`log_state`, :mod:`wait_state`;
-- retries: :mod:`backoff_state` (a wait before the next try of a goal, doubling after each failed one).
+- retries: :mod:`backoff_state` (a wait before the next try of a goal, doubling after each failed one);
+- exploration: :mod:`robot_pose_state` (the robot's pose from a pose topic into userdata),
+  :mod:`find_frontier_state` (the next reachable frontier of the mapper's map, and remembering goals that failed),
+  :mod:`save_map_state` (the mapper's save service); slow work runs off the behavior's thread
+  (:mod:`~flex_nav_states.background_work`).
 
 :func:`state_classes` imports them all and lists the concrete states (for documentation checks and tools);
 ``EXAMPLE_PARAMS`` gives constructor arguments for the states that have required parameters (every other
@@ -60,6 +64,9 @@ STATE_MODULES = (
     "obstacle_class_state",
     "push_state",
     "wait_path_clear_state",
+    "robot_pose_state",
+    "find_frontier_state",
+    "save_map_state",
 )
 
 # Constructor arguments for the states whose constructor has required parameters (for tools and checks).

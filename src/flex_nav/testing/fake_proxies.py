@@ -2,15 +2,18 @@
 time from the test's clock. Test your own states with them, as the state library's tests do.
 
 - :class:`FakeProxies` is what the runner would inject (``BehaviorContext.proxies``); it keeps what the
-  states made by name: ``publishers``, ``subscriptions``, ``clients`` (``pub``/``sub`` raise KeyError naming
-  the known ones; ``client`` makes one so the test can script it before the state asks for it).
+  states made by name: ``publishers``, ``subscriptions``, ``clients``, ``services`` (``pub``/``sub`` raise
+  KeyError naming the known ones; ``client`` and ``service`` make one so the test can script it before the
+  state asks for it).
 - :class:`FakePublisher` records every published message with the clock time (``published``, ``messages``).
 - :class:`FakeSubscription` takes messages from the test (``inject``); ``last``/``age_s``/``pop_buffered``
   behave as the real one, with arrival ages on the injected clock instead of wall time.
 - :class:`FakeActionClient` is scripted: ``available_at_s`` says when its server "connects"; each sent goal
   takes the next queued :class:`Response` (``respond``, answered after its ``delay_s`` on the clock) or stays
   active until the test calls ``finish``; ``cancel`` is recorded and, by default, ends the goal as PREEMPTED
-  like a real server. Service callers are not faked (``service_caller`` raises NotImplementedError).
+  like a real server.
+- :class:`FakeServiceCaller` is scripted too: ``available_at_s`` says when its service appears; each call takes
+  the next queued answer (``respond``: a response, or an exception to raise) and records the request.
 
 A user's state tested on a :class:`~flex_nav.behavior.ManualClock` with :class:`FakeProxies`, run by
 :class:`flex_nav.testing.state_harness.StateHarness` (which holds both)::
@@ -44,13 +47,13 @@ from __future__ import annotations
 
 import collections
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Callable, Deque, List, Optional, Tuple
 
 from actionlib_msgs.msg import GoalStatus
 
 from flex_nav.behavior.clock import Clock
-from flex_nav.behavior.proxies import Connections, ServiceCallerLike
+from flex_nav.behavior.proxies import Connections
 from flex_nav.exceptions import NotReadyError
 
 if TYPE_CHECKING:
@@ -257,14 +260,48 @@ class FakeActionClient:
         """Disconnect (the proxies' shutdown, after its cancel): nothing to do without ROS; ``deadline`` [s] unused."""
 
 
+@dataclass(eq=False)
+class FakeServiceCaller:
+    name: str
+    srv_type: type
+    clock: Clock
+    available_at_s: float = -math.inf  # [s] clock time from which the service is there (inf: never)
+    answers: Deque[Any] = field(default_factory=collections.deque)  # responses, or exceptions a call raises
+    requests: List[Any] = field(default_factory=list)
+
+    # --- test side ---
+    def respond(self, answer: Any) -> None:
+        """Queue the answer to the next call: a response, or an exception the call raises."""
+        self.answers.append(answer)
+
+    # --- RosProxies.ServiceCallerProxy interface ---
+    def is_available(self, timeout_s: float = 0.0) -> bool:
+        return self.clock.now() >= self.available_at_s
+
+    def call(self, request: Any, timeout_s: float = 5.0) -> Any:
+        """The next queued answer, as the real one: NotReadyError if the service is not there (at once: the fake
+        does not wait) or nothing is queued (a real call that failed)."""
+        if not self.is_available(timeout_s):
+            raise NotReadyError(f"service {self.name} is not available after {timeout_s:.1f} s")
+        self.requests.append(request)
+        if not self.answers:
+            raise NotReadyError(f"service {self.name} failed: the test queued no answer")
+        answer = self.answers.popleft()
+        if isinstance(answer, BaseException):
+            raise answer
+        return answer
+
+
 class FakeProxies:
-    """The proxies of one behavior, with the test's clock; ``publishers``/``subscriptions``/``clients`` by name."""
+    """The proxies of one behavior, with the test's clock; ``publishers``/``subscriptions``/``clients``/``services``
+    by name."""
 
     def __init__(self, clock: Clock) -> None:
         self.clock = clock
         self.publishers: Connections[FakePublisher] = Connections("topic", lambda known: known.msg_type)
         self.subscriptions: Connections[FakeSubscription] = Connections("topic", lambda known: known.msg_type)
         self.clients: Connections[FakeActionClient] = Connections("action", lambda known: known.action_type)
+        self.services: Connections[FakeServiceCaller] = Connections("service", lambda known: known.srv_type)
 
     def publisher(self, topic: str, msg_type: type, latch: bool = False, queue_size: int = 10) -> FakePublisher:
         return self.publishers.shared(topic, msg_type, lambda: FakePublisher(topic, msg_type, self.clock))
@@ -280,8 +317,8 @@ class FakeProxies:
     def action_client(self, name: str, action_type: type) -> FakeActionClient:
         return self.clients.shared(name, action_type, lambda: FakeActionClient(name, action_type, self.clock))
 
-    def service_caller(self, name: str, srv_type: type) -> ServiceCallerLike:
-        raise NotImplementedError("FakeProxies has no service callers (no flex_nav state uses one)")
+    def service_caller(self, name: str, srv_type: type) -> FakeServiceCaller:
+        return self.services.shared(name, srv_type, lambda: FakeServiceCaller(name, srv_type, self.clock))
 
     def get_publisher(self, topic: str) -> Optional[FakePublisher]:
         return self.publishers.get(topic)
@@ -292,8 +329,8 @@ class FakeProxies:
     def get_action_client(self, name: str) -> Optional[FakeActionClient]:
         return self.clients.get(name)
 
-    def get_service_caller(self, name: str) -> Optional[ServiceCallerLike]:
-        return None
+    def get_service_caller(self, name: str) -> Optional[FakeServiceCaller]:
+        return self.services.get(name)
 
     def shutdown(self) -> None:
         """As RosProxies.shutdown: cancel every active goal, then disconnect every client."""
@@ -320,6 +357,10 @@ class FakeProxies:
         """The client for ``name``, created now if no state asked for it yet (to script it before start)."""
         return self.action_client(name, action_type)
 
+    def service(self, name: str, srv_type: type) -> FakeServiceCaller:
+        """The service caller for ``name``, created now if no state asked for it yet (to script it first)."""
+        return self.service_caller(name, srv_type)
 
-if TYPE_CHECKING:  # mypy: FakeProxies (and so its publisher, subscription, action client) is a Proxies
+
+if TYPE_CHECKING:  # mypy: FakeProxies (and so its publisher, subscription, action client, service caller) is a Proxies
     _CONFORMS: Proxies = FakeProxies(ManualClock())

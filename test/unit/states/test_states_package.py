@@ -38,7 +38,8 @@ EXPECTED = {
     "ClearCostmapsState", "MoveDistanceState", "RotateAngleState", "TimedTwistState", "TimedStopState",
     "PurePursuitState", "BumperMonitorState", "StuckMonitorState", "SensorFreshnessState",
     "OperatorDecisionState", "LogState", "WaitState", "GoalListState", "ReplanState", "FollowUntilBlockedState",
-    "ObstacleClassState", "PushState", "WaitPathClearState", "BackoffState",
+    "ObstacleClassState", "PushState", "WaitPathClearState", "BackoffState", "RobotPoseState", "FindFrontierState",
+    "MarkFailedGoalState", "SaveMapState",
 }
 
 
@@ -175,6 +176,7 @@ def _params(function: Callable[..., object]) -> Tuple[Tuple[str, object], ...]:
     [
         ("Subscription", fake_proxies.FakeSubscription),
         ("ActionClientProxy", fake_proxies.FakeActionClient),
+        ("ServiceCallerProxy", fake_proxies.FakeServiceCaller),
         ("RosProxies", fake_proxies.FakeProxies),
     ],
 )
