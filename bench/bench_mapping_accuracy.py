@@ -133,7 +133,7 @@ def world_from_map(run: Run) -> Pose2D:
 
 def ate_cm(run: Run, slam: GraphSlam) -> float:
     offset = world_from_map(run)
-    errors = [math.dist(compose_poses(offset, tuple(p))[:2], t[:2])  # type: ignore[arg-type]
+    errors = [math.dist(compose_poses(offset, (float(p[0]), float(p[1]), float(p[2])))[:2], t[:2])
               for p, t in zip(slam.poses(), run.keyframes_truth)]
     return 100.0 * math.sqrt(statistics.fmean(e * e for e in errors))
 

@@ -129,7 +129,8 @@ def test_a_beam_clears_the_cells_it_passes_and_marks_the_one_it_hits():
 
 def test_a_cell_seen_free_more_often_than_hit_turns_free():
     params = OccupancyParams(resolution=0.1, padding=0.5)
-    hit_once = scan_rays(ScanBeams(np.array([0.98]), np.array([0.0]), (0.0, 0.0, 0.0), 0.05, 3.0), 3.0)  # ends in [1.0, 1.1)
+    # the hit ends in the cell [1.0, 1.1): 0.05 + 0.98 + half a cell
+    hit_once = scan_rays(ScanBeams(np.array([0.98]), np.array([0.0]), (0.0, 0.0, 0.0), 0.05, 3.0), 3.0)
     passed = scan_rays(ScanBeams(np.array([2.0]), np.array([0.0]), (0.0, 0.0, 0.0), 0.05, 3.0), 3.0)
     pose = (0.05, 0.05, 0.0)
     grid = rasterize(params, [pose] * 4, [hit_once] + [passed] * 3).to_grid_map()
