@@ -19,7 +19,7 @@ import numpy as np
 import rospy
 import rostest
 import tf2_ros
-from geometry_msgs.msg import Twist, Vector3
+from geometry_msgs.msg import PoseWithCovarianceStamped, Twist, Vector3
 from message_log import MessageLog
 from nav_msgs.msg import OccupancyGrid
 from nav_msgs.srv import GetMap
@@ -52,6 +52,7 @@ class TestMapper(unittest.TestCase):
         cls.status = WallLog("/robot1/mapper/status", String, wait_s=WAIT_S)
         cls.rosout = WallLog("/rosout_agg", Log, queue_size=None, wait_s=WAIT_S)
         cls.scans = WallLog("/robot1/scan", LaserScan, wait_s=WAIT_S)
+        cls.poses = WallLog("/robot1/pose", PoseWithCovarianceStamped, wait_s=WAIT_S)
         cls.cmd = rospy.Publisher("/robot1/cmd_vel", Twist, queue_size=1)
         cls.probe_scan = rospy.Publisher("/probe/scan", LaserScan, queue_size=5)
         cls.tf_buffer = tf2_ros.Buffer()
@@ -91,6 +92,8 @@ class TestMapper(unittest.TestCase):
         self.assertTrue(all(math.isfinite(v) for v in (tf.transform.translation.x, tf.transform.translation.y)))
         status = self.status.wait_for(lambda m: "keyframes" in m.data)
         self.assertIsNotNone(status)
+        pose = self.poses.wait_for(lambda m: m.header.frame_id == "map")
+        self.assertIsNotNone(pose, "no robot pose on /robot1/pose")
 
     def test_2_dynamic_map_serves_the_map(self):
         served = self.dynamic_map().map

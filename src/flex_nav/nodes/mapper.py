@@ -5,7 +5,8 @@
 
 Subscribes ``scan`` (sensor_msgs/LaserScan); the odometry comes from tf (``odom_frame`` -> ``base_frame`` at
 the scan's stamp). Publishes ``map`` (nav_msgs/OccupancyGrid, latched, every ``map_update_interval`` [s] when it
-changed), ``map_metadata`` (nav_msgs/MapMetaData, latched), tf ``map_frame`` -> ``odom_frame`` every
+changed), ``map_metadata`` (nav_msgs/MapMetaData, latched), ``pose`` (geometry_msgs/PoseWithCovarianceStamped,
+the robot in the map frame at every scan used, as slam_toolbox's), tf ``map_frame`` -> ``odom_frame`` every
 ``transform_publish_period`` [s], post-dated by ``transform_tolerance`` [s], and ``~status`` (std_msgs/String,
 latched: keyframes, loop closures). Services: ``dynamic_map`` (nav_msgs/GetMap), ``~save_map``
 (flex_nav/MapFile: a map_server pair ``<path>.yaml`` + ``<path>.pgm``), ``~serialize_map`` (flex_nav/MapFile:
@@ -47,6 +48,7 @@ from typing import List, Optional, Union
 
 import rospy
 import tf2_ros
+from geometry_msgs.msg import PoseWithCovarianceStamped
 from nav_msgs.msg import MapMetaData, OccupancyGrid
 from nav_msgs.srv import GetMap, GetMapRequest, GetMapResponse
 from sensor_msgs.msg import LaserScan
@@ -57,8 +59,8 @@ from flex_nav.exceptions import ConfigError
 from flex_nav.mapping.occupancy import OccupancyParams
 from flex_nav.mapping.slam import GraphSlam, SlamParams
 from flex_nav.nav.costmap.map_io import save_map
-from flex_nav.nav.planar import Pose2D
-from flex_nav.ros.conversions import map_msg
+from flex_nav.nav.planar import Pose2D, compose_poses
+from flex_nav.ros.conversions import map_msg, pose_of_xy_yaw
 from flex_nav.ros.node import run_node
 from flex_nav.ros.params import param_float, param_str, reject_unknown
 from flex_nav.ros.scan_input import Complaints, ScanInput, invalid_beams, transform_msg
@@ -71,6 +73,8 @@ NODE_PARAMS = (
     "transform_publish_period", "transform_tolerance", "transform_timeout", "max_odometry_jump",
 )
 POSEGRAPH_SUFFIX = ".posegraph"
+POSE_STD_XY = 0.05  # [m] the covariance published with ``pose`` (the map's scale of accuracy, not an estimate)
+POSE_STD_YAW = 0.05  # [rad]
 
 
 def slam_params_from_server() -> SlamParams:
@@ -117,6 +121,7 @@ class MapperNode:
         self.pub_map = rospy.Publisher("map", OccupancyGrid, queue_size=1, latch=True)
         self.pub_metadata = rospy.Publisher("map_metadata", MapMetaData, queue_size=1, latch=True)
         self.pub_status = rospy.Publisher("~status", String, queue_size=2, latch=True)
+        self.pub_pose = rospy.Publisher("pose", PoseWithCovarianceStamped, queue_size=2)
         self.pub_status.publish(String(data="waiting for the first scan"))
         self.services = [
             rospy.Service("dynamic_map", GetMap, self._on_dynamic_map),
@@ -154,6 +159,8 @@ class MapperNode:
                                            "(odometry restarted); drive back there, or the map stays as it is")
             if added:
                 self._publish_transform(scan.header.stamp)
+            if self._slam.keyframes and not self._slam.reanchoring:
+                self._publish_pose(scan.header.stamp, compose_poses(self._slam.map_to_odom(), odom))
 
     def _check_odometry(self, stamp: rospy.Time, odom: Pose2D) -> None:
         """(lock held) Restart the odometry reference when time went back or the odometry jumped."""
@@ -176,6 +183,17 @@ class MapperNode:
             return
         self.tf_broadcaster.sendTransform(
             transform_msg(stamp + self.tolerance, self.map_frame, self.odom_frame, self._slam.map_to_odom()))
+
+    def _publish_pose(self, stamp: rospy.Time, pose: Pose2D) -> None:
+        msg = PoseWithCovarianceStamped()
+        msg.header.stamp = stamp
+        msg.header.frame_id = self.map_frame
+        msg.pose.pose = pose_of_xy_yaw(*pose)
+        covariance = [0.0] * 36
+        covariance[0] = covariance[7] = POSE_STD_XY**2
+        covariance[35] = POSE_STD_YAW**2
+        msg.pose.covariance = covariance
+        self.pub_pose.publish(msg)
 
     def _on_tf_timer(self, _event: rospy.timer.TimerEvent) -> None:
         with self._lock:
