@@ -1,7 +1,7 @@
 """behaviors/explore.yaml on fake servers and a scripted map: frontier -> plan -> drive -> the map grows -> no
 frontier left -> save -> back to the start; a frontier that cannot be reached is marked and not retried; a map that
-is not saved still brings the robot back but fails the behavior; at autonomy Low the operator approves each
-frontier. Its structure reuses flex_planner's parts (the Navigate sub-behavior, simple_recovery)."""
+is not saved still brings the robot back but fails the behavior; a stale robot pose stops it; at autonomy Low the
+operator approves each frontier. Its structure reuses flex_planner's parts (the Navigate sub-behavior, simple_recovery)."""
 
 from __future__ import annotations
 
@@ -66,7 +66,16 @@ class Scene:
         self.h.start()
         self.map = self.h.proxies.sub("/map")
         self.map.inject(occupancy_grid(occ))
-        self.h.proxies.sub("amcl_pose").inject(robot_pose(*START, stamp_s=self.h.clock.now()))
+        self.pose = self.h.proxies.sub("pose")
+        self.mapper_alive = True  # False: the mapper publishes no pose any more
+        self.step(0.0)
+
+    def step(self, dt_s: float = STEP_S) -> None:
+        """Time moves on; the mapper publishes the robot's pose at every scan (the robot stays where it started:
+        the follower is faked)."""
+        self.h.advance(dt_s)
+        if self.mapper_alive:
+            self.pose.inject(robot_pose(*START, stamp_s=self.h.clock.now()))
 
     def run(self, max_time_s: float = 60.0, explored_after: int = 0) -> Any:
         """Tick until the behavior ends; the whole room is known once the follower has ended ``explored_after``
@@ -75,7 +84,7 @@ class Scene:
         while self.h.clock.now() < end_s:
             if self.h.tick():
                 return self.h.executor.result()
-            self.h.advance(STEP_S)
+            self.step()
             if explored_after and len(self.follower.goals) >= explored_after and not self.follower.is_active():
                 self.map.inject(occupancy_grid(room()))
                 explored_after = 0
@@ -120,18 +129,28 @@ def test_a_map_that_is_not_saved_still_brings_the_robot_back_but_fails(tmp_path)
     assert any("disk full" in t for t in scene.h.texts())
 
 
+def test_a_silent_mapper_pose_fails_the_exploration_before_anything_moves(tmp_path):
+    scene = Scene(tmp_path, room(40), follow=[GoalStatus.SUCCEEDED], map_timeout_s=2.0)
+    scene.mapper_alive = False
+    scene.pose.inject(robot_pose(*START, stamp_s=scene.h.clock.now() - 5.0))  # its last pose, 5 s ago
+    result = scene.run()
+    assert result.outcome == "failed"
+    assert scene.planner.goals == []
+    assert any("s old (pose_max_age_s 1 s)" in t for t in scene.h.texts()), scene.h.log_text()
+
+
 def test_at_autonomy_low_the_operator_approves_each_frontier(tmp_path):
     scene = Scene(tmp_path, room(40), follow=[GoalStatus.SUCCEEDED] * 2, autonomy=Autonomy.LOW)
     for _ in range(100):
         scene.h.tick()
-        scene.h.advance(STEP_S)
+        scene.step()
     requests = scene.h.executor.requested_outcomes()
     assert [(r.path, r.outcome) for r in requests] == [("/ApproveFrontier", "explore")]
     assert scene.planner.goals == []  # nothing planned before the approval
     scene.h.executor.approve("/ApproveFrontier")
     for _ in range(20):
         scene.h.tick()
-        scene.h.advance(STEP_S)
+        scene.step()
     assert len(scene.planner.goals) == 1
 
 
