@@ -1,7 +1,8 @@
 """behaviors/explore.yaml on fake servers and a scripted map: frontier -> plan -> drive -> the map grows -> no
 frontier left -> save -> back to the start; a frontier that cannot be reached is marked and not retried; a map that
 is not saved still brings the robot back but fails the behavior; a stale robot pose stops it; at autonomy Low the
-operator approves each frontier. Its structure reuses flex_planner's parts (the Navigate sub-behavior, simple_recovery)."""
+operator approves each frontier. Its structure reuses flex_planner's parts (the Navigate sub-behavior,
+simple_recovery)."""
 
 from __future__ import annotations
 
