@@ -21,14 +21,13 @@ Writes a PNG per run (``--png DIR``): the built map, the true walls and the traj
 from __future__ import annotations
 
 import argparse
-import math
 import os
 import statistics
 import sys
 import time
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Dict, List, Optional, Sequence, Tuple
+from typing import Dict, List, Optional, Tuple
 
 import cv2
 import numpy as np
@@ -39,9 +38,9 @@ sys.path.insert(0, str(REPO / "bench"))
 
 from bench_localization_accuracy import CRUISE, TURN_RATE, LapDriver, Waypoint, interpolate  # noqa: E402
 
+from flex_nav.apps.eval.map_quality import GHOST_M, ate_rmse_cm, draw_map, score_map  # noqa: E402
 from flex_nav.localization import ScanBeams  # noqa: E402
 from flex_nav.mapping.slam import GraphSlam, SlamParams  # noqa: E402
-from flex_nav.nav.costmap.grid_map import GridMap  # noqa: E402
 from flex_nav.nav.costmap.map_io import load_map  # noqa: E402
 from flex_nav.nav.planar import Pose2D, compose_poses, inverse_pose  # noqa: E402
 from flex_nav_sim.profiles import load_profile  # noqa: E402
@@ -67,7 +66,7 @@ TOURS: Dict[str, Tuple[Waypoint, ...]] = {
 TARGET_AGREE = 0.97
 TARGET_WALL_CM = 5.0
 TARGET_SCAN_MS = 20.0
-GHOST_M = 0.15  # [m] a mapped wall cell this far from any true wall is a ghost (a doubled wall)
+ROBOT_RADIUS = 0.177  # [m] TurtleBot 2 (sim/robots/kobuki.yaml): the clearance that makes free space reachable
 
 
 @dataclass
@@ -131,93 +130,11 @@ def world_from_map(run: Run) -> Pose2D:
     return compose_poses(run.truth0, inverse_pose(run.odom0))
 
 
-def ate_cm(run: Run, slam: GraphSlam) -> float:
+def keyframe_pairs(run: Run, slam: GraphSlam) -> Tuple[List[Pose2D], List[Pose2D]]:
+    """The keyframes' optimised poses placed in the world (first pose placed, no fitting) and their true poses."""
     offset = world_from_map(run)
-    errors = [math.dist(compose_poses(offset, (float(p[0]), float(p[1]), float(p[2])))[:2], t[:2])
-              for p, t in zip(slam.poses(), run.keyframes_truth)]
-    return 100.0 * math.sqrt(statistics.fmean(e * e for e in errors))
-
-
-def ate_evo_cm(run: Run, slam: GraphSlam) -> Optional[float]:
-    """evo's APE (translation, RMSE) after SE(3) Umeyama alignment of the keyframes; None without evo."""
-    try:
-        from evo.core import metrics, sync  # noqa: F401, PLC0415
-        from evo.core.trajectory import PoseTrajectory3D  # noqa: PLC0415
-    except ImportError:
-        return None
-    stamps = np.arange(len(run.keyframes_truth), dtype=float)
-
-    def trajectory(poses: Sequence[Sequence[float]]) -> PoseTrajectory3D:
-        xyz = np.array([(p[0], p[1], 0.0) for p in poses])
-        quat = np.array([(math.cos(p[2] / 2), 0.0, 0.0, math.sin(p[2] / 2)) for p in poses])  # w x y z
-        return PoseTrajectory3D(positions_xyz=xyz, orientations_quat_wxyz=quat, timestamps=stamps)
-
-    reference = trajectory(run.keyframes_truth)
-    estimate = trajectory(slam.poses().tolist())
-    estimate.align(reference, correct_scale=False)
-    ape = metrics.APE(metrics.PoseRelation.translation_part)
-    ape.process_data((reference, estimate))
-    return 100.0 * float(ape.get_statistic(metrics.StatisticsType.rmse))
-
-
-@dataclass
-class MapScore:
-    agree: float  # [-]
-    compared: int  # cells
-    wall_median_cm: float
-    wall_p95_cm: float
-    ghost: float  # [-] share of mapped wall cells farther than GHOST_M from a true wall
-
-
-def score_map(built: GridMap, truth: GridMap, map_in_world: Pose2D) -> MapScore:
-    """Compare ``built`` (map frame) with ``truth`` (world frame) cell by cell, at the truth's cell centres."""
-    rows, cols = np.nonzero(truth.occupancy >= 0)
-    wx, wy = truth.cells_to_world(rows, cols)
-    inv = inverse_pose(map_in_world)
-    c, s = math.cos(inv[2]), math.sin(inv[2])
-    mx, my = inv[0] + c * wx - s * wy, inv[1] + s * wx + c * wy
-    brow, bcol = built.world_to_cells(mx, my)
-    inside = (brow >= 0) & (brow < built.height) & (bcol >= 0) & (bcol < built.width)
-    values = np.full(rows.shape, -1, dtype=np.int16)
-    values[inside] = built.occupancy[brow[inside], bcol[inside]]
-    true_values = truth.occupancy[rows, cols]
-    seen = values >= 0
-    agree = float(np.mean((values[seen] >= 50) == (true_values[seen] >= 50))) if seen.any() else math.nan
-    # walls: every built occupied cell's distance to the nearest true occupied cell
-    free_of_walls = np.where(truth.occupancy >= 50, 0, 255).astype(np.uint8)
-    distance = cv2.distanceTransform(free_of_walls, cv2.DIST_L2, cv2.DIST_MASK_PRECISE) * truth.resolution
-    brows, bcols = np.nonzero(built.occupancy >= 50)
-    bx, by = built.cells_to_world(brows, bcols)
-    c, s = math.cos(map_in_world[2]), math.sin(map_in_world[2])
-    tx, ty = map_in_world[0] + c * bx - s * by, map_in_world[1] + s * bx + c * by
-    trow, tcol = truth.world_to_cells(tx, ty)
-    ok = (trow >= 0) & (trow < truth.height) & (tcol >= 0) & (tcol < truth.width)
-    d = distance[trow[ok], tcol[ok]]
-    return MapScore(agree, int(seen.sum()), 100.0 * float(np.median(d)), 100.0 * float(np.percentile(d, 95)),
-                    float(np.mean(d > GHOST_M)))
-
-
-def save_png(path: Path, built: GridMap, truth: GridMap, map_in_world: Pose2D, slam: GraphSlam) -> None:
-    """The built map (grey: unknown, white: free, black: occupied) with the true walls in red and the keyframe
-    trajectory in blue, loop closures in green (built map's frame, up = +y)."""
-    image = np.full((*built.occupancy.shape, 3), 160, dtype=np.uint8)
-    image[built.occupancy == 0] = (255, 255, 255)
-    image[built.occupancy >= 50] = (0, 0, 0)
-    rows, cols = np.nonzero(truth.occupancy >= 50)
-    wx, wy = truth.cells_to_world(rows, cols)
-    inv = inverse_pose(map_in_world)
-    c, s = math.cos(inv[2]), math.sin(inv[2])
-    brow, bcol = built.world_to_cells(inv[0] + c * wx - s * wy, inv[1] + s * wx + c * wy)
-    inside = (brow >= 0) & (brow < built.height) & (bcol >= 0) & (bcol < built.width)
-    image[brow[inside], bcol[inside]] = (0, 0, 255)
-    poses = slam.poses()
-    prow, pcol = built.world_to_cells(poses[:, 0], poses[:, 1])
-    for a, b in zip(range(len(poses) - 1), range(1, len(poses))):
-        cv2.line(image, (int(pcol[a]), int(prow[a])), (int(pcol[b]), int(prow[b])), (255, 0, 0), 1)
-    for closure in slam.loop_closures:
-        cv2.line(image, (int(pcol[closure.old]), int(prow[closure.old])),
-                 (int(pcol[closure.new]), int(prow[closure.new])), (0, 200, 0), 1)
-    cv2.imwrite(str(path), np.flipud(image))
+    placed = [compose_poses(offset, (float(p[0]), float(p[1]), float(p[2]))) for p in slam.poses()]
+    return placed, list(run.keyframes_truth)
 
 
 def main() -> int:
@@ -237,16 +154,20 @@ def main() -> int:
                 run = drive(world_name, args.robot, seed, slam)
                 built = slam.occupancy_map()
                 placed = world_from_map(run)
-                score = score_map(built, truth_map, placed)
-                evo_cm = ate_evo_cm(run, slam)
+                world = load_world(world_name)
+                start = world.spawns[0].pose
+                score = score_map(built, truth_map, placed, (start[0], start[1]), ROBOT_RADIUS)
+                estimates, truths = keyframe_pairs(run, slam)
+                placed_cm = ate_rmse_cm(estimates, truths, align=False)
+                evo_cm = ate_rmse_cm(estimates, truths, align=True)
                 scan_ms = [1e3 * v for v in run.scan_s]
                 key_ms = [1e3 * v for v in run.keyframe_s]
                 label = "loop closure on " if closing else "loop closure off"
                 print(f"{world_name} {args.robot} seed {seed}, {label}: {len(slam.keyframes)} keyframes, "
                       f"{len(slam.loop_closures)} closures ({slam.rejected_loops} rejected), tour "
                       f"{'done' if run.done else 'NOT done'}, {run.contacts} contacts")
-                print(f"  ATE {ate_cm(run, slam):.1f} cm (first pose placed)"
-                      + ("" if evo_cm is None else f", {evo_cm:.1f} cm (evo, SE(3) aligned)"))
+                print(f"  ATE (evo, keyframes) {placed_cm:.1f} cm with the first pose placed, {evo_cm:.1f} cm "
+                      f"SE(3)-aligned")
                 print(f"  map: {100 * score.agree:.1f} % of {score.compared} observed cells agree; walls "
                       f"median {score.wall_median_cm:.1f} cm, p95 {score.wall_p95_cm:.1f} cm off; "
                       f"{100 * score.ghost:.1f} % of wall cells > {100 * GHOST_M:.0f} cm off")
@@ -256,8 +177,11 @@ def main() -> int:
                       f"{TARGET_SCAN_MS:.0f} ms budget {statistics.median(scan_ms) / TARGET_SCAN_MS:.3f}")
                 if args.png is not None:
                     args.png.mkdir(parents=True, exist_ok=True)
-                    save_png(args.png / f"{world_name}_{seed}_{'loops' if closing else 'noloops'}.png", built,
-                             truth_map, placed, slam)
+                    poses = slam.poses()
+                    closures = [((poses[c.old][0], poses[c.old][1]), (poses[c.new][0], poses[c.new][1]))
+                                for c in slam.loop_closures]
+                    image = draw_map(built, truth_map, placed, [(p[0], p[1]) for p in poses], closures)
+                    cv2.imwrite(str(args.png / f"{world_name}_{seed}_{'loops' if closing else 'noloops'}.png"), image)
                 if closing:
                     ok &= (score.agree >= TARGET_AGREE and score.wall_median_cm <= TARGET_WALL_CM
                            and statistics.median(scan_ms) <= TARGET_SCAN_MS)
