@@ -82,6 +82,9 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     parser.add_argument("--goals", default=",".join(LAP),
                         help="comma-separated goal names of the world, in order (default %(default)s)")
     parser.add_argument("--world", default="lab", help="world name in sim/worlds or a path (default %(default)s)")
+    parser.add_argument("--map", type=Path, default=None,
+                        help="map_server YAML to navigate on (default: the world's static map), e.g. a map the "
+                             "mapper saved (python -m flex_nav.apps.mapping_run)")
     parser.add_argument("--robots", type=int, default=1, help="number of robots, 1..3 (default %(default)s)")
     parser.add_argument("--laps", type=int, default=1, help="laps of the goal loop (default %(default)s)")
     parser.add_argument("--goals-per-robot", type=int, default=0,
@@ -318,7 +321,7 @@ def start_system(stack: contextlib.ExitStack, args: argparse.Namespace, runs: Li
     parameters = rosgraph.Master("/nav_demo", master_uri=master.uri)
     for name, value in {"/use_sim_time": True, **(params or {})}.items():
         parameters.setParam(name, value)
-    map_yaml = world_map(Path(args.world).stem)
+    map_yaml = getattr(args, "map", None) or world_map(Path(args.world).stem)
     oracle = getattr(args, "localization", "localizer") == "oracle"
     robots_param = ",".join(f"{r.name}:{r.profile}:{r.pose[0]}:{r.pose[1]}:{math.degrees(r.pose[2]):.1f}"
                             for r in runs if r.pose)
@@ -409,7 +412,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
     except FlexNavError as err:
         print(f"demo: {err}", file=sys.stderr)
         return 2
-    map_yaml = world_map(world.name)
+    map_yaml = args.map or world_map(world.name)
     out = args.out or REPO_ROOT / "out" / time.strftime("demo-%Y%m%d-%H%M%S")
     out.mkdir(parents=True, exist_ok=True)
     robots = ", ".join(f"{r.name} ({r.profile})" for r in runs)

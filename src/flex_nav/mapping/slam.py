@@ -20,8 +20,9 @@ Per scan (:meth:`GraphSlam.add_scan`): nothing happens until the odometry says t
    ``loop_match_agreement_distance`` [m] of the same relative pose. An accepted closure adds a LOOP edge (the
    graph's robust kernel bounds what a false one could still do) and the graph is optimised.
 
-The map frame is the first keyframe's odometry frame: ``map → odom`` starts as the identity and is the last
-keyframe's optimised pose composed with the inverse of its odometry (:meth:`GraphSlam.map_to_odom`).
+The map frame puts the first keyframe at ``map_start_pose`` (slam_toolbox's parameter; default: at its odometry
+pose, so that ``map → odom`` starts as the identity); ``map → odom`` is the last keyframe's optimised pose composed
+with the inverse of its odometry (:meth:`GraphSlam.map_to_odom`).
 """
 
 from __future__ import annotations
@@ -103,9 +104,12 @@ class GraphSlam:
 
     def __init__(
         self, params: Optional[SlamParams] = None, occupancy: Optional[OccupancyParams] = None,
-        matcher: Optional[MatcherParams] = None,
+        matcher: Optional[MatcherParams] = None, *, map_start_pose: Optional[Pose2D] = None,
     ) -> None:
+        """``map_start_pose`` (x [m], y [m], yaw [rad]): where the first keyframe sits in the map frame (None: at its
+        odometry pose)."""
         self.params = params or SlamParams()
+        self.map_start_pose = None if map_start_pose is None else _finite(map_start_pose, "map_start_pose")
         self.occupancy = occupancy or OccupancyParams()
         self.matcher = ScanMatcher(matcher or MatcherParams())
         self.graph = PoseGraph()
@@ -123,7 +127,8 @@ class GraphSlam:
         odom = _finite(odom)
         rays = _rays(scan, self.occupancy.max_free_range)
         if not self.keyframes:
-            self._append(odom, rays, odom, np.diag([1e-4, 1e-4, 1e-4]), kind=EdgeKind.ODOMETRY, travel=0.0)
+            start = odom if self.map_start_pose is None else self.map_start_pose
+            self._append(odom, rays, start, np.diag([1e-4, 1e-4, 1e-4]), kind=EdgeKind.ODOMETRY, travel=0.0)
             return True
         if self._reanchor:
             return self._add_reanchored(odom, rays)
@@ -344,13 +349,13 @@ class GraphSlam:
         return slam
 
 
-def _finite(pose: Any) -> Pose2D:
+def _finite(pose: Any, what: str = "odometry pose") -> Pose2D:
     try:
         values = tuple(float(v) for v in pose)
     except (TypeError, ValueError) as err:
-        raise ConfigError(f"mapper: odometry pose must be (x [m], y [m], yaw [rad]), got {pose!r}") from err
+        raise ConfigError(f"mapper: {what} must be (x [m], y [m], yaw [rad]), got {pose!r}") from err
     if len(values) != 3 or not all(math.isfinite(v) for v in values):
-        raise ConfigError(f"mapper: odometry pose must be a finite (x [m], y [m], yaw [rad]), got {pose!r}")
+        raise ConfigError(f"mapper: {what} must be a finite (x [m], y [m], yaw [rad]), got {pose!r}")
     return values[0], values[1], wrap_angle(values[2])
 
 

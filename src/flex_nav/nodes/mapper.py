@@ -29,6 +29,8 @@ Private parameters: the mapper's (:class:`flex_nav.mapping.slam.SlamParams`, sla
   ~transform_tolerance  float  0.1 [s]    post-dating of map -> odom
   ~transform_timeout    float  0.2 [s]    bound on waiting for the odometry and laser transforms
   ~max_odometry_jump    float  1.0 [m]    odometry moving further between two scans is a jump
+  ~map_start_pose       [x, y, yaw]  unset  [m, m, rad] where the robot's first pose is in the map frame (unset: at
+                        its odometry pose), as slam_toolbox's: e.g. a known start, so that maps of two runs line up
 
 Bad input is logged (throttled) naming the field, and the graph is kept: beams that are NaN, -inf or out of
 range are dropped (+inf and max-range readings clear free space); a scan in a frame tf cannot place or without
@@ -70,7 +72,7 @@ NODE_NAME = "mapper"
 SLAM_PARAMS = tuple(f.name for f in dataclasses.fields(SlamParams))
 NODE_PARAMS = (
     "map_frame", "odom_frame", "base_frame", "resolution", "max_laser_range", "map_update_interval",
-    "transform_publish_period", "transform_tolerance", "transform_timeout", "max_odometry_jump",
+    "transform_publish_period", "transform_tolerance", "transform_timeout", "max_odometry_jump", "map_start_pose",
 )
 POSEGRAPH_SUFFIX = ".posegraph"
 POSE_STD_XY = 0.05  # [m] the covariance published with ``pose`` (the map's scale of accuracy, not an estimate)
@@ -105,7 +107,11 @@ class MapperNode:
         self.max_jump = param_float("~max_odometry_jump", 1.0, 0.01, 100.0)
 
         self._lock = threading.Lock()
-        self._slam = GraphSlam(self.params, self.occupancy)
+        start = rospy.get_param("~map_start_pose", None)
+        try:
+            self._slam = GraphSlam(self.params, self.occupancy, map_start_pose=start)
+        except ConfigError as err:
+            raise ConfigError(f"parameter {rospy.resolve_name('~map_start_pose')}: {err}") from err
         self._last_odom: Optional[Pose2D] = None
         self._last_stamp: Optional[rospy.Time] = None
         self._published_keyframes = -1  # keyframe count of the map last published

@@ -125,7 +125,7 @@ def draw_map(built: GridMap, truth: GridMap, map_in_world: Pose2D, trajectory: S
     image = np.full((*built.occupancy.shape, 3), 170, dtype=np.uint8)
     image[(built.occupancy >= 0) & (built.occupancy < OCCUPIED_MIN)] = (255, 255, 255)
     image[built.occupancy >= OCCUPIED_MIN] = (0, 0, 0)
-    image = cv2.resize(image, None, fx=scale, fy=scale, interpolation=cv2.INTER_NEAREST)
+    image = np.asarray(cv2.resize(image, None, fx=scale, fy=scale, interpolation=cv2.INTER_NEAREST), dtype=np.uint8)
     rows, cols = np.nonzero(truth.occupancy >= OCCUPIED_MIN)
     mx, my = _transform(inverse_pose(map_in_world), *truth.cells_to_world(rows, cols))
 
