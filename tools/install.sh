@@ -141,15 +141,19 @@ generate_messages() {
 }
 
 warm_numba_cache() {
-  # Compile the numba kernels once now, not in every planner/controller/localizer node started afterwards.
+  # Compile the numba kernels once now, not in every planner/controller/localizer/mapper node started afterwards.
   local stamp="$VENV/.flex_nav-numba.sha256" want
-  want="$({ find "$REPO/src/flex_nav/nav" "$REPO/src/flex_nav/localization" -name '*.py' | LC_ALL=C sort | xargs cat
+  want="$({ find "$REPO/src/flex_nav/nav" "$REPO/src/flex_nav/localization" "$REPO/src/flex_nav/mapping" -name '*.py' |
+    LC_ALL=C sort | xargs cat
     cat "$REPO/requirements.txt"; } | sha256sum | cut -d' ' -f1)"
   if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$want" ]; then say "numba: compiled kernels cached"; return; fi
   "$VENV/bin/python" -m flex_nav.nav.warm_cache || die "compiling the numba kernels failed (see above)."
   "$VENV/bin/python" -c 'from flex_nav.localization.localizer import warm_up
 print(f"[flex_nav warm_cache] localizer kernels ready in {warm_up():.1f} s")' ||
     die "compiling the localizer's numba kernels failed (see above)."
+  "$VENV/bin/python" -c 'from flex_nav.mapping.slam import warm_up
+print(f"[flex_nav warm_cache] mapper kernels ready in {warm_up():.1f} s")' ||
+    die "compiling the mapper's numba kernels failed (see above)."
   printf '%s\n' "$want" >"$stamp"
 }
 

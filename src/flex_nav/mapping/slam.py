@@ -377,3 +377,18 @@ def _hits(rays: ScanRays) -> np.ndarray:
 
 def _distance(a: Pose2D, b: Pose2D) -> float:
     return math.hypot(a[0] - b[0], a[1] - b[1])
+
+
+def warm_up() -> float:
+    """Run every compiled kernel of the mapper once (ray tracing, the scan matcher's branch and bound), so that numba
+    compiles them into its cache (or loads them from it); returns the wall time it took [s]. For an installer."""
+    import time  # noqa: PLC0415 - only here
+
+    started = time.monotonic()
+    angles = np.linspace(-2.0, 2.0, 90)
+    ranges = np.where(np.abs(angles) < 1.0, 2.0 / np.maximum(np.cos(angles), 0.5), 3.0)  # a wall 2 m ahead
+    slam = GraphSlam()
+    for x in (0.0, 0.25):
+        slam.add_scan((x, 0.0, 0.0), ScanBeams(ranges, angles, (0.0, 0.0, 0.0), 0.05, 5.0))
+    slam.occupancy_map()
+    return time.monotonic() - started
