@@ -120,23 +120,27 @@ def ate_rmse_cm(estimates: Sequence[Pose2D], truths: Sequence[Pose2D], align: bo
 def draw_map(built: GridMap, truth: GridMap, map_in_world: Pose2D, trajectory: Sequence[Tuple[float, float]] = (),
              closures: Sequence[Tuple[Tuple[float, float], Tuple[float, float]]] = (), *, scale: int = 3) -> np.ndarray:
     """A BGR picture in the built map's frame (up = +y), ``scale`` pixels per cell: the built map (grey unknown,
-    white free, black occupied), the true walls in red, ``trajectory`` (map frame [m]) in blue and the loop
-    closures (pairs of map-frame points) in green."""
+    white free, black occupied), the true walls over it (dark red where the built map has them too, bright red
+    where it does not), ``trajectory`` (map frame [m]) in blue and the loop closures (pairs of map-frame points) in
+    green."""
+    built_walls = built.occupancy >= OCCUPIED_MIN
     image = np.full((*built.occupancy.shape, 3), 170, dtype=np.uint8)
     image[(built.occupancy >= 0) & (built.occupancy < OCCUPIED_MIN)] = (255, 255, 255)
-    image[built.occupancy >= OCCUPIED_MIN] = (0, 0, 0)
-    image = np.asarray(cv2.resize(image, None, fx=scale, fy=scale, interpolation=cv2.INTER_NEAREST), dtype=np.uint8)
+    image[built_walls] = (0, 0, 0)
     rows, cols = np.nonzero(truth.occupancy >= OCCUPIED_MIN)
-    mx, my = _transform(inverse_pose(map_in_world), *truth.cells_to_world(rows, cols))
+    brow, bcol = built.world_to_cells(*_transform(inverse_pose(map_in_world), *truth.cells_to_world(rows, cols)))
+    inside = (brow >= 0) & (brow < built.height) & (bcol >= 0) & (bcol < built.width)
+    true_walls = np.zeros(built_walls.shape, dtype=bool)
+    true_walls[brow[inside], bcol[inside]] = True
+    image[true_walls & built_walls] = (0, 0, 120)
+    image[true_walls & ~built_walls] = (0, 0, 230)
+    image = np.asarray(cv2.resize(image, None, fx=scale, fy=scale, interpolation=cv2.INTER_NEAREST), dtype=np.uint8)
 
     def pixels(xs: np.ndarray, ys: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
         ox, oy, _ = built.origin
         return (((xs - ox) / built.resolution) * scale).astype(np.int64), \
             (((ys - oy) / built.resolution) * scale).astype(np.int64)
 
-    px, py = pixels(mx, my)
-    inside = (px >= 0) & (px < image.shape[1]) & (py >= 0) & (py < image.shape[0])
-    image[py[inside], px[inside]] = (0, 0, 230)
     if len(trajectory) > 1:
         tx, ty = pixels(np.array([p[0] for p in trajectory]), np.array([p[1] for p in trajectory]))
         cv2.polylines(image, [np.column_stack([tx, ty]).astype(np.int32)], False, (200, 80, 20), 1)
