@@ -36,6 +36,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 from flex_nav.apps.eval.map_quality import ate_rmse_cm, draw_map, score_map
 from flex_nav.exceptions import FlexNavError
 from flex_nav.nav.planar import Pose2D, compose_poses, inverse_pose
+from flex_nav.resources import share_dir
 from flex_nav.testing.private_master import PrivateMaster
 from flex_nav.testing.process import ManagedProcess
 
@@ -180,8 +181,14 @@ def start_system(stack: contextlib.ExitStack, args: argparse.Namespace, out: Pat
     # the map frame on the world's: the robot starts where the world file spawns it (as a robot started at a known
     # dock), so that the saved map and the world's goals line up
     parameters.setParam(f"/{ROBOT}/mapper/map_start_pose", [x, y, yaw])
-    if args.no_loop_closure:
-        parameters.setParam(f"/{ROBOT}/mapper/do_loop_closing", False)
+    mapper_config = share_dir() / "config" / "mapper.yaml"
+    if args.no_loop_closure:  # the launch file loads the config over any parameter set here: a copy, changed
+        import yaml  # noqa: PLC0415
+
+        values = yaml.safe_load(mapper_config.read_text(encoding="utf-8"))
+        values["do_loop_closing"] = False
+        mapper_config = out / "mapper_no_loop_closure.yaml"
+        mapper_config.write_text(yaml.safe_dump(values), encoding="utf-8")
     profile = PROFILES[args.profile]
     behavior_parameters = json.dumps({"map_path": str(out / "map"), "pose_topic": "pose",
                                       "pose_type": "pose_with_covariance", "profile": profile})
@@ -192,7 +199,8 @@ def start_system(stack: contextlib.ExitStack, args: argparse.Namespace, out: Pat
                         "_publish_initial_pose:=false"],
                        env=master.env, log_path=logs / "sim.log"),
         ManagedProcess(["roslaunch", "flex_nav", "flex_nav_robot.launch", f"robot:={ROBOT}", f"profile:={profile}",
-                        "twist_relay:=true", "mapper:=true", "behavior:=explore", f"autonomy:={args.autonomy}",
+                        "twist_relay:=true", "mapper:=true", f"mapper_config:={mapper_config}", "behavior:=explore",
+                        f"autonomy:={args.autonomy}",
                         f"behavior_parameters:={behavior_parameters}"],
                        env=master.env, log_path=logs / f"{ROBOT}.log"),
     ]

@@ -121,7 +121,7 @@ def draw_map(built: GridMap, truth: GridMap, map_in_world: Pose2D, trajectory: S
              closures: Sequence[Tuple[Tuple[float, float], Tuple[float, float]]] = (), *, scale: int = 3) -> np.ndarray:
     """A BGR picture in the built map's frame (up = +y), ``scale`` pixels per cell: the built map (grey unknown,
     white free, black occupied), the true walls over it (dark red where the built map has them too, bright red
-    where it does not), ``trajectory`` (map frame [m]) in blue and the loop closures (pairs of map-frame points) in
+    where it calls them free, pink where it never saw them: inside obstacles), ``trajectory`` (map frame [m]) in blue and the loop closures (pairs of map-frame points) in
     green."""
     built_walls = built.occupancy >= OCCUPIED_MIN
     image = np.full((*built.occupancy.shape, 3), 170, dtype=np.uint8)
@@ -133,7 +133,8 @@ def draw_map(built: GridMap, truth: GridMap, map_in_world: Pose2D, trajectory: S
     true_walls = np.zeros(built_walls.shape, dtype=bool)
     true_walls[brow[inside], bcol[inside]] = True
     image[true_walls & built_walls] = (0, 0, 120)
-    image[true_walls & ~built_walls] = (0, 0, 230)
+    image[true_walls & (built.occupancy < 0)] = (200, 200, 255)
+    image[true_walls & (built.occupancy >= 0) & ~built_walls] = (0, 0, 230)
     image = np.asarray(cv2.resize(image, None, fx=scale, fy=scale, interpolation=cv2.INTER_NEAREST), dtype=np.uint8)
 
     def pixels(xs: np.ndarray, ys: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
