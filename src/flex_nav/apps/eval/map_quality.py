@@ -121,8 +121,8 @@ def draw_map(built: GridMap, truth: GridMap, map_in_world: Pose2D, trajectory: S
              closures: Sequence[Tuple[Tuple[float, float], Tuple[float, float]]] = (), *, scale: int = 3) -> np.ndarray:
     """A BGR picture in the built map's frame (up = +y), ``scale`` pixels per cell: the built map (grey unknown,
     white free, black occupied), the true walls over it (dark red where the built map has them too, bright red
-    where it calls them free, pink where it never saw them: inside obstacles), ``trajectory`` (map frame [m]) in blue and the loop closures (pairs of map-frame points) in
-    green."""
+    where it calls them free, pink where it never saw them: inside obstacles), ``trajectory`` (map frame [m]) in
+    blue and the loop closures (pairs of map-frame points) in green."""
     built_walls = built.occupancy >= OCCUPIED_MIN
     image = np.full((*built.occupancy.shape, 3), 170, dtype=np.uint8)
     image[(built.occupancy >= 0) & (built.occupancy < OCCUPIED_MIN)] = (255, 255, 255)
