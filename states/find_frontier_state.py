@@ -71,6 +71,8 @@ class FindFrontierState(State):
     -- size_weight           float  [m/m] Metres of path one metre of frontier is worth in the choice.
     -- failed_goal_radius_m  float  [m] Skip a frontier whose goal lies this close to a failed goal.
     -- min_goal_distance_m   float  [m] Skip a frontier whose goal is a shorter path than this from the robot.
+    -- view_distance_m       float  [m] Stop this much path short of the frontier, where it is still in sight (the
+                                    lidar sees it from there; 0: go to the frontier itself).
 
     ># failed_goals  list         Goals that failed before (PoseStamped, in the map's frame).
     #> goal          PoseStamped  The frontier's goal in the map's frame, facing the unknown side (when found).
@@ -96,6 +98,7 @@ class FindFrontierState(State):
         size_weight: float = 1.0,
         failed_goal_radius_m: float = 0.5,
         min_goal_distance_m: float = 0.4,
+        view_distance_m: float = 0.0,
     ) -> None:
         super().__init__(outcomes=["found", "done", "failed"], input_keys=["failed_goals"],
                          output_keys=["goal", "frontier"])
@@ -106,7 +109,7 @@ class FindFrontierState(State):
         try:
             self._params = FrontierParams(robot_radius_m=robot_radius_m, min_frontier_size_m=min_frontier_size_m,
                                           size_weight=size_weight, failed_goal_radius_m=failed_goal_radius_m,
-                                          min_goal_distance_m=min_goal_distance_m)
+                                          min_goal_distance_m=min_goal_distance_m, view_distance_m=view_distance_m)
         except ConfigError as err:
             raise ConfigError(f"{owner}: {err}") from err
         self._map_sub: Optional[SubscriptionLike] = None

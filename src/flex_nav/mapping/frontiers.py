@@ -65,6 +65,7 @@ class FrontierParams:
     size_weight: float = 1.0  # [m/m] metres of path a metre of frontier is worth (cost = path - weight * size)
     failed_goal_radius_m: float = 0.5  # [m] a frontier whose goal is this close to a failed goal is skipped
     min_goal_distance_m: float = 0.4  # [m] a frontier whose goal is a shorter path away is skipped
+    view_distance_m: float = 0.0  # [m] stop this much path short of the frontier where it stays in sight (0: at it)
 
     def __post_init__(self) -> None:
         validation.number(_OWNER, "robot_radius_m", self.robot_radius_m, minimum=0.0, unit="[m]")
@@ -72,6 +73,7 @@ class FrontierParams:
         validation.number(_OWNER, "size_weight", self.size_weight, minimum=0.0, unit="[m/m]")
         validation.number(_OWNER, "failed_goal_radius_m", self.failed_goal_radius_m, minimum=0.0, unit="[m]")
         validation.number(_OWNER, "min_goal_distance_m", self.min_goal_distance_m, minimum=0.0, unit="[m]")
+        validation.number(_OWNER, "view_distance_m", self.view_distance_m, minimum=0.0, unit="[m]")
 
 
 @dataclass(frozen=True)
@@ -154,7 +156,7 @@ def find_frontiers(grid: GridMap, robot_xy: Tuple[float, float], params: Frontie
         )
     near_unknown = cv2.dilate(unknown.view(np.uint8), _EIGHT) > 0
     return _cluster(grid, free & near_unknown, unknown, distance, params=params,
-                    view_radius=max(float(VIEW_RADIUS_CELLS), radius_cells))
+                    view_radius=max(float(VIEW_RADIUS_CELLS), radius_cells), obstacle=obstacle)
 
 
 def choose_frontier(
@@ -216,6 +218,7 @@ def _cluster(
     *,
     params: FrontierParams,
     view_radius: float,
+    obstacle: np.ndarray,
 ) -> FrontierSearch:
     """The frontiers of the ``frontier_cells`` mask: clusters, sizes, goals, costs."""
     count, labels, stats, centroids = cv2.connectedComponentsWithStats(frontier_cells.view(np.uint8), connectivity=8)
@@ -232,8 +235,14 @@ def _cluster(
         if goal is None:
             unreachable += 1
             continue
-        x, y = grid.cell_to_world(*goal)
         yaw = _facing_unknown(grid, unknown, goal, view_radius)
+        keep_m = max(float(distance[goal]) * grid.resolution - params.view_distance_m, params.min_goal_distance_m)
+        viewpoint = _viewpoint(distance, obstacle, goal, keep_m / grid.resolution)
+        if viewpoint != goal:  # face the frontier from there
+            yaw = math.atan2(goal[0] - viewpoint[0], goal[1] - viewpoint[1]) + grid.origin[2]
+            yaw = math.atan2(math.sin(yaw), math.cos(yaw))
+            goal = viewpoint
+        x, y = grid.cell_to_world(*goal)
         path_m = float(distance[goal]) * grid.resolution
         found.append(Frontier(
             goal=(x, y, yaw),
@@ -265,6 +274,34 @@ def _goal_cell(
     off_centre = np.hypot(rows + row0 - centre[0], cols + col0 - centre[1])
     best = int(np.lexsort((window[rows, cols], off_centre))[0])
     return int(rows[best]) + row0, int(cols[best]) + col0
+
+
+def _viewpoint(distance: np.ndarray, obstacle: np.ndarray, goal: Tuple[int, int], keep: float) -> Tuple[int, int]:
+    """The cell on the shortest way back from ``goal`` towards the robot (down the wavefront ``distance``) where the
+    path left is about ``keep`` [cells] long, or the last one before that from which ``goal`` is still in sight
+    (no obstacle cell on the straight line); ``goal`` itself when it is no farther than ``keep``."""
+    height, width = distance.shape
+    cell = goal
+    while float(distance[cell]) > keep:
+        row, col = cell
+        best = cell
+        for d_row in (-1, 0, 1):
+            for d_col in (-1, 0, 1):
+                r, c = row + d_row, col + d_col
+                if 0 <= r < height and 0 <= c < width and distance[r, c] < distance[best]:
+                    best = (r, c)
+        if best == cell or not _in_sight(obstacle, best, goal):
+            break
+        cell = best
+    return cell
+
+
+def _in_sight(obstacle: np.ndarray, a: Tuple[int, int], b: Tuple[int, int]) -> bool:
+    """True when no obstacle cell lies on the segment between the centres of cells ``a`` and ``b``."""
+    steps = max(2, 2 * max(abs(a[0] - b[0]), abs(a[1] - b[1])) + 1)
+    rows = np.rint(np.linspace(a[0], b[0], steps)).astype(np.int64)
+    cols = np.rint(np.linspace(a[1], b[1], steps)).astype(np.int64)
+    return not bool(np.any(obstacle[rows, cols]))
 
 
 def _facing_unknown(grid: GridMap, unknown: np.ndarray, goal: Tuple[int, int], radius: float) -> float:

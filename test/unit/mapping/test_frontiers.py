@@ -243,3 +243,42 @@ def test_bad_inputs_are_refused():
         find_frontiers(grid, (math.nan, 1.0), FrontierParams())
     with pytest.raises(ConfigError, match="GridMap"):
         find_frontiers(room(40), (1.0, 1.0), FrontierParams())  # type: ignore[arg-type]
+
+
+# --- stopping short of a frontier, in sight of it ----------------------------------------------------------------
+
+
+def test_view_distance_stops_short_of_the_frontier_along_the_way_and_faces_it():
+    grid = GridMap(room(70), RES)  # the frontier at x = 3.5 m
+    robot = (0.5, 1.5)
+    at_it = find_frontiers(grid, robot, FrontierParams(robot_radius_m=0.2)).frontiers[0]
+    short = find_frontiers(grid, robot, FrontierParams(robot_radius_m=0.2, view_distance_m=1.0)).frontiers[0]
+    assert short.path_length_m == pytest.approx(at_it.path_length_m - 1.0, abs=2 * RES)
+    assert short.goal[0] == pytest.approx(at_it.goal[0] - 1.0, abs=2 * RES)
+    assert angle_between(short.goal[2], 0.0) < math.radians(10.0)  # facing the frontier, east
+    assert short.cost == pytest.approx(short.path_length_m - short.size_m)
+
+
+def test_view_distance_keeps_the_frontier_in_sight_around_a_corner():
+    occ = room(70)
+    occ[1:45, 40] = OCCUPIED  # a wall from the south, with a gap in the north: the way goes round its end
+    grid = GridMap(occ, RES)
+    robot = (0.5, 0.5)
+    params = FrontierParams(robot_radius_m=0.2, view_distance_m=3.0)
+    short = find_frontiers(grid, robot, params).frontiers[0]
+    at_it = find_frontiers(grid, robot, FrontierParams(robot_radius_m=0.2)).frontiers[0]
+    assert short.path_length_m > at_it.path_length_m - 3.0 + 0.5  # not walked back round the corner
+    a, b = cell_of(grid, *short.goal[:2]), cell_of(grid, *at_it.goal[:2])
+    samples = np.linspace(0.0, 1.0, 200)
+    rows = np.rint(a[0] + samples * (b[0] - a[0])).astype(int)
+    cols = np.rint(a[1] + samples * (b[1] - a[1])).astype(int)
+    assert not np.any(occ[rows, cols] == OCCUPIED)  # the frontier's cell in sight from the goal
+
+
+def test_view_distance_never_brings_a_goal_nearer_than_min_goal_distance():
+    grid = GridMap(room(40), RES)  # the frontier at x = 2.0 m
+    robot = (1.5, 1.5)
+    params = FrontierParams(robot_radius_m=0.2, view_distance_m=5.0, min_goal_distance_m=0.4)
+    frontier = find_frontiers(grid, robot, params).frontiers[0]
+    assert frontier.path_length_m >= 0.4 - RES
+    assert choose_frontier([frontier], [], params).frontier == frontier
