@@ -165,8 +165,11 @@ class MapperNode:
                                            "(odometry restarted); drive back there, or the map stays as it is")
             if added:
                 self._publish_transform(scan.header.stamp)
+            first = added and len(self._slam.keyframes) == 1
             if self._slam.keyframes and not self._slam.reanchoring:
                 self._publish_pose(scan.header.stamp, compose_poses(self._slam.map_to_odom(), odom))
+        if first:  # a map at once, not a map_update_interval later: whoever waits for one can start
+            self._publish_map()
 
     def _check_odometry(self, stamp: rospy.Time, odom: Pose2D) -> None:
         """(lock held) Restart the odometry reference when time went back or the odometry jumped."""
@@ -206,6 +209,10 @@ class MapperNode:
             self._publish_transform(rospy.Time.now())
 
     def _on_map_timer(self, _event: rospy.timer.TimerEvent) -> None:
+        self._publish_map()
+
+    def _publish_map(self) -> None:
+        """Rebuild and publish the map if keyframes or loop closures came since it was last published."""
         with self._lock:
             count, closures = len(self._slam.keyframes), len(self._slam.loop_closures)
             if count == 0 or (count, closures) == (self._published_keyframes, self._published_closures):
