@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import Any, Collection, List, Mapping, Optional, Type, TypeVar
+from typing import Any, Collection, List, Mapping, Optional, Tuple, Type, TypeVar
 
 from flex_nav.exceptions import ConfigError, choices_message
 from flex_nav.nav.control.topic_name import topic_name_problem
@@ -172,3 +172,14 @@ def dataclass_from_mapping(cls: Type[P], values: Mapping[str, Any], owner: str) 
         return cls(**converted)
     except ConfigError as err:
         raise ConfigError(f"{owner}: {err}") from err
+
+
+def planar_pose(owner: str, what: str, value: Any) -> Tuple[float, float, float]:
+    """``value`` as a finite (x [m], y [m], yaw [rad]); ConfigError naming ``what`` and the value otherwise."""
+    try:
+        values = tuple(float(v) for v in value)
+    except (TypeError, ValueError) as err:
+        raise ConfigError(f"{owner}: {what} must be (x [m], y [m], yaw [rad]), got {value!r}") from err
+    if len(values) != 3 or not all(math.isfinite(v) for v in values):
+        raise ConfigError(f"{owner}: {what} must be a finite (x [m], y [m], yaw [rad]), got {value!r}")
+    return values[0], values[1], values[2]

@@ -30,6 +30,7 @@ from typing import List, Optional
 
 import numpy as np
 
+from flex_nav import validation
 from flex_nav.exceptions import ConfigError
 from flex_nav.localization import kld
 from flex_nav.localization.consistency import (
@@ -115,7 +116,7 @@ class Localizer:
         :meth:`update` has it: KLD-sampling picks the count (at least min_particles; a wide cloud gets up to
         max_particles). :class:`ConfigError` for a non-finite pose or a covariance that is not a finite,
         symmetric, positive semi-definite (3, 3) matrix over x [m], y [m], yaw [rad]."""
-        mean = _finite_pose(pose, "set_pose: pose")
+        mean = validation.planar_pose("localization", "set_pose: pose", pose)
         root = _covariance_root(covariance)
         p = self.params
         draws = mean + self._rng.standard_normal((p.max_particles, 3)) @ root.T
@@ -146,7 +147,7 @@ class Localizer:
         call only stores the odometry; a call without a scan changes nothing but the odometry a later
         :meth:`set_pose` refers to. Returns True when the filter ran a sensor update (the estimate is then for
         ``odom``). :class:`ConfigError` for a non-finite odometry pose or a malformed scan."""
-        odom = _finite_pose(odom, "update: odom")
+        odom = validation.planar_pose("localization", "update: odom", odom)
         self._odom_latest = odom
         if self._odom_filter is None or self._status is LocalizerStatus.UNINITIALIZED:
             self._odom_filter = odom
@@ -339,16 +340,6 @@ class Localizer:
         draws = np.asarray(pose) + self._rng.standard_normal((len(self._particles), 3)) * np.asarray(RESEED_STD)
         draws[:, 2] = np.arctan2(np.sin(draws[:, 2]), np.cos(draws[:, 2]))
         self._start(draws, LocalizerStatus.LOST)
-
-
-def _finite_pose(pose: Pose2D, what: str) -> Pose2D:
-    try:
-        values = tuple(float(v) for v in pose)
-    except (TypeError, ValueError) as err:
-        raise ConfigError(f"localization: {what} must be (x [m], y [m], yaw [rad]), got {pose!r}") from err
-    if len(values) != 3 or not all(math.isfinite(v) for v in values):
-        raise ConfigError(f"localization: {what} must be a finite (x [m], y [m], yaw [rad]), got {pose!r}")
-    return values[0], values[1], values[2]
 
 
 def _covariance_root(covariance: np.ndarray) -> np.ndarray:

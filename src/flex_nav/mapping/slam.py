@@ -350,13 +350,8 @@ class GraphSlam:
 
 
 def _finite(pose: Any, what: str = "odometry pose") -> Pose2D:
-    try:
-        values = tuple(float(v) for v in pose)
-    except (TypeError, ValueError) as err:
-        raise ConfigError(f"mapper: {what} must be (x [m], y [m], yaw [rad]), got {pose!r}") from err
-    if len(values) != 3 or not all(math.isfinite(v) for v in values):
-        raise ConfigError(f"mapper: {what} must be a finite (x [m], y [m], yaw [rad]), got {pose!r}")
-    return values[0], values[1], wrap_angle(values[2])
+    x, y, yaw = validation.planar_pose("mapper", what, pose)
+    return x, y, wrap_angle(yaw)
 
 
 def _rays(scan: ScanBeams, max_free_range: float) -> ScanRays:

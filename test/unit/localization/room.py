@@ -86,6 +86,21 @@ def scan_at(grid: GridMap, pose: Pose2D, rng: Optional[np.random.Generator] = No
     return ScanBeams(cast(grid, pose, rng, noise), ANGLES, LASER_POSE, RANGE_MIN, RANGE_MAX)
 
 
+def wall_cells_near_truth(room: GridMap, built: GridMap) -> Tuple[int, float]:
+    """How many occupied (100) cells ``built`` has, and the share of them within one cell of an occupied cell of
+    ``room`` (both maps in the same frame)."""
+    rows, cols = np.nonzero(built.occupancy == 100)
+    xs, ys = built.cells_to_world(rows, cols)
+    true_rows, true_cols = room.world_to_cells(xs, ys)
+    near = np.zeros(rows.shape, dtype=bool)
+    for d_row in (-1, 0, 1):
+        for d_col in (-1, 0, 1):
+            r = np.clip(true_rows + d_row, 0, room.height - 1)
+            c = np.clip(true_cols + d_col, 0, room.width - 1)
+            near |= room.occupancy[r, c] >= 65
+    return int(rows.size), float(np.mean(near)) if rows.size else 0.0
+
+
 def path_poses(waypoints: Sequence[Tuple[float, float]], step: float = 0.05, turn_step: float = 0.1) -> List[Pose2D]:
     """Poses every ``step`` [m] along straight legs through ``waypoints``, facing along each leg, turning on the
     spot between legs in steps of ``turn_step`` [rad]."""

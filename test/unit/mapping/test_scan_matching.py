@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 import pytest
-from unit.localization.room import asymmetric_room, scan_at
+from unit.localization.room import asymmetric_room, scan_at, wall_cells_near_truth
 
 from flex_nav.exceptions import ConfigError
 from flex_nav.localization import ScanBeams
@@ -144,16 +144,9 @@ def test_rasterized_room_walls_land_on_the_true_walls(room):
     poses = [(1.5, 1.2, 0.0), (3.0, 2.0, 1.0), (5.5, 1.5, 3.0), (2.0, 3.8, -1.5)]
     rays = [scan_rays(scan_at(room, p, rng, 0.01), 5.0) for p in poses]
     built = rasterize(OccupancyParams(), poses, rays).to_grid_map()
-    rows, cols = np.nonzero(built.occupancy == OCCUPIED)
-    xs, ys = built.cells_to_world(rows, cols)
-    true_rows, true_cols = room.world_to_cells(xs, ys)
-    near_wall = np.zeros(rows.shape, dtype=bool)
-    for dr in (-1, 0, 1):
-        for dc in (-1, 0, 1):
-            r, c = true_rows + dr, true_cols + dc
-            near_wall |= room.occupancy[np.clip(r, 0, room.height - 1), np.clip(c, 0, room.width - 1)] >= 65
-    assert rows.size > 200
-    assert np.mean(near_wall) > 0.98  # every mapped wall cell within a cell of a true one
+    count, near = wall_cells_near_truth(room, built)
+    assert count > 200
+    assert near > 0.98  # every mapped wall cell within a cell of a true one
 
 
 def test_occupancy_parameters_are_validated():

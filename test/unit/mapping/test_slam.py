@@ -6,11 +6,10 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from unit.localization.room import asymmetric_room, path_poses, scan_at
+from unit.localization.room import asymmetric_room, path_poses, scan_at, wall_cells_near_truth
 
 from flex_nav.exceptions import ConfigError
 from flex_nav.localization import ScanBeams
-from flex_nav.mapping.occupancy import OCCUPIED
 from flex_nav.mapping.slam import GraphSlam, SlamParams
 from flex_nav.nav.planar import compose_poses, inverse_pose
 
@@ -81,19 +80,10 @@ def test_a_drifting_loop_is_closed_and_the_error_falls(closed_and_open):
 
 def test_the_map_is_rebuilt_on_the_optimised_poses(room, closed_and_open):
     slam, _truth = closed_and_open[True]
-    built = slam.occupancy_map()
-    rows, cols = np.nonzero(built.occupancy == OCCUPIED)
-    xs, ys = built.cells_to_world(rows, cols)
     # the map frame is the first keyframe's odometry frame, which the drive started at the true first pose
-    true_rows, true_cols = room.world_to_cells(xs, ys)
-    near_wall = np.zeros(rows.shape, dtype=bool)
-    for dr in (-1, 0, 1):
-        for dc in (-1, 0, 1):
-            r = np.clip(true_rows + dr, 0, room.height - 1)
-            c = np.clip(true_cols + dc, 0, room.width - 1)
-            near_wall |= room.occupancy[r, c] >= 65
-    assert rows.size > 300
-    assert np.mean(near_wall) > 0.97, np.mean(near_wall)
+    count, near = wall_cells_near_truth(room, slam.occupancy_map())
+    assert count > 300
+    assert near > 0.97, near
 
 
 def test_map_to_odom_places_the_last_keyframe(closed_and_open):
