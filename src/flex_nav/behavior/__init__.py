@@ -17,6 +17,7 @@ The public API, one concept per module:
 - :mod:`~flex_nav.behavior.behavior` -- :class:`Behavior`: a named root with its parameters.
 - :mod:`~flex_nav.behavior.yaml_loader` -- behaviors from YAML files with line-numbered errors.
 - :mod:`~flex_nav.behavior.dot` -- Graphviz export.
+- :mod:`~flex_nav.behavior.structure` -- a behavior's structure as JSON for operator tools.
 - :mod:`~flex_nav.behavior.docstring` -- the state docstring convention and its parser.
 - :mod:`~flex_nav.behavior.builtin_states` -- small generic states (Wait, Log, Decision, ...).
 

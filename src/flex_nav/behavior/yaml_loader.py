@@ -70,7 +70,7 @@ from typing import (
 import yaml
 from yaml.nodes import MappingNode, Node, ScalarNode, SequenceNode
 
-from flex_nav.behavior.behavior import Behavior
+from flex_nav.behavior.behavior import Behavior, ParameterInfo
 from flex_nav.behavior.concurrency import ConcurrencyContainer
 from flex_nav.behavior.container import Container, child_path
 from flex_nav.behavior.priority import PriorityContainer
@@ -268,6 +268,26 @@ def declared_parameter_names(
     return frozenset()
 
 
+def parameter_schema(
+    source: Source, search_path: Optional[Sequence[Union[str, Path]]] = None, limits: LoadLimits = DEFAULT_LIMITS
+) -> List[ParameterInfo]:
+    """The declared parameters of a behavior (type, default, bounds, choices, description), checked as a load checks
+    them, read within ``limits`` without building anything: for a form that starts it. ConfigError for a bad name,
+    BehaviorLoadError (``file:line: ...``) for a bad file."""
+    path = _source(source).resolve(search_path)
+    loader = _Loader(_dirs(search_path), LoadBudget(limits))
+
+    def read() -> List[ParameterInfo]:
+        loader.file = str(path)
+        top = loader.pairs(loader.compose(path, None), "a behavior file")
+        if "parameters" not in top:
+            return []
+        specs = loader.pairs(top["parameters"][1], "parameters")
+        return [loader.param_spec(name, key_node, spec_node).info() for name, (key_node, spec_node) in specs.items()]
+
+    return _guarded(read, str(path))
+
+
 def load_behavior_text(
     text: str,
     file: str = "<string>",
@@ -326,7 +346,14 @@ class _ParamSpec:
         self.minimum: Optional[float] = None
         self.maximum: Optional[float] = None
         self.choices: Optional[List[Any]] = None
+        self.description = ""
         self.where = where
+
+    def info(self) -> ParameterInfo:
+        """What a tool shows of this parameter (the schema, without where it was written)."""
+        choices = tuple(self.choices) if self.choices is not None else None
+        return ParameterInfo(self.name, self.type_name, self.default, self.has_default, self.minimum, self.maximum,
+                             choices, self.description)
 
     def check(self, value: Any) -> Any:
         """The value converted to the declared type, or ConfigError saying why not."""
@@ -358,6 +385,8 @@ class _Loader:
         self.stack: List[Path] = []
         self.file = "<string>"
         self.params: Dict[str, Any] = {}
+        self.schema: List[ParameterInfo] = []  # the top file's declared parameters
+        self.sub_behaviors: Dict[str, str] = {}  # path of each included behavior -> its name
         self.constructor = yaml.SafeLoader("")
 
     # --- errors and marks ------------------------------------------------------------------------
@@ -445,7 +474,8 @@ class _Loader:
             root.validate()
         except BehaviorConstructionError as err:
             self.engine_error(err, (str(path), 1))
-        return Behavior(name, root, description, params, path if text is None else None)
+        return Behavior(name, root, description, params, path if text is None else None, parameter_schema=self.schema,
+                        sub_behaviors=self.sub_behaviors)
 
     def load_file(
         self,
@@ -496,6 +526,8 @@ class _Loader:
         if entry is not None:
             for pname, (key_node, spec_node) in self.pairs(entry[1], "parameters").items():
                 specs[pname] = self.param_spec(pname, key_node, spec_node)
+        if included_at is None:
+            self.schema = [spec.info() for spec in specs.values()]
         values: Dict[str, Any] = {}
         for pname, value in overrides.items():
             if pname not in specs:
@@ -542,6 +574,8 @@ class _Loader:
             if not isinstance(choices, list) or not choices:
                 self.fail(spec_pairs["choices"][1], f"choices of parameter {pname!r} must be a non-empty list")
             spec.choices = choices
+        if "description" in spec_pairs:
+            spec.description = str(self.constructor.construct_object(spec_pairs["description"][1], deep=True))
         if has_default:
             default_node = spec_pairs["default"][1]
             try:
@@ -772,6 +806,7 @@ class _Loader:
             for pname, (_, pvalue) in self.pairs(entry["parameters"][1], f"parameters of {label!r}").items():
                 overrides[pname] = self.value(pvalue)
         root, _, _, _ = self.load_file(file, overrides, path, where)
+        self.sub_behaviors[path] = name
         return root
 
 
@@ -798,4 +833,5 @@ __all__ = [
     "load_behavior",
     "load_behavior_text",
     "load_named_behavior",
+    "parameter_schema",
 ]
