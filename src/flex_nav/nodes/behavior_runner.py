@@ -17,7 +17,8 @@
   every YAML behavior started here that declares a ``profile`` parameter gets it, unless the start sets one
 
 Commands arrive on ``~command`` (BehaviorCommand); every command is answered on ``~command_feedback``.
-What the behavior does is published by :class:`~flex_nav.ros.operator_interface.OperatorPublisher`.
+What the behavior does is published by :class:`~flex_nav.ros.operator_interface.OperatorPublisher`, and
+what it is on the latched ``~structure`` (JSON, :mod:`flex_nav.behavior.structure`; no behavior: no states).
 Each run gets its own :class:`~flex_nav.ros.proxies.RosProxies`, shut down (goals cancelled, topics
 unregistered) when it ends, so runs never share connections. The runner installs flex_nav's
 ``smach`` / ``flexbe_core`` aliases (unless the real packages exist), so state libraries written for them load.
@@ -54,6 +55,7 @@ from flex_nav.behavior.background_load import BackgroundLoad
 from flex_nav.behavior.behavior import Behavior
 from flex_nav.behavior.context import BehaviorContext
 from flex_nav.behavior.executor import BehaviorExecutor, BehaviorResult
+from flex_nav.behavior.structure import structure_json
 from flex_nav.behavior.yaml_limits import DEFAULT_LIMITS, safe_load_bounded
 from flex_nav.behavior.yaml_loader import BehaviorSource, declared_parameter_names, list_behaviors, load_behavior
 from flex_nav.compat import install_aliases
@@ -139,6 +141,7 @@ class _Built:
     executor: BehaviorExecutor
     proxies: RosProxies
     level: Autonomy
+    structure: str  # JSON for ~structure (flex_nav.behavior.structure)
 
 
 class BehaviorRunner:
@@ -164,6 +167,7 @@ class BehaviorRunner:
         self._name = ""
         self._command_sub = rospy.Subscriber("~command", BehaviorCommand, self._on_command, queue_size=10)
         self.operator.publish_idle("", "no behavior started", int(Autonomy.FULL))
+        self.operator.publish_structure(structure_json(None, self.search_path))
 
     # --- lifecycle -----------------------------------------------------------------------------------
     def start_local(self, source: str, autonomy: object = Autonomy.FULL,
@@ -234,10 +238,11 @@ class BehaviorRunner:
                 behavior = self.loader(source, self._yaml_parameters(source, parameters), self.search_path)
             context.name = behavior.name
             executor = BehaviorExecutor(behavior, inputs=inputs, context=context, should_stop=rospy.is_shutdown)
+            structure = structure_json(behavior, self.search_path)
         except BaseException:
             proxies.shutdown()  # connections a state made while being built must not outlive a failed start
             raise
-        return _Built(behavior, executor, proxies, level)
+        return _Built(behavior, executor, proxies, level, structure)
 
     def _finish_load(self, job: BackgroundLoad[_Built]) -> str:
         """Wait (bounded) for ``job`` and start its behavior, unless the load failed or was cancelled meanwhile."""
@@ -254,6 +259,7 @@ class BehaviorRunner:
                 raise BehaviorError(f"loading behavior {job.what} was cancelled: stopped by the operator")
             self._loading = None
             behavior, executor = built.behavior, built.executor
+            self.operator.publish_structure(built.structure)
             self.operator.attach(executor.context.hooks, behavior.name, int(built.level))
             self._executor, self._name = executor, behavior.name
             self._thread = threading.Thread(

@@ -5,7 +5,9 @@ thread turns events into messages and publishes them on the runner's topics:
 
 - ``~status`` (BehaviorStatus, latched), ``~activity`` (BehaviorActivity, latched: active states and pending
   outcome requests), ``~log`` (BehaviorLog), ``~transitions`` (BehaviorTransition),
-  ``~command_feedback`` (BehaviorCommandFeedback: ``pending`` marks a first answer that a final one follows).
+  ``~command_feedback`` (BehaviorCommandFeedback: ``pending`` marks a first answer that a final one follows),
+  ``~structure`` (std_msgs/String, latched: JSON of the loaded behavior's states, transitions, autonomy and
+  parameters, and the behaviors the runner can start; schema in :mod:`flex_nav.behavior.structure`).
 """
 
 from __future__ import annotations
@@ -15,6 +17,7 @@ import threading
 from typing import Any, Callable, Deque, Dict, List, Tuple
 
 import rospy
+from std_msgs.msg import String
 
 from flex_nav.behavior.events import (
     ActiveStatesEvent,
@@ -55,6 +58,7 @@ class OperatorPublisher:
         self.log_pub = rospy.Publisher("~log", BehaviorLog, queue_size=100)
         self.transition_pub = rospy.Publisher("~transitions", BehaviorTransition, queue_size=100)
         self.feedback_pub = rospy.Publisher("~command_feedback", BehaviorCommandFeedback, queue_size=10)
+        self.structure_pub = rospy.Publisher("~structure", String, queue_size=1, latch=True)
         self._queue: Deque[Tuple[Callable[..., Any], Tuple[Any, ...]]] = collections.deque(maxlen=QUEUE_LIMIT)
         self._cv = threading.Condition()
         self._closed = False
@@ -91,6 +95,10 @@ class OperatorPublisher:
     def publish_feedback(self, command: str, args: List[str], ok: bool, message: str, pending: bool = False) -> None:
         """Answer a command; ``pending``: accepted, still being carried out, a final answer follows."""
         self._post(self._publish_feedback, command, list(args), ok, message, pending)
+
+    def publish_structure(self, structure_json: str) -> None:
+        """Latch the JSON structure of the behavior now loaded (or of none)."""
+        self._post(self.structure_pub.publish, String(data=structure_json))
 
     def close(self, timeout_s: float = 2.0) -> None:
         with self._cv:
