@@ -33,7 +33,7 @@ setup(
     package_dir={"": "src"},
     packages=find_packages("src"),
     package_data={
-        "flex_nav": ["py.typed"],
+        "flex_nav": ["py.typed", "console/web/*"],  # the operator console's page (flex_nav.console.server)
         "flex_nav_states": ["py.typed"],
         "flex_nav_sim": ["py.typed", "worlds/*.yaml", "worlds/maps/*", "robots/*", "models/*"],
     },

@@ -1,0 +1,580 @@
+// flex_nav operator console: one websocket to the console node, plain DOM, no framework, nothing from a CDN.
+// Every text from the robots goes into the page with textContent; the SVG comes from the console's own Graphviz
+// run and is parsed as XML, with anything active in it removed before it is shown.
+"use strict";
+
+(() => {
+  const LEVELS = ["off", "low", "high", "full"];
+  const LOG_ORDER = { DEBUG: 0, INFO: 1, HINT: 2, WARN: 3, ERROR: 4 };
+  const KEEP_LINES = 1000;  // log lines and transitions kept per robot
+  const SHOWN_LINES = 400;  // of those, the newest that match the filter are shown
+  const FIRED_MS = 1500;  // how long the last transition's edge stays highlighted
+
+  const $ = (id) => document.getElementById(id);
+  const robots = new Map();  // name -> per-robot state
+  let current = "";
+  let socket = null;
+  let client = 0;
+  let nextId = 1;
+  let retryMs = 500;
+  const waiting = new Map();  // command ref -> feedback element
+  let selectedPath = "";
+
+  function robotState(name) {
+    if (!robots.has(name)) {
+      robots.set(name, { structure: null, svg: "", svgError: "", status: null, activity: null, lines: [],
+        events: [], folded: new Set(), lastEdge: "", lastEdgeAt: 0 });
+    }
+    return robots.get(name);
+  }
+
+  // the server's id encoding of a path or outcome (flex_nav.console.graph)
+  function encode(text) {
+    let out = "";
+    for (const ch of text) {
+      if (/^[A-Za-z0-9]$/.test(ch)) out += ch;
+      else if (ch === "/") out += "-";
+      else out += "_" + ch.codePointAt(0).toString(16).padStart(6, "0");
+    }
+    return out;
+  }
+  const svgId = (path) => "st" + encode(path);
+  const edgeId = (path, outcome) => `${svgId(path)}.e.${encode(outcome)}`;
+
+  function el(tag, text, cls) {
+    const node = document.createElement(tag);
+    if (text !== undefined && text !== null) node.textContent = text;
+    if (cls) node.className = cls;
+    return node;
+  }
+
+  // --- connection -----------------------------------------------------------------------------------------------
+  function connect() {
+    const scheme = location.protocol === "https:" ? "wss://" : "ws://";
+    socket = new WebSocket(scheme + location.host + "/ws");
+    socket.onopen = () => { retryMs = 500; setConnection(true, "connected"); };
+    socket.onclose = () => {
+      setConnection(false, `disconnected; retrying in ${(retryMs / 1000).toFixed(1)} s`);
+      setTimeout(connect, retryMs);
+      retryMs = Math.min(retryMs * 2, 10000);
+    };
+    socket.onmessage = (event) => {
+      let data;
+      try { data = JSON.parse(event.data); } catch (err) { return; }
+      handle(data);
+    };
+  }
+
+  function setConnection(ok, text) {
+    const node = $("connection");
+    node.textContent = text;
+    node.classList.toggle("offline", !ok);
+  }
+
+  function send(message, feedback) {
+    const id = nextId++;
+    const ref = `${client}:${id}`;
+    if (feedback) {
+      waiting.set(ref, feedback);
+      showFeedback(feedback, "sending…", "pending");
+    }
+    if (!socket || socket.readyState !== WebSocket.OPEN) {
+      if (feedback) showFeedback(feedback, "not connected to the console", "bad");
+      return;
+    }
+    socket.send(JSON.stringify({ ...message, type: "command", id, robot: current }));
+  }
+
+  function showFeedback(node, text, kind) {
+    node.textContent = text;
+    node.className = "feedback " + (kind || "");
+  }
+
+  // --- events from the console --------------------------------------------------------------------------------
+  function handle(data) {
+    switch (data.type) {
+      case "hello": client = data.client; break;
+      case "robots": setRobots(data.robots); break;
+      case "structure": onStructure(data); break;
+      case "svg": onSvg(data); break;
+      case "status": robotState(data.robot).status = data; if (data.robot === current) showStatus(); break;
+      case "activity": robotState(data.robot).activity = data; if (data.robot === current) showActivity(); break;
+      case "transition": onTransition(data); break;
+      case "log": addLine(data.robot, "lines", data); if (data.robot === current) showLog(); break;
+      case "feedback": onFeedback(data); break;
+      case "sent": onSent(data); break;
+      case "refused": onRefused(data); break;
+      case "error": showError(data.message); break;
+      default: break;
+    }
+  }
+
+  function addLine(robot, key, item) {
+    const list = robotState(robot)[key];
+    list.push(item);
+    if (list.length > KEEP_LINES) list.splice(0, list.length - KEEP_LINES);
+  }
+
+  function setRobots(names) {
+    const select = $("robot");
+    select.replaceChildren(...names.map((name) => { const o = el("option", name); o.value = name; return o; }));
+    for (const name of [...robots.keys()]) if (!names.includes(name)) robots.delete(name);
+    if (!names.includes(current)) current = names.length ? names[0] : "";
+    select.value = current;
+    showRobot();
+  }
+
+  function onStructure(data) {
+    const state = robotState(data.robot);
+    const changed = !state.structure || state.structure.behavior !== data.behavior;
+    state.structure = data;
+    state.svg = data.svg;
+    state.svgError = data.error;
+    if (changed) state.folded.clear();
+    if (data.robot === current) { if (changed) selectedPath = ""; showRobot(); }
+  }
+
+  function onSvg(data) {
+    const state = robotState(data.robot);
+    if (!state.structure || state.structure.behavior !== data.behavior) return;
+    state.svg = data.svg;
+    state.svgError = data.error;
+    if (data.robot === current) { drawGraph(); showActivity(); }
+  }
+
+  function onTransition(data) {
+    const state = robotState(data.robot);
+    addLine(data.robot, "events", { kind: "transition", ...data });
+    state.lastEdge = edgeId(data.path, data.outcome);
+    state.lastEdgeAt = Date.now();
+    if (data.robot === current) { showTransitions(); markFired(); }
+  }
+
+  function onSent(data) {
+    const node = waiting.get(data.ref);
+    if (node) showFeedback(node, `sent: ${[data.command, ...data.args].join(" ")}`, "pending");
+    addLine(data.robot, "events", { kind: "command", text: `→ ${[data.command, ...data.args].join(" ")}` });
+    if (data.robot === current) showTransitions();
+  }
+
+  function onRefused(data) {
+    const node = waiting.get(data.ref);
+    if (node) { showFeedback(node, `refused by the console: ${data.reason}`, "bad"); waiting.delete(data.ref); }
+    else showError(data.reason);
+  }
+
+  function onFeedback(data) {
+    const text = `${data.ok ? (data.pending ? "…" : "ok") : "refused"}: ${data.message}`;
+    for (const ref of data.refs) {
+      const node = waiting.get(ref);
+      if (!node) continue;
+      showFeedback(node, text, data.ok ? (data.pending ? "pending" : "ok") : "bad");
+      if (!data.pending) waiting.delete(ref);
+    }
+    addLine(data.robot, "events", { kind: "feedback", ok: data.ok,
+      text: `← ${[data.command, ...data.args].join(" ")}: ${text}` });
+    if (data.robot === current) showTransitions();
+  }
+
+  function showError(message) {
+    const node = $("graph-error");
+    node.textContent = message;
+    node.hidden = !message;
+  }
+
+  // --- the selected robot ---------------------------------------------------------------------------------------
+  function showRobot() {
+    drawGraph();
+    showStatus();
+    showActivity();
+    showSelected();
+    fillStartForm();
+    showLog();
+    showTransitions();
+  }
+
+  function showStatus() {
+    const state = robots.get(current);
+    const status = state && state.status;
+    const node = $("status");
+    node.textContent = status ? status.status + (status.outcome ? ` (${status.outcome})` : "") : "no status yet";
+    node.className = "status " + (status ? status.status : "");
+    $("behavior-name").textContent = state && state.structure ? state.structure.behavior || "no behavior" : "";
+    $("status-reason").textContent = status ? status.reason : "";
+    if (status) {
+      $("autonomy-now").textContent = `autonomy ${LEVELS[status.autonomy] || status.autonomy}`;
+    }
+  }
+
+  function sanitize(svg) {
+    for (const bad of svg.querySelectorAll("script, foreignObject, iframe, a, image, use")) bad.remove();
+    for (const node of [svg, ...svg.querySelectorAll("*")]) {
+      for (const attr of [...node.attributes]) {
+        if (/^on/i.test(attr.name) || /href$/i.test(attr.name)) node.removeAttribute(attr.name);
+      }
+    }
+    return svg;
+  }
+
+  function drawGraph() {
+    const box = $("graph");
+    const state = robots.get(current);
+    box.replaceChildren();
+    showError(state && state.svgError ? `graph not drawn: ${state.svgError}` : "");
+    if (!state || !state.svg) return;
+    const doc = new DOMParser().parseFromString(state.svg, "image/svg+xml");
+    const root = doc.documentElement;
+    if (!root || root.nodeName !== "svg") { showError("the graph could not be read"); return; }
+    box.appendChild(document.importNode(sanitize(root), true));
+    const byId = new Map((state.structure ? state.structure.states : []).map((s) => [s.id, s]));
+    for (const group of box.querySelectorAll("g.node, g.cluster")) {
+      const info = byId.get(group.id);
+      if (!info) continue;
+      group.addEventListener("click", (event) => { event.stopPropagation(); select(info.path); });
+      if (info.kind !== "state" && info.parent !== null) {
+        group.addEventListener("dblclick", (event) => { event.stopPropagation(); toggleFold(info.path); });
+      }
+    }
+    markFired();
+  }
+
+  function toggleFold(path) {
+    const state = robots.get(current);
+    if (!state) return;
+    if (state.folded.has(path)) state.folded.delete(path); else state.folded.add(path);
+    requestFolds(state);
+  }
+
+  function requestFolds(state) {
+    if (socket && socket.readyState === WebSocket.OPEN) {
+      socket.send(JSON.stringify({ type: "fold", robot: current, folded: [...state.folded] }));
+    }
+  }
+
+  function drawn(path, structure) {
+    // the element drawn for path: itself, or (inside a folded container) the nearest container drawn
+    const byPath = new Map(structure.states.map((s) => [s.path, s]));
+    let at = byPath.get(path);
+    while (at) {
+      const found = document.getElementById(at.id);
+      if (found) return found;
+      at = at.parent === null ? null : byPath.get(at.parent);
+    }
+    return null;
+  }
+
+  function ancestors(path, structure) {
+    const byPath = new Map(structure.states.map((s) => [s.path, s]));
+    const out = [];
+    let at = byPath.get(path);
+    while (at && at.parent !== null) { out.push(at.parent); at = byPath.get(at.parent); }
+    return out;
+  }
+
+  function showActivity() {
+    const state = robots.get(current);
+    const box = $("graph");
+    for (const cls of ["active", "running", "waiting", "requested"]) {
+      for (const node of box.querySelectorAll("." + cls)) node.classList.remove(cls);
+    }
+    for (const badge of box.querySelectorAll("text.badge")) badge.remove();
+    const list = $("requests");
+    list.replaceChildren();
+    const activity = state && state.activity;
+    const structure = state && state.structure;
+    if (!activity || !structure || activity.behavior !== structure.behavior) {
+      list.appendChild(el("li", "nothing waits", "none"));
+      showSelected();
+      return;
+    }
+    if (activity.autonomy !== undefined) $("autonomy-now").textContent = `autonomy ${LEVELS[activity.autonomy]}`;
+    for (const path of activity.active) {
+      const node = drawn(path, structure);
+      if (node) node.classList.add("active");
+      for (const above of ancestors(path, structure)) {
+        const info = structure.states.find((s) => s.path === above);
+        const cluster = info ? document.getElementById(info.id) : null;
+        if (cluster && cluster.classList.contains("cluster")) cluster.classList.add("running");
+      }
+    }
+    for (const request of activity.requests) {
+      const node = drawn(request.path, structure);
+      const needs = (LEVELS[request.required] || String(request.required)).toUpperCase();
+      const why = request.reason === "lock" ? "waits for an unlock" : `needs autonomy above ${needs}`;
+      if (node) {
+        node.classList.add("waiting");
+        badge(node, request.reason === "lock" ? "locked" : `needs > ${needs}`);
+      }
+      const edge = document.getElementById(edgeId(request.path, request.outcome));
+      if (edge) edge.classList.add("requested");
+      const item = el("li");
+      item.appendChild(el("div", `${request.path} → ${request.outcome}`));
+      item.appendChild(el("div", why, "needs"));
+      const row = el("div", null, "row");
+      const feedback = el("span", "", "feedback");
+      if (request.reason !== "lock") {
+        const approve = el("button", `approve ${request.outcome}`);
+        approve.type = "button";
+        approve.addEventListener("click", () => send({ command: "approve", path: request.path,
+          outcome: request.outcome }, feedback));
+        row.appendChild(approve);
+      }
+      const pick = el("button", "select");
+      pick.type = "button";
+      pick.addEventListener("click", () => select(request.path));
+      row.appendChild(pick);
+      row.appendChild(feedback);
+      item.appendChild(row);
+      list.appendChild(item);
+    }
+    if (!activity.requests.length) list.appendChild(el("li", "nothing waits", "none"));
+    showSelected();
+  }
+
+  function badge(node, text) {
+    const shape = node.querySelector("path, polygon, ellipse");
+    if (!shape || typeof shape.getBBox !== "function") return;
+    const box = shape.getBBox();
+    const label = document.createElementNS("http://www.w3.org/2000/svg", "text");
+    label.setAttribute("class", "badge");
+    label.setAttribute("x", String(box.x + box.width + 3));
+    label.setAttribute("y", String(box.y + 9));
+    label.textContent = text;
+    node.appendChild(label);
+  }
+
+  function markFired() {
+    const state = robots.get(current);
+    for (const node of $("graph").querySelectorAll(".fired")) node.classList.remove("fired");
+    if (!state || !state.lastEdge || Date.now() - state.lastEdgeAt > FIRED_MS) return;
+    const edge = document.getElementById(state.lastEdge);
+    if (edge) edge.classList.add("fired");
+    const edgeName = state.lastEdge;
+    setTimeout(() => {
+      const still = robots.get(current);
+      if (still && still.lastEdge === edgeName && edge) edge.classList.remove("fired");
+    }, FIRED_MS);
+  }
+
+  // --- the selected state -----------------------------------------------------------------------------------
+  function select(path) {
+    selectedPath = path;
+    showSelected();
+  }
+
+  function showSelected() {
+    const state = robots.get(current);
+    const structure = state && state.structure;
+    const info = structure ? structure.states.find((s) => s.path === selectedPath) : null;
+    for (const node of $("graph").querySelectorAll(".selected")) node.classList.remove("selected");
+    const box = $("selected");
+    box.replaceChildren();
+    $("selected-controls").hidden = !info;
+    if (!info) { box.appendChild(el("p", "click a state in the graph", "none")); return; }
+    const node = document.getElementById(info.id);
+    if (node) node.classList.add("selected");
+    const activity = state.activity;
+    const active = !!activity && activity.behavior === structure.behavior &&
+      activity.active.some((p) => p === info.path || ancestors(p, structure).includes(info.path));
+    const list = el("dl");
+    const rows = [["path", info.path], ["kind", info.kind.replace("_", " ") + (info.behavior ? ` (${info.behavior})` : "")],
+      ["class", info.class], ["active", active ? "yes" : "no"],
+      ["outcomes", info.outcomes.map((o) => `${o}${info.autonomy[o] ? ` [${LEVELS[info.autonomy[o]]}]` : ""}`).join(", ")]];
+    for (const [key, value] of rows) { list.appendChild(el("dt", key)); list.appendChild(el("dd", value)); }
+    box.appendChild(list);
+    const buttons = $("force-buttons");
+    buttons.replaceChildren();
+    const feedback = document.querySelector('[data-feedback="state"]');
+    for (const outcome of info.outcomes) {
+      const button = el("button", `force ${outcome}`);
+      button.type = "button";
+      button.disabled = !active;
+      button.title = active ? `make ${info.path} leave with ${outcome} now` : "only an active state can be forced";
+      button.addEventListener("click", () => send({ command: "force", path: info.path, outcome }, feedback));
+      buttons.appendChild(button);
+    }
+  }
+
+  // --- the start form ---------------------------------------------------------------------------------------
+  function fillStartForm() {
+    const state = robots.get(current);
+    const startable = state && state.structure ? state.structure.startable : [];
+    const select = $("start-behavior");
+    const before = select.value;
+    select.replaceChildren(...startable.map((b) => { const o = el("option", b.name); o.value = b.name; return o; }));
+    if (startable.some((b) => b.name === before)) select.value = before;
+    fillParameters();
+  }
+
+  function startableEntry() {
+    const state = robots.get(current);
+    const name = $("start-behavior").value;
+    return state && state.structure ? state.structure.startable.find((b) => b.name === name) : undefined;
+  }
+
+  function fillParameters() {
+    const box = $("start-parameters");
+    box.replaceChildren();
+    const entry = startableEntry();
+    if (!entry) return;
+    if (entry.error) { box.appendChild(el("p", `parameters unreadable: ${entry.error}`, "field-error")); return; }
+    for (const p of entry.parameters) {
+      const label = el("label", `${p.name} (${p.type}${p.min !== null ? `, ≥ ${p.min}` : ""}` +
+        `${p.max !== null ? `, ≤ ${p.max}` : ""}${p.has_default ? "" : ", required"})`);
+      if (p.description) label.appendChild(el("span", p.description, "description"));
+      let input;
+      if (p.choices) {
+        input = el("select");
+        for (const choice of p.choices) {
+          const option = el("option", String(choice));
+          option.value = JSON.stringify(choice);
+          input.appendChild(option);
+        }
+        if (p.has_default) input.value = JSON.stringify(p.default);
+      } else if (p.type === "bool") {
+        input = el("input");
+        input.type = "checkbox";
+        input.checked = p.has_default && p.default === true;
+      } else if (p.type === "float" || p.type === "int") {
+        input = el("input");
+        input.type = "number";
+        input.step = p.type === "int" ? "1" : "any";
+        if (p.min !== null) input.min = String(p.min);
+        if (p.max !== null) input.max = String(p.max);
+        if (p.has_default) input.value = String(p.default);
+      } else if (p.type === "list" || p.type === "dict") {
+        input = el("textarea");
+        input.rows = 2;
+        input.placeholder = p.type === "list" ? "JSON list, e.g. [1, 2]" : 'JSON object, e.g. {"a": 1}';
+        if (p.has_default) input.value = JSON.stringify(p.default);
+      } else {
+        input = el("input");
+        input.type = "text";
+        if (p.has_default) input.value = p.default;
+      }
+      input.dataset.parameter = p.name;
+      const error = el("span", "", "field-error");
+      error.dataset.errorFor = p.name;
+      box.appendChild(label);
+      box.appendChild(input);
+      box.appendChild(error);
+    }
+  }
+
+  function readParameter(p, input) {
+    // [value, changed]; throws an Error with the reason for a value the browser can already tell is wrong
+    if (p.choices) {
+      const value = JSON.parse(input.value);
+      return [value, !p.has_default || JSON.stringify(value) !== JSON.stringify(p.default)];
+    }
+    if (p.type === "bool") return [input.checked, !p.has_default || input.checked !== p.default];
+    if (p.type === "float" || p.type === "int") {
+      if (input.value.trim() === "") {
+        if (p.has_default) return [p.default, false];
+        throw new Error("a number is needed");
+      }
+      const value = Number(input.value);
+      if (!Number.isFinite(value)) throw new Error(`${input.value} is not a number`);
+      if (p.type === "int" && !Number.isInteger(value)) throw new Error(`${input.value} is not an integer`);
+      return [value, !p.has_default || value !== p.default];
+    }
+    if (p.type === "list" || p.type === "dict") {
+      if (input.value.trim() === "" && p.has_default) return [p.default, false];
+      let value;
+      try { value = JSON.parse(input.value); } catch (err) { throw new Error(`not JSON: ${err.message}`); }
+      return [value, !p.has_default || JSON.stringify(value) !== JSON.stringify(p.default)];
+    }
+    return [input.value, !p.has_default || input.value !== p.default];
+  }
+
+  function submitStart(event) {
+    event.preventDefault();
+    const feedback = document.querySelector('[data-feedback="start"]');
+    const entry = startableEntry();
+    if (!entry) { showFeedback(feedback, "no behavior to start", "bad"); return; }
+    const parameters = {};
+    let wrong = false;
+    for (const p of entry.parameters) {
+      const input = document.querySelector(`[data-parameter="${CSS.escape(p.name)}"]`);
+      const error = document.querySelector(`[data-error-for="${CSS.escape(p.name)}"]`);
+      if (!input) continue;
+      error.textContent = "";
+      try {
+        const [value, changed] = readParameter(p, input);
+        if (changed) parameters[p.name] = value;
+      } catch (err) {
+        error.textContent = err.message;
+        wrong = true;
+      }
+    }
+    if (wrong) { showFeedback(feedback, "fix the marked parameters first", "bad"); return; }
+    send({ command: "start", behavior: entry.name, autonomy: $("start-autonomy").value, parameters }, feedback);
+  }
+
+  // --- log and transitions ----------------------------------------------------------------------------------
+  function showLog() {
+    const state = robots.get(current);
+    const list = $("log");
+    const text = $("log-filter").value.trim().toLowerCase();
+    const least = $("log-level").value;
+    const lines = (state ? state.lines : []).filter((line) =>
+      (!least || (LOG_ORDER[line.level] ?? 0) >= LOG_ORDER[least]) &&
+      (!text || `${line.path} ${line.text}`.toLowerCase().includes(text)));
+    const shown = lines.slice(-SHOWN_LINES);
+    list.replaceChildren(...shown.map((line) => el("li",
+      `${new Date(line.stamp * 1000).toISOString().slice(11, 23)} ${line.level} ${line.path || "(engine)"}: ` +
+      line.text, line.level)));
+    list.scrollTop = list.scrollHeight;
+  }
+
+  function showTransitions() {
+    const state = robots.get(current);
+    const list = $("transitions");
+    const text = $("transition-filter").value.trim().toLowerCase();
+    const forcedOnly = $("forced-only").checked;
+    const items = (state ? state.events : []).filter((item) => {
+      if (forcedOnly && !(item.kind === "transition" && item.forced)) return false;
+      const words = item.kind === "transition" ? `${item.path} ${item.outcome} ${item.target}` : item.text;
+      return !text || words.toLowerCase().includes(text);
+    });
+    list.replaceChildren(...items.slice(-SHOWN_LINES).map((item) => {
+      if (item.kind !== "transition") return el("li", item.text, item.ok === false ? "refused" : "command");
+      const needs = item.required ? ` [${LEVELS[item.required]}]` : "";
+      return el("li", `${new Date(item.stamp * 1000).toISOString().slice(11, 23)} ${item.path} ` +
+        `--${item.outcome}${needs}--> ${item.target}${item.forced ? " (forced)" : ""}`, item.forced ? "forced" : "");
+    }));
+    list.scrollTop = list.scrollHeight;
+  }
+
+  // --- wiring -------------------------------------------------------------------------------------------------
+  function wire() {
+    $("robot").addEventListener("change", (event) => { current = event.target.value; selectedPath = ""; showRobot(); });
+    const run = document.querySelector('[data-feedback="run"]');
+    const state = document.querySelector('[data-feedback="state"]');
+    for (const button of document.querySelectorAll("[data-command]")) {
+      const command = button.dataset.command;
+      button.addEventListener("click", () => {
+        if (command === "autonomy") {
+          send({ command, level: $("autonomy-level").value }, document.querySelector('[data-feedback="autonomy"]'));
+        } else if (command === "lock" || command === "unlock") {
+          send({ command, path: selectedPath }, state);
+        } else {
+          send({ command }, run);
+        }
+      });
+    }
+    $("start-behavior").addEventListener("change", fillParameters);
+    $("start-form").addEventListener("submit", submitStart);
+    $("log-filter").addEventListener("input", showLog);
+    $("log-level").addEventListener("change", showLog);
+    $("transition-filter").addEventListener("input", showTransitions);
+    $("forced-only").addEventListener("change", showTransitions);
+    $("unfold-all").addEventListener("click", () => {
+      const current_state = robots.get(current);
+      if (current_state && current_state.folded.size) { current_state.folded.clear(); requestFolds(current_state); }
+    });
+    connect();
+  }
+
+  document.addEventListener("DOMContentLoaded", wire);
+})();
