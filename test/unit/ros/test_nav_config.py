@@ -9,11 +9,14 @@ import pytest
 import yaml
 from harness import REPO_ROOT
 
+from flex_nav import validation
 from flex_nav.localization import FilterParams
+from flex_nav.mapping.occupancy import OccupancyParams
+from flex_nav.mapping.slam import SlamParams
 from flex_nav.nav.control.pure_pursuit import PurePursuitParams
 from flex_nav.nav.costmap.inflation import InflationParams
 from flex_nav.nav.planning.planner import PlannerParams
-from flex_nav.nodes import follow_server, get_path_server, localizer, pure_pursuit_controller
+from flex_nav.nodes import follow_server, get_path_server, localizer, mapper, pure_pursuit_controller
 from flex_nav.ros import costmap_ros
 from flex_nav_sim.profiles import load_profile
 
@@ -34,8 +37,17 @@ def load(name: str) -> dict:
     return config
 
 
-def test_one_config_per_profile_and_the_localizers():
-    assert sorted(p.stem for p in (REPO_ROOT / "config").glob("*.yaml")) == sorted([*PROFILES, "localizer"])
+def test_one_config_per_profile_the_localizer_and_the_mapper():
+    assert sorted(p.stem for p in (REPO_ROOT / "config").glob("*.yaml")) == sorted([*PROFILES, "localizer", "mapper"])
+
+
+def test_the_mapper_config_names_only_its_parameters():
+    config = load("mapper")
+    slam_values = {k: v for k, v in config.items() if k in mapper.SLAM_PARAMS}
+    assert set(config) - set(slam_values) <= set(mapper.NODE_PARAMS), set(config) - set(slam_values)
+    params = validation.dataclass_from_mapping(SlamParams, slam_values, owner="config/mapper.yaml")
+    assert params.do_loop_closing
+    OccupancyParams(resolution=config["resolution"], max_free_range=config["max_laser_range"])
 
 
 def test_the_localizer_config_names_only_its_parameters():
