@@ -188,6 +188,8 @@ class Console:
             client.put(text)
 
     def _on_robots(self, robots: List[str]) -> None:
+        if set(robots) == set(self.robots):
+            return  # discovery runs every few seconds: only changes are news
         for gone in set(self.robots) - set(robots):
             del self.robots[gone]
             self.tracker.forget(gone)
@@ -211,21 +213,22 @@ class Console:
         self.broadcast(event)
 
     def _on_structure(self, robot: str, text: str) -> None:
-        if robot not in self.robots:
+        view = self.robots.get(robot)
+        if view is None:
             return
         try:
             structure = BehaviorStructure.from_json(text)
         except StructureError as err:
             self.broadcast({"type": "error", "robot": robot, "message": f"unreadable structure: {err}"})
             return
+        view.structure, view.structure_text = structure, text  # commands are checked against it from now on
         asyncio.get_running_loop().create_task(self._draw(robot, text, structure))
 
     async def _draw(self, robot: str, text: str, structure: BehaviorStructure) -> None:
         svg, error = await self.svg(text, structure, ())
         view = self.robots.get(robot)
-        if view is None:
+        if view is None or view.structure_text != text:  # gone, or a newer structure came meanwhile
             return
-        view.structure, view.structure_text = structure, text
         view.structure_event = structure_event(robot, structure, svg, error)
         self.broadcast(view.structure_event)
 

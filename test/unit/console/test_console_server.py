@@ -8,6 +8,7 @@ import asyncio
 import contextlib
 import hmac
 import json
+import time
 from typing import Any, AsyncIterator, Callable, Coroutine, Dict, List, Sequence, Tuple
 
 import aiohttp
@@ -284,12 +285,39 @@ def test_runners_that_go_away_are_dropped_and_unreadable_structures_reported() -
             ws = await page(client)
             await asyncio.to_thread(made.submit_robots, [ROBOT])
             assert (await until(ws, lambda e: e["type"] == "robots"))["robots"] == [ROBOT]
+            await asyncio.to_thread(made.submit_robots, [ROBOT])  # discovery again, nothing new: no event
             await asyncio.to_thread(made.submit_structure, ROBOT, '{"schema": "flex_nav/behavior_structure"}')
-            error = await until(ws, lambda e: e["type"] == "error")
+            error = await until(ws, lambda e: True)  # the very next event
+            assert error["type"] == "error"
             assert error["robot"] == ROBOT and "unreadable structure: structure has no 'version'" in error["message"]
             await asyncio.to_thread(made.submit_robots, [])
             assert (await until(ws, lambda e: e["type"] == "robots"))["robots"] == []
             assert made.robots == {}
+            await ws.close()
+    run(check())
+
+
+def test_commands_are_checked_against_a_new_structure_before_it_is_drawn() -> None:
+    def slow_render(structure: BehaviorStructure, folded: Sequence[str]) -> str:
+        if structure.behavior == "explore":
+            time.sleep(0.5)  # a big layout: the command below arrives while it is drawn
+        return fake_render(structure, folded)
+
+    async def check() -> None:
+        recorder = Recorder()
+        made = Console(ServerConfig(port=0), recorder, slow_render)
+        async with served(made) as client:
+            ws = await page(client)
+            await runner_says(made, ws, [ROBOT])
+            await asyncio.to_thread(made.submit_structure, ROBOT, structure_text("explore"))
+            await ws.send_json({"type": "command", "id": 1, "robot": ROBOT, "command": "lock",
+                                "path": "/GoToFrontier"})  # explore's, not flex_planner's
+            seen: List[Dict[str, Any]] = []
+            answer = await until(ws, lambda e: e["type"] in ("sent", "refused"), seen)
+            assert answer["type"] == "sent" and recorder.sent == [(ROBOT, RunnerCommand("lock", ("/GoToFrontier",)))]
+            if not any(e["type"] == "structure" for e in seen):  # drawn off the loop: before or after the answer
+                await until(ws, lambda e: e["type"] == "structure", seen)
+            assert [e["behavior"] for e in seen if e["type"] == "structure"] == ["explore"]
             await ws.close()
     run(check())
 
