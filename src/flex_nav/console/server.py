@@ -13,6 +13,13 @@ the ``flex_nav_console`` cookie (set by opening ``/?token=...`` once, which then
 ``Host`` names are served (a DNS-rebinding page gets 403). The websocket handshake must come from the page's own
 origin (``Origin`` equal to ``http://<Host>``). Every queue is bounded: a page that reads too slowly gets a fresh
 snapshot instead of the backlog; incoming messages are limited to ``max_message_bytes``.
+
+The websocket's JSON messages. From the page: ``{"type": "command", "id", "robot", "command", ...its fields}``
+(:mod:`flex_nav.console.commands`) and ``{"type": "fold", "robot", "folded": [container paths]}``. To the page:
+``hello`` (``client``: the page's number; its command references are ``"<client>:<id>"``), ``snapshot`` (the
+console's whole state follows, history included), the events of :mod:`flex_nav.console.events`,
+``snapshot_done``; ``sent`` / ``refused`` (``ref``, ``robot``, the runner's ``command`` and ``args`` / the
+``reason`` and the ``field``) answering a command; ``svg`` (a fold's drawing); ``error`` (``message``).
 """
 
 from __future__ import annotations
@@ -375,6 +382,7 @@ class Console:
         while not ws.closed:
             item = await client.queue.get()
             if item is None:
+                await ws.send_str(json.dumps({"type": "snapshot"}))  # the page drops its history: it comes again
                 for event in self.snapshot():
                     await ws.send_str(json.dumps(event, separators=(",", ":")))
                 await ws.send_str(json.dumps({"type": "snapshot_done", "resyncs": client.resyncs}))

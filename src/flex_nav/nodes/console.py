@@ -132,17 +132,20 @@ class RunnerRegistry:
             self._stop.wait(self.period_s)
 
     def discover_once(self) -> List[str]:
+        """Ask the master once; drop the links of runners gone, tell the console, link the new ones (after the
+        console knows them: their latched messages arrive as soon as they subscribe)."""
         names = runner_names(published_topics(self.master_uri, rospy.get_name()))
         with self._lock:
             gone = [self.links.pop(name) for name in list(self.links) if name not in names]
-            for name in names:
-                if name not in self.links:
-                    self.links[name] = RunnerLink(name, self.console)
-                    rospy.loginfo(f"console: behavior runner {name} found")
         for link in gone:
             rospy.loginfo(f"console: behavior runner {link.name} is gone")
             link.close()
         self.console.submit_robots(names)
+        with self._lock:
+            for name in names:
+                if name not in self.links:
+                    self.links[name] = RunnerLink(name, self.console)
+                    rospy.loginfo(f"console: behavior runner {name} found")
         return names
 
     def send(self, robot: str, command: RunnerCommand) -> None:

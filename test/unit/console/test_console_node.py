@@ -70,6 +70,7 @@ class FakeLink:
 
     def __init__(self, name: str, console: Console) -> None:
         self.name = name
+        console.submit_event(name, {"type": "status"})  # a latched message arrives as soon as it subscribes
 
     def send(self, command: RunnerCommand) -> None:
         raise AssertionError("not in this test")
@@ -85,9 +86,14 @@ def test_runners_are_discovered_and_dropped(monkeypatch: pytest.MonkeyPatch,
     monkeypatch.setattr(rospy, "get_name", lambda: "/console")
     FakeLink.closed = []
     made = Console(ServerConfig(), lambda robot, command: None)
+    said: List[Tuple[str, Any]] = []
+    monkeypatch.setattr(made, "submit_robots", lambda robots: said.append(("robots", list(robots))))
+    monkeypatch.setattr(made, "submit_event", lambda robot, event: said.append(("event", robot)))
     registry = node.RunnerRegistry(made, uri, 1.0)
     topics.extend([["/robot1/behavior_runner/status", "flex_nav/BehaviorStatus"], ["/rosout", "rosgraph_msgs/Log"]])
     assert registry.discover_once() == ["/robot1/behavior_runner"]
+    # the console knows a runner before its first (latched) message: else the message would be dropped
+    assert said == [("robots", ["/robot1/behavior_runner"]), ("event", "/robot1/behavior_runner")]
     topics[:] = [["/robot2/behavior_runner/status", "flex_nav/BehaviorStatus"]]
     assert registry.discover_once() == ["/robot2/behavior_runner"]
     assert FakeLink.closed == ["/robot1/behavior_runner"] and list(registry.links) == ["/robot2/behavior_runner"]

@@ -266,8 +266,8 @@ def test_a_new_page_gets_a_snapshot_and_can_fold_containers() -> None:
             second = await client.ws_connect("/ws", headers={"Origin": origin(client)})
             seen: List[Dict[str, Any]] = []
             await until(second, lambda e: e["type"] == "snapshot_done", seen)
-            assert [e["type"] for e in seen] == ["hello", "robots", "structure", "log", "snapshot_done"]
-            assert seen[0]["client"] == 2 and seen[1]["robots"] == [ROBOT]
+            assert [e["type"] for e in seen] == ["hello", "snapshot", "robots", "structure", "log", "snapshot_done"]
+            assert seen[0]["client"] == 2 and seen[2]["robots"] == [ROBOT]
             await second.send_json({"type": "fold", "robot": ROBOT, "folded": ["/Navigate"]})
             folded = await until(second, lambda e: e["type"] == "svg")
             assert folded["folded"] == ["/Navigate"] and 'data-folded="/Navigate"' in folded["svg"]

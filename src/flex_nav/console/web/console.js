@@ -94,6 +94,9 @@
   function handle(data) {
     switch (data.type) {
       case "hello": client = data.client; break;
+      case "snapshot":  // the console's whole state follows: history included, so drop ours
+        for (const state of robots.values()) { state.lines = []; state.events = []; }
+        break;
       case "robots": setRobots(data.robots); break;
       case "structure": onStructure(data); break;
       case "svg": onSvg(data); break;
@@ -131,6 +134,7 @@
     state.svg = data.svg;
     state.svgError = data.error;
     if (changed) state.folded.clear();
+    else if (state.folded.size) requestFolds(state, data.robot);  // the same behavior again: keep its folds
     if (data.robot === current) { if (changed) selectedPath = ""; showRobot(); }
   }
 
@@ -242,12 +246,12 @@
     const state = robots.get(current);
     if (!state) return;
     if (state.folded.has(path)) state.folded.delete(path); else state.folded.add(path);
-    requestFolds(state);
+    requestFolds(state, current);
   }
 
-  function requestFolds(state) {
+  function requestFolds(state, robot) {
     if (socket && socket.readyState === WebSocket.OPEN) {
-      socket.send(JSON.stringify({ type: "fold", robot: current, folded: [...state.folded] }));
+      socket.send(JSON.stringify({ type: "fold", robot, folded: [...state.folded] }));
     }
   }
 
@@ -571,7 +575,10 @@
     $("forced-only").addEventListener("change", showTransitions);
     $("unfold-all").addEventListener("click", () => {
       const current_state = robots.get(current);
-      if (current_state && current_state.folded.size) { current_state.folded.clear(); requestFolds(current_state); }
+      if (current_state && current_state.folded.size) {
+        current_state.folded.clear();
+        requestFolds(current_state, current);
+      }
     });
     connect();
   }
