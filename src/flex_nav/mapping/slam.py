@@ -43,6 +43,8 @@ from flex_nav.nav.angles import wrap_angle
 from flex_nav.nav.costmap.grid_map import GridMap
 from flex_nav.nav.planar import Pose2D, compose_poses, inverse_pose
 
+LOOKUP_SIGMAS = 4.0  # [-] exp(-8) = 3e-4: beyond this many sigma a lookup cell scores nothing
+
 
 @dataclass(frozen=True)
 class SlamParams:
@@ -170,7 +172,7 @@ class GraphSlam:
         last = len(self.keyframes) - 1
         chain = list(range(max(0, last - p.scan_buffer_size + 1), last + 1))
         window = Window(self.graph.pose(last), p.loop_search_space_dimension / 2.0, 2.0 * p.coarse_search_angle_offset)
-        lookup = self.matcher.lookup(self._points(chain), window.xy + self.occupancy.max_free_range)
+        lookup = self.matcher.lookup(self._points(chain), self._lookup_margin(window))
         unique = self._unique_match(lookup, _hits(rays), window)
         if unique is None:
             return False
@@ -235,7 +237,7 @@ class GraphSlam:
         chain = list(range(max(0, old - half), min(old + half + 1, new)))
         rays = self.keyframes[new].rays
         window = Window(self.graph.pose(new), p.loop_search_space_dimension / 2.0, p.coarse_search_angle_offset)
-        lookup = self.matcher.lookup(self._points(chain), window.xy + self.occupancy.max_free_range)
+        lookup = self.matcher.lookup(self._points(chain), self._lookup_margin(window))
         unique = self._unique_match(lookup, _hits(rays), window)
         if unique is None:
             return None
@@ -249,12 +251,17 @@ class GraphSlam:
         back_window = Window(self.graph.pose(old), 2 * p.loop_match_agreement_distance,
                              p.coarse_search_angle_offset / 2.0)
         back_lookup = self.matcher.lookup(self._points(list(moved), corrected=moved),
-                                          back_window.xy + self.occupancy.max_free_range)
+                                          self._lookup_margin(back_window))
         back = self.matcher.match(back_lookup, _hits(self.keyframes[old].rays), back_window)
         if back is None or _distance(back.pose, back_window.prior) > p.loop_match_agreement_distance:
             return None
         closure = LoopClosure(old, new, match.response, second_response)
         return closure, relative, match.covariance
+
+    def _lookup_margin(self, window: Window) -> float:
+        """[m] around the reference points, the lookup table must reach: a point farther from every reference point
+        than a few ``sigma`` scores nothing wherever it falls, so the table needs the window's reach and that."""
+        return window.xy + LOOKUP_SIGMAS * self.matcher.params.sigma
 
     def _unique_match(self, lookup: Lookup, points: np.ndarray, window: Window) -> Optional[Tuple[Match, float]]:
         """The best match of ``points`` in ``window`` and the best response outside ``loop_match_uniqueness_radius``
@@ -286,7 +293,7 @@ class GraphSlam:
     def _match(self, chain: List[int], rays: ScanRays, window: Window) -> Optional[Match]:
         if not chain:
             return None
-        lookup = self.matcher.lookup(self._points(chain), window.xy + self.occupancy.max_free_range)
+        lookup = self.matcher.lookup(self._points(chain), self._lookup_margin(window))
         return self.matcher.match(lookup, _hits(rays), window)
 
     def poses(self) -> np.ndarray:
