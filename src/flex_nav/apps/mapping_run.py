@@ -33,8 +33,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
+import yaml
+
 from flex_nav.apps.eval.map_quality import ate_rmse_cm, draw_map, score_map
-from flex_nav.exceptions import FlexNavError
+from flex_nav.exceptions import ConfigError, FlexNavError
 from flex_nav.nav.planar import Pose2D, compose_poses, inverse_pose
 from flex_nav.resources import share_dir
 from flex_nav.testing.private_master import PrivateMaster
@@ -60,6 +62,8 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
                         help="low: the operator approves every frontier (behavior_runner's operator interface)")
     parser.add_argument("--timeout", type=float, default=900.0, help="[s] wall-time bound on the whole run")
     parser.add_argument("--no-loop-closure", action="store_true", help="map without loop closing (for comparison)")
+    parser.add_argument("--explore-param", action="append", default=[], metavar="NAME=VALUE",
+                        help="an explore behavior parameter (behaviors/explore.yaml), e.g. size_weight=0.5; repeatable")
     return parser.parse_args(argv)
 
 
@@ -183,15 +187,19 @@ def start_system(stack: contextlib.ExitStack, args: argparse.Namespace, out: Pat
     parameters.setParam(f"/{ROBOT}/mapper/map_start_pose", [x, y, yaw])
     mapper_config = share_dir() / "config" / "mapper.yaml"
     if args.no_loop_closure:  # the launch file loads the config over any parameter set here: a copy, changed
-        import yaml  # noqa: PLC0415
-
         values = yaml.safe_load(mapper_config.read_text(encoding="utf-8"))
         values["do_loop_closing"] = False
         mapper_config = out / "mapper_no_loop_closure.yaml"
         mapper_config.write_text(yaml.safe_dump(values), encoding="utf-8")
     profile = PROFILES[args.profile]
-    behavior_parameters = json.dumps({"map_path": str(out / "map"), "pose_topic": "pose",
-                                      "pose_type": "pose_with_covariance", "profile": profile})
+    explore_parameters: Dict[str, Any] = {"map_path": str(out / "map"), "pose_topic": "pose",
+                                          "pose_type": "pose_with_covariance", "profile": profile}
+    for item in args.explore_param:
+        name, separator, value = item.partition("=")
+        if not separator or not name:
+            raise ConfigError(f"--explore-param must be NAME=VALUE, got {item!r}")
+        explore_parameters[name] = yaml.safe_load(value)  # a number, a word or a list, as YAML reads it
+    behavior_parameters = json.dumps(explore_parameters)
     processes = [
         ManagedProcess(["rosrun", "flex_nav", "sim", f"_world:={args.world}",
                         f"_robots:={ROBOT}:{profile}:{x}:{y}:{math.degrees(yaw):.1f}", f"_rtf:={args.rtf}",
