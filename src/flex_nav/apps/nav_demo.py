@@ -321,7 +321,7 @@ def start_system(stack: contextlib.ExitStack, args: argparse.Namespace, runs: Li
     parameters = rosgraph.Master("/nav_demo", master_uri=master.uri)
     for name, value in {"/use_sim_time": True, **(params or {})}.items():
         parameters.setParam(name, value)
-    map_yaml = getattr(args, "map", None) or world_map(Path(args.world).stem)
+    map_yaml = args.map or world_map(Path(args.world).stem)
     oracle = getattr(args, "localization", "localizer") == "oracle"
     robots_param = ",".join(f"{r.name}:{r.profile}:{r.pose[0]}:{r.pose[1]}:{math.degrees(r.pose[2]):.1f}"
                             for r in runs if r.pose)

@@ -108,7 +108,7 @@ def start(stack: contextlib.ExitStack, args: argparse.Namespace, run: RobotRun) 
                     "pure_pursuit_topic/local_costmap"):
         params[f"/{ROBOT}/{costmap}/bumper_memory"] = BUMPER_MEMORY_S
     system = argparse.Namespace(world=args.world, rtf=args.rtf, seed=args.seed, gui=False, autonomy="full",
-                                behavior=args.behavior, localization=args.localization)
+                                behavior=args.behavior, localization=args.localization, map=None)
     processes, env = start_system(stack, system, [run], args.out, camera=True, params=params, bag=args.bag)
     classifier = ManagedProcess(["rosrun", "flex_nav", "obstacle_classifier", f"__ns:={ROBOT}", "_max_rate:=5.0"],
                                 env=env, log_path=args.out / "logs" / "classifier.log")

@@ -41,7 +41,7 @@ from flex_nav.mapping.pose_graph import EdgeKind, PoseGraph
 from flex_nav.mapping.scan_matcher import Lookup, Match, MatcherParams, ScanMatcher, Window
 from flex_nav.nav.angles import wrap_angle
 from flex_nav.nav.costmap.grid_map import GridMap
-from flex_nav.nav.planar import Pose2D, compose_poses, inverse_pose
+from flex_nav.nav.planar import Pose2D, compose_poses, inverse_pose, transform_poses
 
 LOOKUP_SIGMAS = 4.0  # [-] exp(-8) = 3e-4: beyond this many sigma a lookup cell scores nothing
 
@@ -209,16 +209,14 @@ class GraphSlam:
             self._cooldown -= 1
             return
         new = len(self.keyframes) - 1
-        pose = self.graph.pose(new)
-        travel = self.keyframes[new].travel
-        candidates = [
-            (i, _distance(self.graph.pose(i), pose)) for i in range(new)
-            if travel - self.keyframes[i].travel >= p.loop_minimum_travel
-            and _distance(self.graph.pose(i), pose) <= p.loop_search_maximum_distance
-        ]
-        if not candidates:
+        travel = np.array([k.travel for k in self.keyframes[:new]])
+        poses = self.graph.poses()
+        distance = np.hypot(poses[:new, 0] - poses[new, 0], poses[:new, 1] - poses[new, 1])
+        candidate = (self.keyframes[new].travel - travel >= p.loop_minimum_travel) & (
+            distance <= p.loop_search_maximum_distance)
+        if not candidate.any():
             return
-        old = min(candidates, key=lambda candidate: candidate[1])[0]
+        old = int(np.argmin(np.where(candidate, distance, np.inf)))
         closure = self._verified_closure(old, new)
         if closure is None:
             self.rejected_loops += 1
@@ -284,10 +282,7 @@ class GraphSlam:
         chunks = []
         for i in indices:
             pose = (corrected or {}).get(i, self.graph.pose(i))
-            hits = _hits(self.keyframes[i].rays)
-            c, s = math.cos(pose[2]), math.sin(pose[2])
-            chunks.append(np.column_stack([pose[0] + c * hits[:, 0] - s * hits[:, 1],
-                                           pose[1] + s * hits[:, 0] + c * hits[:, 1]]))
+            chunks.append(transform_poses(_hits(self.keyframes[i].rays), *pose))
         return np.vstack(chunks) if chunks else np.zeros((0, 2))
 
     def _match(self, chain: List[int], rays: ScanRays, window: Window) -> Optional[Match]:

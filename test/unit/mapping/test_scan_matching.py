@@ -12,6 +12,7 @@ from flex_nav.localization import ScanBeams
 from flex_nav.mapping.occupancy import FREE, OCCUPIED, UNKNOWN, OccupancyParams, rasterize, scan_rays
 from flex_nav.mapping.scan_matcher import MatcherParams, ScanMatcher, Window, thin
 from flex_nav.nav.angles import wrap_angle
+from flex_nav.nav.planar import transform_poses
 
 REFERENCE = (1.5, 1.2, 0.0)
 
@@ -22,9 +23,7 @@ def hits_at(grid, pose, rng=None):
 
 
 def to_map(points, pose):
-    c, s = math.cos(pose[2]), math.sin(pose[2])
-    return np.column_stack([pose[0] + c * points[:, 0] - s * points[:, 1],
-                            pose[1] + s * points[:, 0] + c * points[:, 1]])
+    return transform_poses(points, *pose)
 
 
 @pytest.fixture(scope="module")

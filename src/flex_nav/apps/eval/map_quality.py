@@ -15,7 +15,7 @@ import cv2
 import numpy as np
 
 from flex_nav.nav.costmap.grid_map import GridMap
-from flex_nav.nav.planar import Pose2D, inverse_pose
+from flex_nav.nav.planar import Pose2D, inverse_pose, transform_poses
 
 GHOST_M = 0.15  # [m] a mapped wall cell this far from any true wall is a ghost (a doubled wall, a moved object)
 OCCUPIED_MIN = 50  # cell values from this up count as occupied, 0..OCCUPIED_MIN-1 as free, -1 unknown
@@ -35,8 +35,8 @@ class MapScore:
 
 
 def _transform(pose: Pose2D, xs: np.ndarray, ys: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
-    c, s = math.cos(pose[2]), math.sin(pose[2])
-    return pose[0] + c * xs - s * ys, pose[1] + s * xs + c * ys
+    points = transform_poses(np.column_stack([xs, ys]), *pose)
+    return points[:, 0], points[:, 1]
 
 
 def _values_at(grid: GridMap, xs: np.ndarray, ys: np.ndarray) -> np.ndarray:
