@@ -106,6 +106,9 @@ class TestLocalizer(unittest.TestCase):
         """(position [m], heading [rad]) error of the newest estimate against the ground truth at its stamp."""
         estimate = self.estimate.wait(what="amcl_pose")
         stamp = estimate.header.stamp
+        # the ground truth at (or after) the estimate's stamp: the localizer can be localized before this node's
+        # ground_truth subscription has its first message
+        self.truth.wait(lambda m: m.header.stamp >= stamp, what="ground_truth at the estimate's stamp")
         with self.truth.lock:
             truth = min(self.truth.messages, key=lambda m: abs((m.header.stamp - stamp).to_sec()))
         ex, ey, eyaw = planar(estimate.pose.pose)
