@@ -221,15 +221,17 @@ class ScanMatcher:
             exclusion[:] = ((center[0] - window.prior[0]) / p.resolution, (center[1] - window.prior[1]) / p.resolution,
                             radius / p.resolution, round(wrap_angle(center[2] - window.prior[2]) / yaw_step) + steps,
                             math.ceil(yaw_radius / yaw_step))
-        k, ox, oy, _total = _branch_and_bound(
+        k, ox, oy, total = _branch_and_bound(
             lookup.table, lookup.coarse, np.floor(gx).astype(np.int64), np.floor(gy).astype(np.int64), reach,
             p.coarse_factor, exclusion,
         )
         if k < 0:
             return None
         lattice = (window.prior[0] + ox * p.resolution, window.prior[1] + oy * p.resolution, float(headings[k]))
-        pose = refine_subcell(lookup, pts, lattice, p.resolution, yaw_step)  # never scores below the lattice pose
+        pose = refine_subcell(lookup, pts, lattice, p.resolution, yaw_step)
         response = float(lookup.scores(np.array([pose]), pts)[0])
+        if response < total / pts.shape[0]:  # the lattice pose fits better by the cell lookups: keep it
+            pose, response = lattice, float(lookup.scores(np.array([lattice]), pts)[0])
         return Match((pose[0], pose[1], wrap_angle(pose[2])), response,
                      _covariance(lookup, pts, pose, p.resolution, yaw_step))
 
