@@ -14,7 +14,7 @@ APT_PACKAGES=(
   python3-sensor-msgs python3-std-srvs python3-genpy python3-genmsg python3-catkin-pkg libactionlib-msgs-dev
   ros-std-msgs ros-geometry-msgs ros-nav-msgs ros-actionlib-msgs ros-sensor-msgs ros-std-srvs
   python3-rosgraph-msgs python3-rosservice python3-roslib python3-rosmsg python3-tf2-msgs ros-tf2-msgs
-  procps graphviz
+  procps graphviz chromium chromium-driver
 )
 
 say() { printf '[flex_nav install] %s\n' "$*"; }

@@ -1,0 +1,216 @@
+"""The operator console in a real browser: headless Debian Chromium driven by Selenium against the demo's stack.
+
+One stack for the whole module (module-scoped fixture: a private master, the simulator, one TurtleBot 2 running
+flex_planner at autonomy Low, and the console node bound to 0.0.0.0 with a token). The tests run in file order and
+follow one behavior's life: a wrong token is refused; the graph shows and the active state changes; a lock holds
+a state; an outcome is forced; the approve button sends the plan on and the robot moves (ground-truth odometry);
+preempt stops it; starts with bad parameters show the console's and the runner's errors; a goal placed by clicking
+the map is reached. Every wait is bounded; the robot's motion is read from ROS, not from the page.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import threading
+import time
+from pathlib import Path
+from typing import Any, Iterator, List, Optional, Tuple
+
+import pytest
+
+from flex_nav.exceptions import NotReadyError
+from flex_nav.testing.browser import HeadlessBrowser
+from flex_nav.testing.private_master import free_port
+from flex_nav.testing.process import ManagedProcess
+
+WAIT_S = 60.0  # [s] wall bound of one wait for the page or the robot
+TOKEN = "browser-test-token-0123456789"  # [chars] >= 16: the console is bound to 0.0.0.0
+ROBOT = "/robot1/behavior_runner"
+MOVING_MPS = 0.1  # [m/s] ground-truth speed that counts as driving
+STOPPED_MPS = 0.02  # [m/s] ground-truth speed that counts as standing
+
+
+class Stack:
+    """The running demo stack, the console's URL, the browser and what the test reads from ROS."""
+
+    def __init__(self, url: str, browser: HeadlessBrowser, monitor: Any, log_dir: Path) -> None:
+        self.url = url
+        self.browser = browser
+        self.monitor = monitor
+        self.log_dir = log_dir
+        self.lock = threading.Lock()
+        self.odometry: List[Tuple[float, float, float, float]] = []  # (wall [s], x [m], y [m], v [m/s])
+
+    def on_odometry(self, msg: Any) -> None:
+        p = msg.pose.pose.position
+        with self.lock:
+            self.odometry.append((time.monotonic(), p.x, p.y, abs(msg.twist.twist.linear.x)))
+            del self.odometry[:-2000]
+
+    def latest(self) -> Optional[Tuple[float, float, float, float]]:
+        with self.lock:
+            return self.odometry[-1] if self.odometry else None
+
+    def wait(self, probe: Any, what: str, timeout_s: float = WAIT_S) -> Any:
+        try:
+            return self.browser.wait_for(probe, what, timeout_s)
+        except NotReadyError as err:
+            pytest.fail(f"{err}; page status {self.text('status')!r}, requests {self.text('requests')!r}, "
+                        f"feedback {self.feedback_texts()!r}; logs in {self.log_dir}")
+
+    def text(self, element_id: str) -> str:
+        return str(self.browser.script(f"const n = document.getElementById({element_id!r}); "
+                                       "return n ? n.textContent : '';"))
+
+    def feedback_texts(self) -> List[str]:
+        return list(self.browser.script(
+            "return [...document.querySelectorAll('.feedback')].map((n) => n.textContent).filter((t) => t);"))
+
+    def active(self) -> List[str]:
+        return list(self.browser.script("return [...document.querySelectorAll('#graph .active')].map((n) => n.id);"))
+
+    def click(self, css: str) -> None:
+        from selenium.webdriver.common.by import By  # noqa: PLC0415
+
+        self.browser.driver.find_element(By.CSS_SELECTOR, css).click()
+
+    def click_button(self, container: str, text: str) -> None:
+        """Click the button of ``container`` whose label is ``text`` (waits for it to exist)."""
+        from selenium.webdriver.common.by import By  # noqa: PLC0415
+
+        def find() -> Any:
+            for button in self.browser.driver.find_elements(By.CSS_SELECTOR, f"{container} button"):
+                if button.text.strip() == text and button.is_enabled():
+                    return button
+            return None
+
+        self.wait(find, f"button {text!r} in {container}").click()
+
+    def feedback(self, name: str) -> str:
+        return str(self.browser.script(
+            f"const n = document.querySelector('[data-feedback=\"{name}\"]'); return n ? n.textContent : '';"))
+
+
+@pytest.fixture(scope="module")
+def stack(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Stack]:
+    import rospy  # noqa: PLC0415 - only once the master is up
+    from nav_msgs.msg import Odometry  # noqa: PLC0415
+
+    from flex_nav.apps import nav_demo  # noqa: PLC0415
+    from flex_nav.ros.node import init_node  # noqa: PLC0415
+    from flex_nav_sim.world import load_world  # noqa: PLC0415
+
+    out = tmp_path_factory.mktemp("console_browser")
+    args = nav_demo.parse_args(["--autonomy", "low", "--goals", "g1", "--rtf", "1.0", "--out", str(out)])
+    runs = nav_demo.plan_robots(load_world(args.world), args.profile_list, 1, ["g1"])
+    port = free_port()
+    with contextlib.ExitStack() as exits:
+        processes, env = nav_demo.start_system(exits, args, runs, out, bag=False)
+        console = ManagedProcess(["rosrun", "flex_nav", "console", "_host:=0.0.0.0", f"_port:={port}",
+                                  f"_token:={TOKEN}", "_discovery_period_s:=0.5"],
+                                 env=env, log_path=out / "logs" / "console.log")
+        exits.callback(console.stop)
+        init_node("console_browser_test", anonymous=True)
+        exits.callback(rospy.signal_shutdown, "the browser tests are done")
+        monitor = nav_demo.DemoMonitor(runs)
+        browser = exits.enter_context(HeadlessBrowser())
+        test_stack = Stack(f"http://127.0.0.1:{port}/", browser, monitor, out / "logs")
+        rospy.Subscriber("/robot1/ground_truth", Odometry, test_stack.on_odometry, queue_size=20)
+        problem = nav_demo.wait_until_ready(monitor, [*processes, console])
+        assert problem is None, f"the stack did not start: {problem}"
+        yield test_stack
+
+
+def test_a_wrong_token_is_refused(stack: Stack) -> None:
+    driver = stack.browser.driver
+    driver.delete_all_cookies()
+    driver.get(stack.url)
+    assert "a token is needed" in driver.find_element("tag name", "body").text
+    driver.get(stack.url + "?token=" + "x" * len(TOKEN))
+    assert "wrong token" in driver.find_element("tag name", "body").text
+    assert not driver.get_cookies()
+    driver.get(stack.url + "?token=" + TOKEN)  # the right one: a cookie, and the page
+    assert driver.current_url == stack.url
+    stack.wait(lambda: stack.text("connection") == "connected", "the page's websocket connected")
+
+
+def test_the_graph_shows_and_the_active_state_changes(stack: Stack) -> None:
+    stack.wait(lambda: stack.browser.script("return document.querySelectorAll('#graph svg g.node').length > 5"),
+               "the behavior's graph drawn")
+    assert stack.text("behavior-name") == "flex_planner"
+    stack.wait(lambda: stack.active() == ["st-ReceiveGoal"], "ReceiveGoal shown active")
+    assert stack.text("status").startswith("RUNNING")
+
+
+def test_a_lock_holds_the_state_until_unlocked(stack: Stack) -> None:
+    stack.click("#st-ReceiveGoal")
+    stack.wait(lambda: "/ReceiveGoal" in stack.text("selected"), "ReceiveGoal selected")
+    stack.click('[data-command="lock"]')
+    stack.wait(lambda: stack.feedback("state").startswith("ok"), "the runner's answer to lock")
+    stack.monitor.send_due_goals()  # the goal arrives: ReceiveGoal would leave with 'received', but it is locked
+    stack.wait(lambda: "waits for an unlock" in stack.text("requests"), "the locked outcome shown waiting")
+    assert stack.active() == ["st-ReceiveGoal"]
+    stack.click('[data-command="unlock"]')
+    stack.wait(lambda: stack.active() == ["st-ApprovePlan"], "ApprovePlan active after the unlock", 30.0)
+
+
+def test_a_forced_outcome(stack: Stack) -> None:
+    stack.wait(lambda: "needs autonomy above HIGH" in stack.text("requests"), "ApprovePlan waiting at Low")
+    stack.click_button("#requests", "select")
+    stack.wait(lambda: "/ApprovePlan" in stack.text("selected"), "ApprovePlan selected")
+    stack.click_button("#force-buttons", "force replan")
+    stack.wait(lambda: stack.browser.script(
+        "return [...document.querySelectorAll('#transitions li.forced')].some((n) => "
+        "n.textContent.includes('/ApprovePlan --replan') && n.textContent.includes('GetPath (forced)'))"),
+        "the forced transition listed")
+    stack.wait(lambda: stack.active() == ["st-ApprovePlan"], "the new plan waiting for approval again", 30.0)
+    assert stack.feedback("state").startswith("ok")
+
+
+def test_approve_at_low_sends_the_plan_on_and_the_robot_moves(stack: Stack) -> None:
+    start = stack.latest()
+    assert start is not None, "no ground-truth odometry"
+    time.sleep(1.0)  # held: nothing moves before the approval
+    held = stack.latest()
+    assert held is not None and held[3] < STOPPED_MPS and math.dist(start[1:3], held[1:3]) < 0.02
+    stack.click_button("#requests", "approve execute")
+    stack.wait(lambda: stack.active() and stack.active()[0].startswith("st-Navigate"), "Navigate active", 30.0)
+    stack.wait(lambda: (stack.latest() or start)[3] > MOVING_MPS, "the robot driving (ground truth)")
+    stack.wait(lambda: math.dist(start[1:3], (stack.latest() or start)[1:3]) > 0.3, "the robot 0.3 m on")
+
+
+def test_preempt_stops_the_robot(stack: Stack) -> None:
+    stack.wait(lambda: (stack.latest() or (0, 0, 0, 0.0))[3] > 0.3, "the robot at speed before the preempt")
+    stack.click('[data-command="preempt"]')
+    stack.wait(lambda: stack.text("status").startswith("PREEMPTED"), "status PREEMPTED shown", 20.0)
+    stack.wait(lambda: (stack.latest() or (0, 0, 0, 1.0))[3] < STOPPED_MPS, "the robot stopped", 10.0)
+    time.sleep(1.0)
+    with stack.lock:
+        since = [v for t, _x, _y, v in stack.odometry if t > time.monotonic() - 1.0]
+    assert since and max(since) < STOPPED_MPS, f"moving again after the preempt: {max(since):.3f} m/s"
+
+
+def _set_parameter(stack: Stack, name: str, value: str) -> None:
+    from selenium.webdriver.common.by import By  # noqa: PLC0415
+
+    field = stack.browser.driver.find_element(By.CSS_SELECTOR, f'[data-parameter="{name}"]')
+    field.clear()
+    field.send_keys(value)
+
+
+def test_starts_with_bad_parameters_show_the_errors(stack: Stack) -> None:
+    from selenium.webdriver.common.by import By  # noqa: PLC0415
+    from selenium.webdriver.support.select import Select  # noqa: PLC0415
+
+    Select(stack.browser.driver.find_element(By.ID, "start-behavior")).select_by_value("flex_planner")
+    _set_parameter(stack, "backup_offset_m", "0.5")  # its max is -0.01: the console's validator refuses it
+    stack.click('#start-form button[type="submit"]')
+    stack.wait(lambda: "above its maximum" in stack.feedback("start"), "the console's refusal shown")
+    assert stack.feedback("start").startswith("refused by the console: parameter 'backup_offset_m'")
+    _set_parameter(stack, "backup_offset_m", "-0.2")
+    _set_parameter(stack, "navigate", "no_such_navigate")  # a string: only the runner's load finds it wrong
+    stack.click('#start-form button[type="submit"]')
+    stack.wait(lambda: stack.feedback("start").startswith("refused:") and "no_such_navigate" in
+               stack.feedback("start"), "the runner's refusal shown", 30.0)
+    assert stack.text("status").startswith("PREEMPTED")
