@@ -14,7 +14,7 @@ import pytest
 from actionlib_msgs.msg import GoalStatus
 from unit.behavior.behavior_testlib import child
 from unit.mapping.test_frontiers import RES, room
-from unit.states.states_testlib import Harness, path
+from unit.states.states_testlib import Harness, KinematicRobot, path
 from unit.states.test_states_exploration import occupancy_grid, robot_pose
 
 from flex_nav.behavior.autonomy import Autonomy
@@ -35,12 +35,13 @@ description: Follow the plan with one FollowPath server.
 parameters:
   profile: {type: str, default: kobuki, description: unused}
   stuck_window_s: {type: float, default: 20.0, description: "[s] unused"}
+  final_heading: {type: bool, default: true, description: the last pose's yaw is a goal}
 input_keys: [plan]
 outcomes: [arrived, failed, bumper, stuck]
 states:
   Follow:
     class: flex_nav_states.follow_path_state.FollowPathState
-    parameters: {action_name: follower}
+    parameters: {action_name: follower, final_heading: $final_heading}
     transitions: {done: arrived, failed: failed, preempted: failed}
 """
 
@@ -49,11 +50,15 @@ class Scene:
     """explore with the fake planner, follower and save service; the map and the robot pose injected."""
 
     def __init__(self, tmp_path: Path, occ: np.ndarray, follow: List[int], saved: bool = True,
-                 autonomy: Autonomy = Autonomy.FULL, **parameters: Any) -> None:
+                 autonomy: Autonomy = Autonomy.FULL, robot: bool = False, **parameters: Any) -> None:
+        """``robot``: a kinematic robot answers the turn at the start with odometry (the other tests skip the
+        turn: ``look_around`` skip unless given)."""
         (tmp_path / "follow_only.yaml").write_text(NAVIGATE)
         behavior = load_behavior(BEHAVIORS / "explore.yaml", search_path=[tmp_path, BEHAVIORS],
-                                 parameters={"navigate": "follow_only", "map_path": "/maps/building", **parameters})
+                                 parameters={"navigate": "follow_only", "map_path": "/maps/building",
+                                             "look_around": "skip", **parameters})
         self.h = Harness(behavior.root, autonomy=autonomy)
+        self.robot = KinematicRobot(self.h, yaw=0.3) if robot else None
         self.planner = self.h.proxies.client("get_path_server", GetPathAction)
         for _ in range(len(follow)):
             self.planner.respond(GoalStatus.SUCCEEDED, GetPathResult(code=GetPathResult.SUCCESS,
@@ -107,6 +112,7 @@ def test_explores_the_frontier_saves_the_map_and_drives_back_to_the_start(tmp_pa
     saved_at = next(i for i, t in enumerate(texts) if "wrote /maps/building.yaml" in t)
     planned_home_at = max(i for i, t in enumerate(texts) if "goal sent" in t and "get_path_server" in t)
     assert saved_at < planned_home_at  # saved before driving back
+    assert [g.ignore_final_heading for g in scene.follower.goals] == [True, True]  # explore's final_heading: false
 
 
 def test_a_frontier_that_cannot_be_reached_is_marked_failed_and_not_tried_again(tmp_path):
@@ -120,6 +126,28 @@ def test_a_frontier_that_cannot_be_reached_is_marked_failed_and_not_tried_again(
     texts = scene.h.texts()
     assert any("1 failed so far" in t for t in texts)
     assert any("no frontier left" in t and "1 failed before" in t for t in texts)
+
+
+def test_the_turn_at_the_start_looks_around_before_the_first_frontier(tmp_path):
+    scene = Scene(tmp_path, room(40), follow=[GoalStatus.SUCCEEDED] * 2, robot=True, look_around="turn")
+    result = scene.run(explored_after=1)
+    assert result.outcome == "finished", scene.h.log_text()
+    texts = scene.h.texts()
+    turned_at = next(i for i, t in enumerate(texts) if t.startswith("turned +3"))
+    first_plan_at = next(i for i, t in enumerate(texts) if "goal sent" in t and "get_path_server" in t)
+    assert turned_at < first_plan_at, scene.h.log_text()
+    rates = [m.twist.angular.z for m in scene.h.proxies.pub("cmd_vel_stamped").messages]
+    assert max(rates) == pytest.approx(1.5)  # look_around_speed_radps
+    assert scene.robot is not None and scene.robot.yaw == pytest.approx(0.3, abs=0.05)  # a full turn, back
+    assert scene.robot.traveled_m == pytest.approx(0.0)
+
+
+def test_a_turn_that_fails_is_logged_and_exploring_goes_on(tmp_path):
+    scene = Scene(tmp_path, room(40), follow=[GoalStatus.SUCCEEDED] * 2, look_around="turn")  # no odometry
+    result = scene.run(explored_after=1)
+    assert result.outcome == "finished", scene.h.log_text()
+    assert any("the turn at the start failed" in t for t in scene.h.texts())
+    assert len(scene.plan_goals()) == 2
 
 
 def test_a_map_that_is_not_saved_still_brings_the_robot_back_but_fails(tmp_path):
