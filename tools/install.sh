@@ -167,6 +167,20 @@ $marker
 case ":\${ROS_PACKAGE_PATH:-}:" in *":$REPO:"*) ;; *) export ROS_PACKAGE_PATH="$REPO\${ROS_PACKAGE_PATH:+:\$ROS_PACKAGE_PATH}";; esac
 HOOK
   fi
+  # Debian's rostopic, rosmsg, rossrv and rosbag run /usr/bin/python3: they import flex_nav's message classes
+  # from src/ (PYTHONPATH), and rosmsg finds the messages expanded from action/ (build/msg) in a catkin-style
+  # share folder under the venv (CMAKE_PREFIX_PATH, marked by .catkin as catkin's devel space is).
+  local share="$VENV/ros" tools_marker="# flex_nav: Debian's ROS tools"
+  mkdir -p "$share/share/flex_nav"
+  touch "$share/.catkin"
+  ln -sfn "$REPO/build/msg" "$share/share/flex_nav/msg"
+  if ! grep -qF "$tools_marker" "$act"; then
+    cat >>"$act" <<HOOK
+$tools_marker
+case ":\${PYTHONPATH:-}:" in *":$REPO/src:"*) ;; *) export PYTHONPATH="$REPO/src\${PYTHONPATH:+:\$PYTHONPATH}";; esac
+case ":\${CMAKE_PREFIX_PATH:-}:" in *":$share:"*) ;; *) export CMAKE_PREFIX_PATH="$share\${CMAKE_PREFIX_PATH:+:\$CMAKE_PREFIX_PATH}";; esac
+HOOK
+  fi
 }
 
 main() {
