@@ -224,6 +224,25 @@ class TestNodesIO(unittest.TestCase):
         self.assertIsNotNone(out.wait_for(lambda m: m.linear.x == 0.1, after=mark), "newer command not forwarded")
         self.assertFalse(any(m.linear.x == 0.2 for m in out.msgs[mark:]), "a stale command was forwarded")
 
+    def test_twist_relay_sends_no_timeout_zero_and_no_warning_after_a_stop(self):
+        """A controller's last command at its goal is a stop: the silence after it is no fault."""
+        logs = Latest("/rosout", Log)
+        out = Latest("cmd_vel", Twist)
+        pub = rospy.Publisher("cmd_vel_stamped", TwistStamped, queue_size=1)
+        drive = TwistStamped()
+        drive.twist.linear.x = 0.15
+        self.assertIsNotNone(publish_until_forwarded(pub, drive, out, lambda m: m.linear.x == 0.15))
+        mark, log_mark = out.count(), logs.count()
+        pub.publish(TwistStamped())
+        self.assertIsNotNone(out.wait_for(lambda m: m.linear.x == 0.0, after=mark), "the stop was not forwarded")
+        rospy.sleep(RELAY_TIMEOUT_S + ONE_ZERO_WATCH_S)
+        self.assertEqual(out.count() - mark, 1, "a timeout zero followed the stop")
+        warnings = [m.msg for m in logs.since(log_mark) if m.name == "/twist_relay" and "no command for" in m.msg]
+        self.assertEqual(warnings, [])
+        pub.unregister()
+        out.sub.unregister()
+        logs.sub.unregister()
+
     # ------------------------------------------------------------------ CostmapROS
     def test_costmap_marks_scan_and_bumper_and_clears(self):
         costmap = Latest("get_path_server/global_costmap/costmap", OccupancyGrid)

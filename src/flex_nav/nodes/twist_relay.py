@@ -3,8 +3,9 @@
 Flexible Navigation's controllers publish stamped commands (for logging); ordinary base drivers take a
 Twist. A non-finite command is never forwarded: it is logged and a zero Twist goes out instead (a broken
 controller stops the robot). Parameter ``~timeout`` [s] (0 = off, with a warning: then the base driver's own
-command timeout must stop the robot; default 0.5): when no command arrived for this long after the last one,
-one zero Twist is published, so a crashed controller cannot leave the base driving on its last command.
+command timeout must stop the robot; default 0.5): when no command arrived for this long after the last one
+and that one was moving, one zero Twist is published (with a warning), so a crashed controller cannot leave the
+base driving on its last command; silence after a stop (a controller's last word at its goal) is no fault.
 Controllers and behavior states publish to the same topic from different nodes, whose messages have no order
 between them: a command stamped before one already forwarded is dropped, and at equal stamps a stop wins
 (:class:`~flex_nav.nav.control.safety.CommandOrder`). When ROS time moves backwards (a restarted simulation, a
@@ -153,7 +154,10 @@ class TwistRelay:
             if not self._order.admit(stamp_s, moving):
                 self._log(rospy.logdebug, "twist_relay: dropped a command stamped before one already forwarded")
                 return
-            self._timeout.command(self._last_now_s)
+            if moving:
+                self._timeout.command(self._last_now_s)
+            else:  # a stop (a controller's last word at its goal): the base stands, no timeout zero is due
+                self._timeout.stopped()
             self.publisher.publish(msg.twist)
 
     def _check_loop(self) -> None:
