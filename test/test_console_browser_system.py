@@ -214,3 +214,57 @@ def test_starts_with_bad_parameters_show_the_errors(stack: Stack) -> None:
     stack.wait(lambda: stack.feedback("start").startswith("refused:") and "no_such_navigate" in
                stack.feedback("start"), "the runner's refusal shown", 30.0)
     assert stack.text("status").startswith("PREEMPTED")
+
+
+def _colour_pixels(stack: Stack, rgb: Tuple[int, int, int]) -> int:
+    """How many pixels of the map's canvas have colour ``rgb``, give or take 24 a channel (antialiased lines)."""
+    return int(stack.browser.script(
+        "const c = document.getElementById('map'); const d = c.getContext('2d').getImageData(0, 0, c.width, "
+        "c.height).data; let n = 0; for (let i = 0; i < d.length; i += 4) { if (Math.abs(d[i] - arguments[0]) "
+        "<= 24 && Math.abs(d[i + 1] - arguments[1]) <= 24 && Math.abs(d[i + 2] - arguments[2]) <= 24) n++; } "
+        "return n;", *rgb))
+
+
+def test_a_goal_placed_by_clicking_the_map_is_reached(stack: Stack) -> None:
+    import json  # noqa: PLC0415
+
+    from selenium.webdriver.common.action_chains import ActionChains  # noqa: PLC0415
+    from selenium.webdriver.common.by import By  # noqa: PLC0415
+
+    _set_parameter(stack, "navigate", "flex_navigate")
+    from selenium.webdriver.support.select import Select  # noqa: PLC0415
+
+    Select(stack.browser.driver.find_element(By.ID, "start-autonomy")).select_by_value("full")
+    stack.click('#start-form button[type="submit"]')
+    stack.wait(lambda: stack.feedback("start").startswith("ok:"), "the runner started flex_planner", 30.0)
+    stack.wait(lambda: stack.active() == ["st-ReceiveGoal"], "ReceiveGoal active in the new run", 30.0)
+    stack.wait(lambda: stack.text("map-info").startswith("map "), "the map shown")
+    stack.wait(lambda: _colour_pixels(stack, (0xD3, 0x2F, 0x2F)) > 20, "the scan drawn on the map")
+    with stack.lock:
+        home = stack.odometry[0][1:3]  # where the robot started: free, and away from where the preempt left it
+    here = stack.latest()
+    assert here is not None and math.dist(home, here[1:3]) > 0.3, "the robot should be away from its start"
+    canvas = stack.browser.driver.find_element(By.ID, "map")
+    # wholly in view: an action's offset counts from the centre of the element's visible part (W3C in-view centre)
+    stack.browser.script("arguments[0].scrollIntoView({block: 'center'});", canvas)
+    view = json.loads(canvas.get_attribute("data-view"))
+    pixels = stack.browser.script("const c = document.getElementById('map'); return [c.width, c.height];")
+    width, height = canvas.size["width"], canvas.size["height"]
+    sx, sy = width / pixels[0], height / pixels[1]  # CSS pixels per canvas pixel
+    # Selenium's offsets are from the element's centre, in CSS pixels
+    cx = (view["left"] + (home[0] - view["ox"]) * view["k"]) * sx - width / 2
+    cy = (view["bottom"] - (home[1] - view["oy"]) * view["k"]) * sy - height / 2
+    ActionChains(stack.browser.driver).move_to_element_with_offset(canvas, round(cx), round(cy)).click_and_hold() \
+        .move_by_offset(-20, 0).release().perform()  # pulled west: the goal faces west
+    stack.wait(lambda: stack.feedback("map").startswith("goal sent to /robot1/behavior_runner"), "the goal sent")
+    sent = stack.feedback("map")
+    placed = [float(v) for v in sent.split("(")[1].split(")")[0].split(",")]
+    layout = stack.browser.script("const r = document.getElementById('map').getBoundingClientRect(); "
+                                  "return [r.left, r.top, r.width, r.height, window.scrollX, window.scrollY, "
+                                  "window.innerWidth, window.innerHeight];")
+    assert math.dist(placed, home) < 0.1, f"{sent}: placed off {home}; view {view}, canvas {pixels} pixels, " \
+        f"{width} x {height} CSS pixels, offset ({cx:.1f}, {cy:.1f}), layout {layout}"
+    stack.wait(lambda: _colour_pixels(stack, (0x15, 0x65, 0xC0)) > 20, "the global plan drawn", 30.0)
+    stack.wait(lambda: "--arrived--> Arrived" in stack.text("transitions"), "the goal reached (Arrived)", 120.0)
+    end = stack.latest()
+    assert end is not None and math.dist(home, end[1:3]) < 0.35, f"{sent}; the robot ended at {end[1:3]}"

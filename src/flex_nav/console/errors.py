@@ -28,3 +28,7 @@ class StructureError(ConfigError):
 
 class GraphvizError(NotReadyError):
     """Graphviz's ``dot`` is missing or failed to lay out a graph."""
+
+
+class MapViewError(ConfigError):
+    """A map the console does not show (its size or resolution), or an overlay of an unknown kind."""

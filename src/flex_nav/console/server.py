@@ -20,6 +20,12 @@ The websocket's JSON messages. From the page: ``{"type": "command", "id", "robot
 console's whole state follows, history included), the events of :mod:`flex_nav.console.events`,
 ``snapshot_done``; ``sent`` / ``refused`` (``ref``, ``robot``, the runner's ``command`` and ``args`` / the
 ``reason`` and the ``field``) answering a command; ``svg`` (a fold's drawing); ``error`` (``message``).
+
+The map view (:mod:`flex_nav.console.mapview`): ``map`` once (and again when its geometry changes), then
+``map_patch`` for changed rectangles, and ``overlay`` per robot and kind; the page's ``{"type": "goal", ...}``
+(a goal or an initial pose placed on the map) is checked by :func:`~flex_nav.console.mapview.check_goal` and
+given to the ``send_goal`` callable, answered with ``goal_sent`` (``ref``, ``robot``, ``kind``, ``x``, ``y``,
+``yaw``) or ``refused``.
 """
 
 from __future__ import annotations
@@ -41,8 +47,9 @@ from flex_nav.console.commands import RunnerCommand, refuse_choice, validate_com
 from flex_nav.console.errors import CommandRefused, StructureError
 from flex_nav.console.events import CommandTracker, known_ref, robots_event, structure_event
 from flex_nav.console.graph import render_svg, to_dot
+from flex_nav.console.mapview import GoalRequest, GridGeometry, MapPicture, check_goal
 from flex_nav.console.model import BehaviorStructure
-from flex_nav.exceptions import ConfigError, FlexNavError
+from flex_nav.exceptions import ConfigError, FlexNavError, NotReadyError
 
 WEB_DIR = Path(__file__).resolve().parent / "web"
 STATIC_FILES = {"/": ("index.html", "text/html"), "/console.js": ("console.js", "text/javascript"),
@@ -62,6 +69,7 @@ SECURITY_HEADERS = {
 
 Sender = Callable[[str, RunnerCommand], None]  # (runner name, command): publish it; FlexNavError if it cannot
 Renderer = Callable[[BehaviorStructure, Sequence[str]], str]  # (structure, folded container paths) -> SVG
+GoalSender = Callable[[GoalRequest], None]  # publish a checked goal or initial pose; FlexNavError if it cannot
 
 
 def is_loopback(host: str) -> bool:
@@ -119,6 +127,7 @@ class RobotView:
     status: Optional[Dict[str, Any]] = None
     activity: Optional[Dict[str, Any]] = None
     history: Deque[Dict[str, Any]] = dataclasses.field(default_factory=lambda: collections.deque(maxlen=HISTORY))
+    overlays: Dict[str, Dict[str, Any]] = dataclasses.field(default_factory=dict)  # kind -> latest overlay event
 
     def active(self) -> Optional[List[str]]:
         """The active paths last reported for the loaded behavior (None: not known)."""
@@ -146,10 +155,15 @@ class _Client:
 class Console:
     """The robots' latest state and the connected pages (see the module doc)."""
 
-    def __init__(self, config: ServerConfig, send: Sender, render: Renderer = default_renderer) -> None:
+    def __init__(self, config: ServerConfig, send: Sender, render: Renderer = default_renderer,
+                 send_goal: Optional[GoalSender] = None) -> None:
         self.config = config
         self.send = send
+        self.send_goal: GoalSender = send_goal or _no_goals
         self.render = render
+        self.map = MapPicture()  # updated in the caller's thread (PNG work stays off the event loop)
+        self.map_event: Optional[Dict[str, Any]] = None  # the whole map as the pages last got it
+        self._map_lock = threading.Lock()
         self.robots: Dict[str, RobotView] = {}
         self.tracker = CommandTracker()
         self.clients: Dict[int, _Client] = {}
@@ -184,6 +198,19 @@ class Console:
         """The runners found on the master now."""
         self._call(self._on_robots, list(robots))
 
+    def submit_map(self, geometry: GridGeometry, data: Any) -> None:
+        """An occupancy grid (``data`` as in nav_msgs/OccupancyGrid); its PNG is made here, in the caller's thread.
+        MapViewError for a map that is not shown."""
+        with self._map_lock:
+            event = self.map.update(geometry, data)
+            whole = self.map.event
+        if event is not None:
+            self._call(self._on_map, event, whole)
+
+    def submit_overlay(self, event: Dict[str, Any]) -> None:
+        """A robot's overlay event (:mod:`flex_nav.console.mapview`)."""
+        self._call(self._on_overlay, event)
+
     # --- event loop --------------------------------------------------------------------------------------
     def attach_loop(self, loop: Optional[asyncio.AbstractEventLoop]) -> None:
         with self._lock:
@@ -203,6 +230,17 @@ class Console:
         for robot in robots:
             self.robots.setdefault(robot, RobotView())
         self.broadcast(robots_event(list(self.robots)))
+
+    def _on_map(self, event: Dict[str, Any], whole: Optional[Dict[str, Any]]) -> None:
+        self.map_event = whole
+        self.broadcast(event)
+
+    def _on_overlay(self, event: Dict[str, Any]) -> None:
+        view = self.robots.get(event["robot"])
+        if view is None:
+            return
+        view.overlays[event["kind"]] = event
+        self.broadcast(event)
 
     def _on_event(self, robot: str, event: Dict[str, Any]) -> None:
         view = self.robots.get(robot)
@@ -256,8 +294,11 @@ class Console:
     def snapshot(self) -> List[Dict[str, Any]]:
         """Everything a page needs when it connects (or falls behind): robots, then each one's state."""
         events: List[Dict[str, Any]] = [robots_event(list(self.robots))]
+        if self.map_event is not None:
+            events.append(self.map_event)
         for view in self.robots.values():
             events.extend(e for e in (view.structure_event, view.status, view.activity) if e is not None)
+            events.extend(view.overlays.values())
             events.extend(view.history)
         return events
 
@@ -292,7 +333,25 @@ class Console:
             return self.command(client, data)
         if kind == "fold":
             return await self.fold(data)
-        return {"type": "error", "message": str(refuse_choice("message type", "type", kind, ["command", "fold"]))}
+        if kind == "goal":
+            return self.goal(client, data)
+        return {"type": "error", "message": str(refuse_choice("message type", "type", kind,
+                                                              ["command", "fold", "goal"]))}
+
+    def goal(self, client: int, data: Mapping[str, Any]) -> Dict[str, Any]:
+        """Check and send a goal or initial pose placed on the map; the answer for the page."""
+        ref = f"{client}:{known_ref(data.get('id'))}"
+        with self._map_lock:
+            geometry = self.map.geometry
+        try:
+            request = check_goal(data, list(self.robots), geometry)
+            self.send_goal(request)
+        except CommandRefused as err:
+            return {"type": "refused", "ref": ref, "robot": data.get("robot"), "reason": str(err), "field": err.field}
+        except FlexNavError as err:
+            return {"type": "refused", "ref": ref, "robot": data.get("robot"), "reason": str(err), "field": ""}
+        return {"type": "goal_sent", "ref": ref, "robot": request.robot, "kind": request.kind,
+                "x": request.x, "y": request.y, "yaw": request.yaw}
 
     async def fold(self, data: Mapping[str, Any]) -> Dict[str, Any]:
         robot, folded = data.get("robot"), data.get("folded")
@@ -388,6 +447,10 @@ class Console:
                 await ws.send_str(json.dumps({"type": "snapshot_done", "resyncs": client.resyncs}))
             else:
                 await ws.send_str(item)
+
+
+def _no_goals(request: GoalRequest) -> None:
+    raise NotReadyError("this console sends no goals")
 
 
 def _no_constant(name: str) -> Any:

@@ -6,6 +6,13 @@ flex_nav/BehaviorStatus, so namespaced robots (``/robot1/behavior_runner``) are 
 subscribes each runner's ``status``, ``activity``, ``structure``, ``log``, ``transitions`` and
 ``command_feedback``; commands validated by the server are published on its ``command`` topic.
 
+The map view: the latched ``~map_topic`` (OccupancyGrid) and, in each runner's namespace (``/robot1`` for
+``/robot1/behavior_runner``), ``get_path_server/plan`` and ``follow_path_server/plan`` (nav_msgs/Path),
+``scan`` (LaserScan, carried into the map frame by tf) and ``particlecloud`` (PoseArray, the localizer's); the
+robot's pose is tf's ``map -> <ns>/base_footprint`` every ``pose_period_s`` and its footprint the circle of the
+namespace's ``robot_radius`` parameter. Goals placed on the page are published as PoseStamped on
+``<ns>/<goal_topic>``, initial poses as PoseWithCovarianceStamped on ``<ns>/initialpose`` (RViz's covariance).
+
 Parameters (private; unknown names are refused):
 
 - ``~host`` (str, "127.0.0.1"): address to bind. Any address other than a loopback one needs ``~token``.
@@ -14,6 +21,10 @@ Parameters (private; unknown names are refused):
   least 16 characters. Anyone on the ROS graph can read parameters: the token guards the web port, not ROS.
 - ``~discovery_period_s`` (float, 2.0): how often the master is asked for runners [s].
 - ``~max_clients`` (int, 16): pages connected at once.
+- ``~map_topic`` (str, "/map"): the occupancy grid shown; its frame is the map view's frame.
+- ``~goal_topic`` (str, "move_base_simple/goal"): where a robot's goals go, in its namespace (flex_planner's
+  ``goal_topic``).
+- ``~pose_period_s`` (float, 0.1): how often each robot's pose is looked up [s].
 
 A bad parameter, a missing token for a non-loopback host or a port that cannot be bound ends the node with
 exit status 2 and the reason.
@@ -22,19 +33,36 @@ exit status 2 and the reason.
 from __future__ import annotations
 
 import asyncio
+import math
 import os
 import shutil
 import sys
 import threading
+import time
 import xmlrpc.client
 from typing import Any, Callable, Dict, List, Sequence, Tuple
 
+import numpy as np
 import rospy
+import tf2_ros
+from geometry_msgs.msg import PoseArray, PoseStamped, PoseWithCovarianceStamped
+from nav_msgs.msg import OccupancyGrid, Path
+from sensor_msgs.msg import LaserScan
 from std_msgs.msg import String
 
 from flex_nav.console.commands import RunnerCommand
 from flex_nav.console.events import activity_event, feedback_event, log_event, status_event, transition_event
 from flex_nav.console.graph import DOT_TIMEOUT_S
+from flex_nav.console.mapview import (
+    GoalRequest,
+    GridGeometry,
+    Throttle,
+    particles_overlay,
+    path_overlay,
+    pose_overlay,
+    robot_namespace,
+    scan_overlay,
+)
 from flex_nav.console.model import runner_names
 from flex_nav.console.server import Console, ServerConfig, is_loopback, serve
 from flex_nav.exceptions import ConfigError, FlexNavError, NotReadyError
@@ -46,11 +74,15 @@ from flex_nav.msg import (
     BehaviorStatus,
     BehaviorTransition,
 )
+from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.ros.master_probe import MASTER_CALL_TIMEOUT_S, _TimeoutTransport
 from flex_nav.ros.node import init_node
 from flex_nav.ros.params import param_float, param_int, param_str, reject_unknown
 
-PARAMETERS = ("host", "port", "token", "discovery_period_s", "max_clients")
+PARAMETERS = ("host", "port", "token", "discovery_period_s", "max_clients", "map_topic", "goal_topic",
+              "pose_period_s")
+DEFAULT_RADIUS_M = 0.2  # [m] footprint drawn when the namespace has no robot_radius parameter
+INITIAL_POSE_COVARIANCE = (0.25, 0.25, 0.06853891945200942)  # [m^2, m^2, rad^2] x, y, yaw: RViz's 2D Pose Estimate
 
 
 def published_topics(master_uri: str, caller_id: str, timeout_s: float = MASTER_CALL_TIMEOUT_S
@@ -99,6 +131,148 @@ class RunnerLink:
         self.publisher.unregister()
 
 
+def _yaw(q: Any) -> float:
+    return float(yaw_of_quaternion(q.x, q.y, q.z, q.w))
+
+
+class MapLink:
+    """The map view's subscriptions in one robot's namespace, and its goal and initial pose publishers."""
+
+    def __init__(self, runner: str, console: Console, view: MapView) -> None:
+        self.runner = runner
+        self.view = view
+        self.console = console
+        ns = robot_namespace(runner)
+        self.base_frame = f"{ns.strip('/')}/base_footprint" if ns else "base_footprint"
+        radius = rospy.get_param(f"{ns}/robot_radius", DEFAULT_RADIUS_M)
+        self.radius_m = float(radius) if isinstance(radius, (int, float)) else DEFAULT_RADIUS_M
+        self.goal_publisher = rospy.Publisher(f"{ns}/{view.goal_topic}", PoseStamped, queue_size=1)
+        self.pose_publisher = rospy.Publisher(f"{ns}/initialpose", PoseWithCovarianceStamped, queue_size=1)
+        self.subscribers = [
+            rospy.Subscriber(f"{ns}/get_path_server/plan", Path, self._on_plan, callback_args="global_plan",
+                             queue_size=1),
+            rospy.Subscriber(f"{ns}/follow_path_server/plan", Path, self._on_plan, callback_args="local_plan",
+                             queue_size=1),
+            rospy.Subscriber(f"{ns}/scan", LaserScan, self._on_scan, queue_size=1),
+            rospy.Subscriber(f"{ns}/particlecloud", PoseArray, self._on_particles, queue_size=1),
+        ]
+
+    def _due(self, kind: str) -> bool:
+        return self.view.throttle_due(self.runner, kind)
+
+    def _to_map(self, frame: str) -> Tuple[float, float, float] | None:
+        try:
+            t = self.view.tf.lookup_transform(self.view.frame, frame.lstrip("/"), rospy.Time(0)).transform
+        except (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.ExtrapolationException):
+            return None
+        return (t.translation.x, t.translation.y, _yaw(t.rotation))
+
+    def _transformed(self, frame: str, rows: np.ndarray) -> np.ndarray | None:
+        frame = frame.lstrip("/")
+        if frame in ("", self.view.frame):
+            return rows
+        pose = self._to_map(frame)
+        if pose is None:
+            return None
+        x, y, yaw = pose
+        c, s = np.cos(yaw), np.sin(yaw)
+        out = rows.copy()
+        out[:, 0] = x + c * rows[:, 0] - s * rows[:, 1]
+        out[:, 1] = y + s * rows[:, 0] + c * rows[:, 1]
+        if out.shape[1] > 2:
+            out[:, 2] = rows[:, 2] + yaw
+        return out
+
+    def _on_plan(self, msg: Path, kind: str) -> None:
+        if not self._due(kind):
+            return
+        rows = np.array([(p.pose.position.x, p.pose.position.y) for p in msg.poses], dtype=float).reshape(-1, 2)
+        points = self._transformed(msg.header.frame_id, rows)
+        if points is not None:
+            self.console.submit_overlay(path_overlay(self.runner, kind, msg.header.stamp.to_sec(), points))
+
+    def _on_scan(self, msg: LaserScan) -> None:
+        if not self._due("scan"):
+            return
+        laser = self._to_map(msg.header.frame_id)
+        if laser is not None:
+            self.console.submit_overlay(scan_overlay(
+                self.runner, msg.header.stamp.to_sec(), ranges=msg.ranges, angle_min=msg.angle_min,
+                angle_increment=msg.angle_increment, range_min=msg.range_min, range_max=msg.range_max,
+                laser_pose=laser))
+
+    def _on_particles(self, msg: PoseArray) -> None:
+        if not self._due("particles"):
+            return
+        rows = np.array([(p.position.x, p.position.y, _yaw(p.orientation)) for p in msg.poses],
+                        dtype=float).reshape(-1, 3)
+        points = self._transformed(msg.header.frame_id, rows)
+        if points is not None:
+            self.console.submit_overlay(particles_overlay(self.runner, msg.header.stamp.to_sec(), points))
+
+    def publish_pose(self) -> None:
+        pose = self._to_map(self.base_frame)
+        if pose is not None:
+            self.console.submit_overlay(pose_overlay(self.runner, rospy.get_time(), pose, self.radius_m))
+
+    def send(self, request: GoalRequest) -> None:
+        publisher = self.goal_publisher if request.kind == "goal" else self.pose_publisher
+        if publisher.get_num_connections() == 0:
+            raise NotReadyError(f"nothing listens on {publisher.resolved_name} (yet); try again")
+        if request.kind == "goal":
+            goal = PoseStamped()
+            goal.header.frame_id, goal.header.stamp = self.view.frame, rospy.Time.now()
+            _set_pose(goal.pose, request)
+            self.goal_publisher.publish(goal)
+            return
+        initial = PoseWithCovarianceStamped()
+        initial.header.frame_id, initial.header.stamp = self.view.frame, rospy.Time.now()
+        _set_pose(initial.pose.pose, request)
+        cov = [0.0] * 36
+        cov[0], cov[7], cov[35] = INITIAL_POSE_COVARIANCE
+        initial.pose.covariance = cov
+        self.pose_publisher.publish(initial)
+
+    def close(self) -> None:
+        for sub in self.subscribers:
+            sub.unregister()
+        self.goal_publisher.unregister()
+        self.pose_publisher.unregister()
+
+
+def _set_pose(pose: Any, request: GoalRequest) -> None:
+    pose.position.x, pose.position.y = request.x, request.y
+    pose.orientation.z, pose.orientation.w = math.sin(request.yaw / 2.0), math.cos(request.yaw / 2.0)
+
+
+class MapView:
+    """The map subscription, a tf buffer, and one :class:`MapLink` per runner (made and closed by the registry)."""
+
+    def __init__(self, console: Console, map_topic: str, goal_topic: str) -> None:
+        self.console = console
+        self.goal_topic = goal_topic
+        self.frame = "map"
+        self.tf = tf2_ros.Buffer(cache_time=rospy.Duration(10.0))
+        self._tf_listener = tf2_ros.TransformListener(self.tf)
+        self._throttle = Throttle()
+        self._throttle_lock = threading.Lock()
+        self.map_subscriber = rospy.Subscriber(map_topic, OccupancyGrid, self._on_map, queue_size=1)
+
+    def throttle_due(self, robot: str, kind: str) -> bool:
+        with self._throttle_lock:
+            return self._throttle.due(robot, kind)
+
+    def _on_map(self, msg: OccupancyGrid) -> None:
+        info = msg.info
+        self.frame = msg.header.frame_id.lstrip("/") or "map"
+        geometry = GridGeometry(self.frame, float(info.resolution), int(info.width), int(info.height),
+                                (info.origin.position.x, info.origin.position.y, _yaw(info.origin.orientation)))
+        try:
+            self.console.submit_map(geometry, msg.data)
+        except FlexNavError as err:
+            rospy.logwarn_throttle(30.0, f"console: map on {self.map_subscriber.resolved_name} not shown: {err}")
+
+
 class RunnerRegistry:
     """One :class:`RunnerLink` per runner on the master, kept up to date by a discovery thread."""
 
@@ -107,11 +281,17 @@ class RunnerRegistry:
         self.master_uri = master_uri
         self.period_s = period_s
         self.links: Dict[str, RunnerLink] = {}
+        self.map_links: Dict[str, MapLink] = {}
+        self.map_view: MapView | None = None
+        self.map_topics: Tuple[str, str] | None = None  # (map topic, goal topic): the map view made at start()
+        self.pose_period_s = 0.1  # [s]
         self._lock = threading.Lock()
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._run, name="console discovery", daemon=True)
 
     def start(self) -> None:
+        if self.map_topics is not None and self.map_view is None:
+            self.map_view = MapView(self.console, *self.map_topics)
         self._thread.start()
 
     def stop(self) -> None:
@@ -122,14 +302,25 @@ class RunnerRegistry:
             links, self.links = list(self.links.values()), {}
         for link in links:
             link.close()
+        with self._lock:
+            map_links, self.map_links = list(self.map_links.values()), {}
+        for map_link in map_links:
+            map_link.close()
 
     def _run(self) -> None:
+        next_discovery = 0.0
         while not self._stop.is_set() and not rospy.is_shutdown():
-            try:
-                self.discover_once()
-            except NotReadyError as err:
-                rospy.logwarn_throttle(30.0, f"console: {err}")
-            self._stop.wait(self.period_s)
+            if time.monotonic() >= next_discovery:
+                next_discovery = time.monotonic() + self.period_s
+                try:
+                    self.discover_once()
+                except NotReadyError as err:
+                    rospy.logwarn_throttle(30.0, f"console: {err}")
+            with self._lock:
+                map_links = list(self.map_links.values())
+            for link in map_links:
+                link.publish_pose()
+            self._stop.wait(min(self.pose_period_s, max(0.0, next_discovery - time.monotonic())))
 
     def discover_once(self) -> List[str]:
         """Ask the master once; drop the links of runners gone, tell the console, link the new ones (after the
@@ -137,16 +328,28 @@ class RunnerRegistry:
         names = runner_names(published_topics(self.master_uri, rospy.get_name()))
         with self._lock:
             gone = [self.links.pop(name) for name in list(self.links) if name not in names]
+            gone_maps = [self.map_links.pop(name) for name in list(self.map_links) if name not in names]
         for link in gone:
             rospy.loginfo(f"console: behavior runner {link.name} is gone")
             link.close()
+        for map_link in gone_maps:
+            map_link.close()
         self.console.submit_robots(names)
         with self._lock:
             for name in names:
                 if name not in self.links:
                     self.links[name] = RunnerLink(name, self.console)
                     rospy.loginfo(f"console: behavior runner {name} found")
+                if self.map_view is not None and name not in self.map_links:
+                    self.map_links[name] = MapLink(name, self.console, self.map_view)
         return names
+
+    def send_goal(self, request: GoalRequest) -> None:
+        with self._lock:
+            link = self.map_links.get(request.robot)
+        if link is None:
+            raise NotReadyError(f"no map link to {request.robot} (yet)")
+        link.send(request)
 
     def send(self, robot: str, command: RunnerCommand) -> None:
         with self._lock:
@@ -199,13 +402,19 @@ def main() -> int:
     try:
         config = read_config()
         period_s = param_float("~discovery_period_s", 2.0, 0.1, 3600.0)
+        pose_period_s = param_float("~pose_period_s", 0.1, 0.02, 60.0)
+        map_topic = param_str("~map_topic", "/map")
+        goal_topic = param_str("~goal_topic", "move_base_simple/goal")
     except ConfigError as err:
         rospy.logfatal(f"console: {err}")
         print(f"[console] configuration error: {err}", file=sys.stderr)
         return 2
     console = Console(config, send=_not_ready)
     registry = RunnerRegistry(console, os.environ.get("ROS_MASTER_URI", ""), period_s)
+    registry.pose_period_s = pose_period_s
+    registry.map_topics = (map_topic, goal_topic)
     console.send = registry.send
+    console.send_goal = registry.send_goal
     if shutil.which("dot") is None:
         rospy.logwarn(f"console: Graphviz's dot is not installed: behaviors will not be drawn (commands still work; "
                       f"install the Debian package graphviz; layouts are bounded by {DOT_TIMEOUT_S:g} s)")

@@ -247,7 +247,7 @@ def test_commands_are_refused_with_the_reason_and_never_sent() -> None:
             await ws.send_str("eval('1')")
             assert "not a JSON message" in (await until(ws, lambda e: e["type"] == "error"))["message"]
             await ws.send_json({"type": "exec"})
-            assert "message type 'exec' is not valid (valid: command, fold)" in (
+            assert "message type 'exec' is not valid (valid: command, fold, goal)" in (
                 await until(ws, lambda e: e["type"] == "error"))["message"]
             await ws.close()
     run(check())

@@ -23,7 +23,7 @@
   function robotState(name) {
     if (!robots.has(name)) {
       robots.set(name, { structure: null, svg: "", svgError: "", status: null, activity: null, lines: [],
-        events: [], folded: new Set(), lastEdge: "", lastEdgeAt: 0 });
+        events: [], folded: new Set(), lastEdge: "", lastEdgeAt: 0, overlays: {} });
     }
     return robots.get(name);
   }
@@ -108,6 +108,10 @@
       case "sent": onSent(data); break;
       case "refused": onRefused(data); break;
       case "error": showError(data.message); break;
+      case "map": onMap(data); break;
+      case "map_patch": onMapPatch(data); break;
+      case "overlay": robotState(data.robot).overlays[data.kind] = data; drawMapSoon(); break;
+      case "goal_sent": onGoalSent(data); break;
       default: break;
     }
   }
@@ -550,9 +554,201 @@
     list.scrollTop = list.scrollHeight;
   }
 
+  // --- the map ------------------------------------------------------------------------------------------------
+  // The grid arrives as a PNG (row 0 = largest y) and is kept on an offscreen canvas; patches are drawn into it.
+  // Everything else is drawn in map metres: canvas x = left + (x - ox) * k, canvas y = bottom - (y - oy) * k.
+  const map = { info: null, image: null, version: 0, view: null, drag: null, pending: false };
+  const ROBOT_COLOURS = ["#ef6c00", "#00838f", "#6d4c41", "#c2185b"];
+
+  function loadPng(png, done) {
+    const img = new Image();
+    img.onload = () => done(img);
+    img.src = "data:image/png;base64," + png;
+  }
+
+  function onMap(data) {
+    map.info = data;
+    map.version = data.version;
+    loadPng(data.png, (img) => {
+      if (map.info !== data) return;  // a newer map came meanwhile
+      const canvas = document.createElement("canvas");
+      canvas.width = data.width;
+      canvas.height = data.height;
+      canvas.getContext("2d").drawImage(img, 0, 0);
+      map.image = canvas;
+      const yawNote = data.origin[2] ? "; its origin's rotation is not shown" : "";
+      $("map-info").textContent = `map ${data.width} x ${data.height} cells of ${data.resolution} m in ` +
+        `${data.frame}${yawNote}`;
+      drawMapSoon();
+    });
+  }
+
+  function onMapPatch(data) {
+    if (!map.info || data.version !== map.version + 1) return;  // a patch of another map: the next map event fixes
+    map.version = data.version;
+    loadPng(data.png, (img) => {
+      if (!map.image) return;
+      map.image.getContext("2d").drawImage(img, data.x, data.y);
+      drawMapSoon();
+    });
+  }
+
+  function drawMapSoon() {
+    if (map.pending) return;
+    map.pending = true;
+    requestAnimationFrame(() => { map.pending = false; drawMap(); });
+  }
+
+  function mapView(canvas) {
+    const info = map.info;
+    const widthM = info.width * info.resolution;
+    const heightM = info.height * info.resolution;
+    const k = Math.min(canvas.width / widthM, canvas.height / heightM);
+    const left = (canvas.width - widthM * k) / 2;
+    const bottom = canvas.height - (canvas.height - heightM * k) / 2;
+    return { k, left, bottom, ox: info.origin[0], oy: info.origin[1] };
+  }
+
+  const toCanvas = (v, x, y) => [v.left + (x - v.ox) * v.k, v.bottom - (y - v.oy) * v.k];
+  const toMap = (v, cx, cy) => [v.ox + (cx - v.left) / v.k, v.oy + (v.bottom - cy) / v.k];
+
+  function drawMap() {
+    const canvas = $("map");
+    if (canvas.width !== canvas.clientWidth || canvas.height !== canvas.clientHeight) {
+      canvas.width = canvas.clientWidth;
+      canvas.height = canvas.clientHeight;
+    }
+    const ctx = canvas.getContext("2d");
+    ctx.clearRect(0, 0, canvas.width, canvas.height);
+    if (!map.info || !map.image) { map.view = null; canvas.dataset.view = ""; return; }
+    const v = mapView(canvas);
+    map.view = v;
+    canvas.dataset.view = JSON.stringify(v);
+    ctx.imageSmoothingEnabled = false;
+    ctx.drawImage(map.image, v.left, v.bottom - map.info.height * map.info.resolution * v.k,
+      map.info.width * map.info.resolution * v.k, map.info.height * map.info.resolution * v.k);
+    [...robots.keys()].forEach((name, index) => drawRobot(ctx, v, name, ROBOT_COLOURS[index % ROBOT_COLOURS.length]));
+    if (map.drag) {
+      const [ax, ay] = toCanvas(v, map.drag.x, map.drag.y);
+      ctx.strokeStyle = map.drag.kind === "goal" ? "#1565c0" : "#2e7d32";
+      ctx.lineWidth = 3;
+      ctx.beginPath();
+      ctx.arc(ax, ay, 5, 0, 2 * Math.PI);
+      ctx.moveTo(ax, ay);
+      ctx.lineTo(map.drag.cx, map.drag.cy);
+      ctx.stroke();
+    }
+  }
+
+  function polyline(ctx, v, points, colour, width) {
+    if (!points || points.length < 2) return;
+    ctx.strokeStyle = colour;
+    ctx.lineWidth = width;
+    ctx.beginPath();
+    points.forEach(([x, y], i) => { const [cx, cy] = toCanvas(v, x, y); if (i) ctx.lineTo(cx, cy); else ctx.moveTo(cx, cy); });
+    ctx.stroke();
+  }
+
+  function drawRobot(ctx, v, name, colour) {
+    const o = robots.get(name).overlays;
+    const mine = name === current;
+    if (o.particles) {
+      ctx.fillStyle = "rgba(142, 36, 170, 0.6)";
+      for (const [x, y] of o.particles.points) { const [cx, cy] = toCanvas(v, x, y); ctx.fillRect(cx - 1, cy - 1, 2, 2); }
+    }
+    polyline(ctx, v, o.global_plan && o.global_plan.points, mine ? "#1565c0" : "rgba(21, 101, 192, 0.45)", 2);
+    polyline(ctx, v, o.local_plan && o.local_plan.points, "#2e7d32", 2.5);
+    if (o.scan) {
+      ctx.fillStyle = "#d32f2f";
+      for (const [x, y] of o.scan.points) { const [cx, cy] = toCanvas(v, x, y); ctx.fillRect(cx - 1.5, cy - 1.5, 3, 3); }
+    }
+    if (o.pose) {
+      const [cx, cy] = toCanvas(v, o.pose.x, o.pose.y);
+      const r = Math.max(3, o.pose.radius * v.k);
+      ctx.fillStyle = colour + (mine ? "cc" : "77");
+      ctx.strokeStyle = "#000";
+      ctx.lineWidth = mine ? 2 : 1;
+      ctx.beginPath();
+      ctx.arc(cx, cy, r, 0, 2 * Math.PI);
+      ctx.fill();
+      ctx.stroke();
+      ctx.beginPath();
+      ctx.moveTo(cx, cy);
+      ctx.lineTo(cx + Math.cos(o.pose.yaw) * r * 1.6, cy - Math.sin(o.pose.yaw) * r * 1.6);
+      ctx.stroke();
+      ctx.fillStyle = "#000";
+      ctx.font = "11px sans-serif";
+      ctx.fillText(name.split("/").filter((p) => p)[0] || name, cx + r + 2, cy - r - 2);
+    }
+  }
+
+  function mapPoint(event) {
+    const canvas = $("map");
+    const box = canvas.getBoundingClientRect();
+    const cx = (event.clientX - box.left) * (canvas.width / box.width);
+    const cy = (event.clientY - box.top) * (canvas.height / box.height);
+    return [cx, cy];
+  }
+
+  function mapMode() {
+    const checked = document.querySelector('input[name="map-mode"]:checked');
+    return checked ? checked.value : "goal";
+  }
+
+  function onMapDown(event) {
+    if (!map.view || event.button !== 0) return;
+    const [cx, cy] = mapPoint(event);
+    const [x, y] = toMap(map.view, cx, cy);
+    map.drag = { x, y, cx, cy, sx: cx, sy: cy, kind: mapMode() };
+    $("map").setPointerCapture(event.pointerId);
+    drawMapSoon();
+  }
+
+  function onMapMove(event) {
+    if (!map.drag) return;
+    [map.drag.cx, map.drag.cy] = mapPoint(event);
+    drawMapSoon();
+  }
+
+  function onMapUp(event) {
+    const drag = map.drag;
+    map.drag = null;
+    drawMapSoon();
+    if (!drag || !map.view) return;
+    const [cx, cy] = mapPoint(event);
+    const dx = cx - drag.sx;
+    const dy = drag.sy - cy;
+    const yaw = Math.hypot(dx, dy) >= 5 ? Math.atan2(dy, dx) : 0;  // a click without a pull: heading east
+    const feedback = document.querySelector('[data-feedback="map"]');
+    const id = nextId++;
+    waiting.set(`${client}:${id}`, feedback);
+    if (!socket || socket.readyState !== WebSocket.OPEN) { showFeedback(feedback, "not connected to the console", "bad"); return; }
+    showFeedback(feedback, "sending…", "pending");
+    socket.send(JSON.stringify({ type: "goal", id, robot: current, kind: drag.kind, x: drag.x, y: drag.y, yaw }));
+  }
+
+  function onGoalSent(data) {
+    const node = waiting.get(data.ref);
+    const what = data.kind === "goal" ? "goal" : "initial pose";
+    const text = `${what} sent to ${data.robot}: (${data.x.toFixed(2)}, ${data.y.toFixed(2)}) m, ` +
+      `${(data.yaw * 180 / Math.PI).toFixed(0)} deg`;
+    if (node) { showFeedback(node, text, "ok"); waiting.delete(data.ref); }
+    addLine(data.robot, "events", { kind: "command", text: `→ ${text}` });
+    if (data.robot === current) showTransitions();
+  }
+
   // --- wiring -------------------------------------------------------------------------------------------------
   function wire() {
-    $("robot").addEventListener("change", (event) => { current = event.target.value; selectedPath = ""; showRobot(); });
+    $("robot").addEventListener("change", (event) => {
+      current = event.target.value; selectedPath = ""; showRobot(); drawMapSoon();
+    });
+    const canvas = $("map");
+    canvas.addEventListener("pointerdown", onMapDown);
+    canvas.addEventListener("pointermove", onMapMove);
+    canvas.addEventListener("pointerup", onMapUp);
+    canvas.addEventListener("pointercancel", () => { map.drag = null; drawMapSoon(); });
+    window.addEventListener("resize", drawMapSoon);
+    if (typeof ResizeObserver === "function") new ResizeObserver(drawMapSoon).observe(canvas);  // layout changes
     const run = document.querySelector('[data-feedback="run"]');
     const state = document.querySelector('[data-feedback="state"]');
     for (const button of document.querySelectorAll("[data-command]")) {
