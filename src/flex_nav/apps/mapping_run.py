@@ -13,9 +13,10 @@ map was saved, 1 otherwise, 2 when it could not start.
 
 The metrics compare the built map with the world's ground-truth map (``sim/worlds/maps/<world>.yaml``), the map
 frame placed in the world by the first pose estimate and the ground truth at its stamp: cells agreeing, walls'
-offsets, the share of the reachable free area known, and the ATE of the mapper's pose estimates (``pose``)
-against the ground truth computed with evo (SE(3)-aligned and as placed); plus the time, the distance driven and
-the bumper contacts.
+offsets, the share of the reachable free area known, and the ATE against the ground truth computed with evo
+(SE(3)-aligned and as placed) of the trajectory after the last optimisation (the keyframes' poses in the final
+graph, at their scans' stamps) and of the live pose estimates (``pose``, each as the mapper knew it then, before
+later loop closures corrected it); plus the time, the distance driven and the bumper contacts.
 """
 
 from __future__ import annotations
@@ -218,22 +219,36 @@ def start_system(stack: contextlib.ExitStack, args: argparse.Namespace, out: Pat
 
 
 def pairs(progress: Progress) -> Tuple[List[Pose2D], List[Pose2D]]:
-    """(estimates, truths) at the same stamps (within PAIR_TOLERANCE_S)."""
-    import numpy as np  # noqa: PLC0415
-
+    """(estimates, truths) at the same stamps (within PAIR_TOLERANCE_S): the mapper's live ``pose`` estimates."""
     with progress.lock:
         truth = list(progress.truth)
         estimates = list(progress.estimates)
-    if not truth or not estimates:
+    return pair_with_truth(estimates, truth)
+
+
+def pair_with_truth(stamped: Sequence[Tuple[float, Pose2D]], truth: Sequence[Tuple[float, Pose2D]],
+                    ) -> Tuple[List[Pose2D], List[Pose2D]]:
+    """(poses, truths) of the ``stamped`` poses (stamp [s], pose) with a ground-truth sample within
+    PAIR_TOLERANCE_S of their stamp."""
+    import numpy as np  # noqa: PLC0415
+
+    if not truth or not stamped:
         return [], []
     stamps = np.array([t for t, _ in truth])
     out_e, out_t = [], []
-    for stamp, pose in estimates:
+    for stamp, pose in stamped:
         index = int(np.argmin(np.abs(stamps - stamp)))
         if abs(stamps[index] - stamp) <= PAIR_TOLERANCE_S:
             out_e.append(pose)
             out_t.append(truth[index][1])
     return out_e, out_t
+
+
+def optimised_keyframes(graph: Dict[str, Any]) -> List[Tuple[float, Pose2D]]:
+    """(stamp [s], optimised pose) of every stamped keyframe of a serialized graph (``~serialize_map``)."""
+    poses = graph["graph"]["poses"]
+    return [(float(k["stamp"]), (poses[i][0], poses[i][1], poses[i][2]))
+            for i, k in enumerate(graph["keyframes"]) if k.get("stamp") is not None and i < len(poses)]
 
 
 def write_results(out: Path, args: argparse.Namespace, progress: Progress, *, sim_s: float, wall_s: float,
@@ -275,7 +290,17 @@ def write_results(out: Path, args: argparse.Namespace, progress: Progress, *, si
     })
     closures = []
     if graph is not None:
-        nodes = graph["graph"].get("nodes") or graph["graph"].get("poses") or []
+        nodes = graph["graph"]["poses"]
+        with progress.lock:
+            truth = list(progress.truth)
+        keyframes, keyframe_truths = pair_with_truth(optimised_keyframes(graph), truth)
+        if keyframes:  # the trajectory after the last optimisation (the target), beside the live estimates
+            metrics.update({
+                "ate_optimised_cm_aligned": ate_rmse_cm(keyframes, keyframe_truths, align=True),
+                "ate_optimised_cm_placed": ate_rmse_cm([compose_poses(map_in_world, k) for k in keyframes],
+                                                       keyframe_truths, align=False),
+                "keyframe_pairs": len(keyframes),
+            })
         metrics["keyframes"] = len(graph["keyframes"])
         metrics["loop_closures"] = len(graph["loop_closures"])
         for old, new, *_rest in graph["loop_closures"]:
@@ -358,6 +383,10 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     return 0 if progress.outcome == "finished" and metrics.get("map_saved") else 1
 
 
+def _cm(value: Optional[float]) -> str:
+    return "n/a" if value is None else f"{value:.1f}"
+
+
 def _print_summary(metrics: Dict[str, Any], out: Path) -> None:
     print(f"behavior: {metrics['outcome']} {metrics['reason']}".rstrip(), flush=True)
     print(f"time: sim {metrics['sim_time_s']:.1f} s, wall {metrics['wall_time_s']:.1f} s; driven "
@@ -368,10 +397,10 @@ def _print_summary(metrics: Dict[str, Any], out: Path) -> None:
         print(f"map: {100 * score['agree']:.1f} % of {score['compared']} observed cells agree with the ground truth; "
               f"walls median {score['wall_median_cm']:.1f} cm off (p95 {score['wall_p95_cm']:.1f}); "
               f"{100 * score['explored']:.1f} % of the reachable free area known", flush=True)
-        aligned, placed = metrics.get("ate_cm_aligned"), metrics.get("ate_cm_placed")
-        print(f"trajectory: ATE {aligned if aligned is None else round(aligned, 1)} cm (evo, SE(3)-aligned), "
-              f"{placed if placed is None else round(placed, 1)} cm as placed; {metrics.get('keyframes')} keyframes, "
-              f"{metrics.get('loop_closures')} loop closures", flush=True)
+        print(f"trajectory (evo ATE, SE(3)-aligned / as placed): optimised keyframes "
+              f"{_cm(metrics.get('ate_optimised_cm_aligned'))} / {_cm(metrics.get('ate_optimised_cm_placed'))} cm, "
+              f"live pose estimates {_cm(metrics.get('ate_cm_aligned'))} / {_cm(metrics.get('ate_cm_placed'))} cm; "
+              f"{metrics.get('keyframes')} keyframes, {metrics.get('loop_closures')} loop closures", flush=True)
     print(f"files: {out / 'map.yaml'}, {out / 'map.png'}, {out / 'metrics.json'}", flush=True)
 
 

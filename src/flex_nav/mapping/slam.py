@@ -92,6 +92,7 @@ class Keyframe(NamedTuple):
     odom: Pose2D  # [m, m, rad] odometry pose when the scan was taken
     rays: ScanRays  # the scan, robot frame
     travel: float  # [m] driven (by odometry) from the first keyframe to this one
+    stamp: float = math.nan  # [s] the scan's stamp (ROS time); NaN when the caller gave none
 
 
 class LoopClosure(NamedTuple):
@@ -123,17 +124,19 @@ class GraphSlam:
         self._map: Optional[GridMap] = None  # cached until the keyframes or their poses change
 
     # --- per scan ----------------------------------------------------------------------------------------------
-    def add_scan(self, odom: Pose2D, scan: ScanBeams) -> bool:
-        """Take a scan with the robot at ``odom`` (odometry frame); True when it became a keyframe.
+    def add_scan(self, odom: Pose2D, scan: ScanBeams, stamp_s: float = math.nan) -> bool:
+        """Take a scan stamped ``stamp_s`` [s] with the robot at ``odom`` (odometry frame); True when it became a
+        keyframe (the stamp is kept with it, to compare the optimised trajectory with a ground truth).
         :class:`ConfigError` for a non-finite odometry pose or a malformed scan (the graph is left as it was)."""
         odom = _finite(odom)
         rays = _rays(scan, self.occupancy.max_free_range)
         if not self.keyframes:
             start = odom if self.map_start_pose is None else self.map_start_pose
-            self._append(odom, rays, start, np.diag([1e-4, 1e-4, 1e-4]), kind=EdgeKind.ODOMETRY, travel=0.0)
+            self._append(odom, rays, start, np.diag([1e-4, 1e-4, 1e-4]), kind=EdgeKind.ODOMETRY, travel=0.0,
+                         stamp_s=stamp_s)
             return True
         if self._reanchor:
-            return self._add_reanchored(odom, rays)
+            return self._add_reanchored(odom, rays, stamp_s)
         last = self.keyframes[-1]
         step = compose_poses(inverse_pose(last.odom), odom)
         distance = math.hypot(step[0], step[1])
@@ -149,7 +152,7 @@ class GraphSlam:
             sigma_xy = 0.01 + p.odometry_sigma_per_meter * distance
             sigma_yaw = 0.01 + p.odometry_sigma_yaw_per_radian * abs(step[2]) + 0.02 * distance
             pose, covariance, kind = predicted, np.diag([sigma_xy**2, sigma_xy**2, sigma_yaw**2]), EdgeKind.ODOMETRY
-        self._append(odom, rays, pose, covariance, kind=kind, travel=last.travel + distance)
+        self._append(odom, rays, pose, covariance, kind=kind, travel=last.travel + distance, stamp_s=stamp_s)
         if p.do_loop_closing:
             self._close_loop()
         return True
@@ -167,7 +170,7 @@ class GraphSlam:
         """True while scans wait to be placed after :meth:`restart_odometry`."""
         return self._reanchor
 
-    def _add_reanchored(self, odom: Pose2D, rays: ScanRays) -> bool:
+    def _add_reanchored(self, odom: Pose2D, rays: ScanRays, stamp_s: float) -> bool:
         p = self.params
         last = len(self.keyframes) - 1
         chain = list(range(max(0, last - p.scan_buffer_size + 1), last + 1))
@@ -178,17 +181,17 @@ class GraphSlam:
             return False
         match = unique[0]
         self._append(odom, rays, match.pose, match.covariance, kind=EdgeKind.SCAN_MATCH,
-                     travel=self.keyframes[last].travel + _distance(self.graph.pose(last), match.pose))
+                     travel=self.keyframes[last].travel + _distance(self.graph.pose(last), match.pose), stamp_s=stamp_s)
         self._reanchor = False
         return True
 
     def _append(self, odom: Pose2D, rays: ScanRays, pose: Pose2D, covariance: np.ndarray, *, kind: EdgeKind,
-                travel: float) -> None:
+                travel: float, stamp_s: float) -> None:
         index = self.graph.add_node(pose)
         if index > 0:
             previous = self.graph.pose(index - 1)
             self.graph.add_edge(index - 1, index, compose_poses(inverse_pose(previous), pose), covariance, kind)
-        self.keyframes.append(Keyframe(odom, rays, travel))
+        self.keyframes.append(Keyframe(odom, rays, travel, float(stamp_s)))
         self._map = None
 
     def _link(self, predicted: Pose2D, rays: ScanRays) -> Optional[Match]:
@@ -317,7 +320,8 @@ class GraphSlam:
             "format": "flex_nav.mapping.posegraph/1",
             "keyframes": [
                 {"odom": list(k.odom), "origin": list(k.rays.origin), "end_x": k.rays.end_x.tolist(),
-                 "end_y": k.rays.end_y.tolist(), "hit": k.rays.hit.astype(int).tolist(), "travel": k.travel}
+                 "end_y": k.rays.end_y.tolist(), "hit": k.rays.hit.astype(int).tolist(), "travel": k.travel,
+                 "stamp": k.stamp if math.isfinite(k.stamp) else None}
                 for k in self.keyframes
             ],
             "loop_closures": [list(c) for c in self.loop_closures],
@@ -339,7 +343,9 @@ class GraphSlam:
                                 np.asarray(k["end_y"], dtype=float), np.asarray(k["hit"], dtype=bool))
                 if not (rays.end_x.shape == rays.end_y.shape == rays.hit.shape):
                     raise ConfigError("mapper: a keyframe's end_x, end_y and hit differ in length")
-                slam.keyframes.append(Keyframe(_finite(tuple(k["odom"])), rays, float(k["travel"])))
+                stamp = k.get("stamp")  # absent in files written before stamps were kept
+                slam.keyframes.append(Keyframe(_finite(tuple(k["odom"])), rays, float(k["travel"]),
+                                               math.nan if stamp is None else float(stamp)))
             slam.loop_closures = [LoopClosure(int(c[0]), int(c[1]), float(c[2]), float(c[3]))
                                   for c in data["loop_closures"]]
             slam.graph = PoseGraph.from_dict(data["graph"])

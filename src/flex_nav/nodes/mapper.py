@@ -156,7 +156,7 @@ class MapperNode:
         with self._lock:
             self._check_odometry(scan.header.stamp, odom)
             try:
-                added = self._slam.add_scan(odom, beams)
+                added = self._slam.add_scan(odom, beams, scan.header.stamp.to_sec())
             except ConfigError as err:
                 self._complain("scan_bad", f"scan ignored: {err}")
                 return

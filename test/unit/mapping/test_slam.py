@@ -33,9 +33,12 @@ def drive(slam, room, poses, seed=0, yaw_bias=0.02):
             odom = compose_poses(odom, (dx * (1 + 0.01 * rng.standard_normal()), dy,
                                         dyaw + yaw_bias * math.hypot(dx, dy) + 0.002 * rng.standard_normal()))
         odoms.append(odom)
-        if slam.add_scan(odom, scan_at(room, after, rng, 0.01)):
+        if slam.add_scan(odom, scan_at(room, after, rng, 0.01), stamp_s=SCAN_PERIOD_S * index):
             truth_of_keyframes.append(after)
     return truth_of_keyframes, odoms
+
+
+SCAN_PERIOD_S = 0.1  # [s] the stamps drive() gives its scans
 
 
 def reanchoring(slam):
@@ -100,6 +103,18 @@ def test_serialization_round_trip(closed_and_open):
     assert len(again.keyframes) == len(slam.keyframes)
     assert again.loop_closures == slam.loop_closures
     np.testing.assert_array_equal(again.occupancy_map().occupancy, slam.occupancy_map().occupancy)
+    assert [k.stamp for k in again.keyframes] == [k.stamp for k in slam.keyframes]
+
+
+def test_keyframes_keep_their_scans_stamps_and_old_files_load_without(closed_and_open):
+    slam, truth = closed_and_open[True]
+    poses = path_poses(LOOP)
+    for keyframe, true_pose in zip(slam.keyframes, truth):  # the stamp names the scan the keyframe was made of
+        assert poses[round(keyframe.stamp / SCAN_PERIOD_S)] == true_pose
+    data = slam.to_dict()
+    for k in data["keyframes"]:
+        del k["stamp"]  # a file from before stamps were kept
+    assert all(math.isnan(k.stamp) for k in GraphSlam.from_dict(data).keyframes)
 
 
 def test_a_bad_file_is_refused():
