@@ -78,6 +78,7 @@ class Progress:
     distance_m: float = 0.0
     contacts: int = 0
     last_contact_s: float = -math.inf
+    touched: Dict[str, int] = field(default_factory=dict)  # the simulator's contacts: object name -> count
     frontiers: int = 0
     outcome: Optional[str] = None
     reason: str = ""
@@ -94,7 +95,7 @@ class MappingMonitor:
         from nav_msgs.msg import OccupancyGrid, Odometry  # noqa: PLC0415
         from std_msgs.msg import String  # noqa: PLC0415
 
-        from flex_nav.msg import BehaviorStatus, BehaviorTransition  # noqa: PLC0415
+        from flex_nav.msg import BehaviorStatus, BehaviorTransition, SimEvent  # noqa: PLC0415
 
         self.rospy = rospy
         self.progress = progress
@@ -108,6 +109,7 @@ class MappingMonitor:
                              queue_size=50),
             rospy.Subscriber(f"{ns}/mapper/status", String, self._on_mapper_status, queue_size=5),
             rospy.Subscriber("/map", OccupancyGrid, self._on_map, queue_size=1),
+            rospy.Subscriber(f"{ns}/sim_events", SimEvent, self._on_sim_event, queue_size=50),
         ]
 
     def sim_s(self) -> float:
@@ -135,6 +137,12 @@ class MappingMonitor:
             self.progress.contacts += int(new_press)
         if new_press:
             self.say("BUMPER contact")
+
+    def _on_sim_event(self, msg: Any) -> None:
+        """What the robot touched, as the simulator knows it (the bumper cannot tell a wall from the low step)."""
+        if msg.kind == msg.CONTACT_BEGIN:
+            with self.progress.lock:
+                self.progress.touched[msg.other] = self.progress.touched.get(msg.other, 0) + 1
 
     def _on_status(self, msg: Any) -> None:
         if msg.code in (msg.FINISHED, msg.PREEMPTED, msg.FAILED):
@@ -266,7 +274,7 @@ def write_results(out: Path, args: argparse.Namespace, progress: Progress, *, si
     metrics: Dict[str, Any] = {
         "world": world.name, "profile": PROFILES[args.profile], "seed": args.seed, "rtf": args.rtf,
         "outcome": progress.outcome, "reason": progress.reason, "sim_time_s": sim_s, "wall_time_s": wall_s,
-        "distance_m": progress.distance_m, "bumper_contacts": progress.contacts,
+        "distance_m": progress.distance_m, "bumper_contacts": progress.contacts, "touched": dict(progress.touched),
         "frontiers_visited": progress.frontiers,
         "loop_closure": not args.no_loop_closure, "mapper_status": progress.mapper_status,
         "load_average": os.getloadavg()[0],
@@ -391,7 +399,8 @@ def _print_summary(metrics: Dict[str, Any], out: Path) -> None:
     print(f"behavior: {metrics['outcome']} {metrics['reason']}".rstrip(), flush=True)
     print(f"time: sim {metrics['sim_time_s']:.1f} s, wall {metrics['wall_time_s']:.1f} s; driven "
           f"{metrics['distance_m']:.1f} m; frontiers {metrics['frontiers_visited']}; bumper contacts "
-          f"{metrics['bumper_contacts']}", flush=True)
+          f"{metrics['bumper_contacts']}; touched (simulator) "
+          f"{', '.join(f'{name} x{n}' for name, n in sorted(metrics['touched'].items())) or 'nothing'}", flush=True)
     score = metrics.get("map")
     if score:
         print(f"map: {100 * score['agree']:.1f} % of {score['compared']} observed cells agree with the ground truth; "
