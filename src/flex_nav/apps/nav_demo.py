@@ -14,6 +14,10 @@ wall time: W s`` and, with the localizer, ``localization: median X cm, p95 Y cm,
 against the ground truth at its stamp), writes
 ``run.png`` (map, costmap, plans, trajectories, bumper hits) and ``run.bag`` to the output directory, and
 exits 0 only if every goal was reached. Everything it started is stopped on exit and on Ctrl-C.
+
+``--console PORT`` also starts the web operator console (``rosrun flex_nav console``, on 127.0.0.1:PORT) and prints
+its URL; ``--hold`` keeps the whole stack up after the last goal (or the timeout) until Ctrl-C, so a person can go
+on steering the robots from the console.
 """
 
 from __future__ import annotations
@@ -33,6 +37,7 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
 from flex_nav.apps.eval.localization_error import LocalizationErrors, merged
 from flex_nav.exceptions import ConfigError, FlexNavError, choices_message
+from flex_nav.nav.angles import wrap_angle
 from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.testing.private_master import PrivateMaster
 from flex_nav.testing.process import ManagedProcess
@@ -96,6 +101,10 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     add_localization_argument(parser)
     parser.add_argument("--gui", action="store_true", help="pybullet window (needs a display)")
     parser.add_argument("--out", type=Path, default=None, help="output directory (default out/demo-<time>)")
+    parser.add_argument("--console", type=int, default=0, metavar="PORT",
+                        help="also serve the web operator console on http://127.0.0.1:PORT/ (default: none)")
+    parser.add_argument("--hold", action="store_true",
+                        help="after the last goal keep everything running until Ctrl-C (e.g. with --console)")
     args = parser.parse_args(argv)
     args.profile_list = [p for p in args.profiles.split(",") if p] or [args.profile] * args.robots
     if args.profiles:
@@ -107,6 +116,8 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
         parser.error(f"--robots {args.robots} is not valid (valid: 1, 2, 3)")
     if args.laps < 1:
         parser.error(f"--laps {args.laps} must be >= 1")
+    if args.console and not 1 <= args.console <= 65535:
+        parser.error(f"--console {args.console} is not a TCP port (1..65535)")
     if args.gui and not os.environ.get("DISPLAY"):
         parser.error("--gui needs a display (DISPLAY is not set)")
     return args
@@ -228,8 +239,11 @@ class DemoMonitor:
                 run.completed += 1
                 if msg.target == "Arrived":
                     run.reached += 1
+                    heading = ""
+                    if run.pose is not None:
+                        heading = f", heading off by {math.degrees(wrap_angle(run.pose[2] - goal[2])):+.0f} deg"
                     self._say(run, f"goal {run.completed}/{len(run.goals)} ({name} at {goal[0]:.1f}, {goal[1]:.1f}) "
-                                   f"reached after {self.sim_s() - run.goal_started_sim_s:.1f} s; "
+                                   f"reached after {self.sim_s() - run.goal_started_sim_s:.1f} s{heading}; "
                                    f"distance so far {run.distance_m:.1f} m")
                 else:
                     self._say(run, f"goal {run.completed}/{len(run.goals)} ({name}) NOT reached: the behavior gave it "
@@ -363,6 +377,28 @@ def start_recorder(stack: contextlib.ExitStack, bag: Path, robots: Sequence[str]
     return proc
 
 
+def start_console(stack: contextlib.ExitStack, port: int, env: Mapping[str, str], log_path: Path) -> ManagedProcess:
+    """The web operator console on 127.0.0.1:``port`` (loopback: no token needed), stopped by ``stack``."""
+    proc = ManagedProcess(["rosrun", "flex_nav", "console", "_host:=127.0.0.1", f"_port:={port}",
+                           "_discovery_period_s:=1.0"], env=env, log_path=log_path)
+    stack.callback(proc.stop)
+    return proc
+
+
+def hold(processes: Sequence[ManagedProcess], is_shutdown: Any) -> str:
+    """Keep the stack up until Ctrl-C (or a process of it ends, or ROS shuts down); why it ended."""
+    print("holding: everything stays up until Ctrl-C", flush=True)
+    try:
+        while not is_shutdown():
+            dead = [p for p in processes if not p.running()]
+            if dead:
+                return f"{' '.join(dead[0].argv[:4])} exited (log {dead[0].log_path})"
+            time.sleep(0.2)
+    except KeyboardInterrupt:
+        return "Ctrl-C"
+    return "ROS shut down (Ctrl-C)"
+
+
 def world_map(world_name: str) -> Path:
     """The static map (map_server YAML) the simulator's world ships (sim/worlds/maps/<world>.yaml)."""
     return REPO_ROOT / "sim" / "worlds" / "maps" / f"{world_name}.yaml"
@@ -422,7 +458,10 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
 
     with contextlib.ExitStack() as stack:
         signal.signal(signal.SIGTERM, _interrupt)
-        processes, _env = start_system(stack, args, runs, out)
+        processes, env = start_system(stack, args, runs, out)
+        if args.console:
+            processes.append(start_console(stack, args.console, env, out / "logs" / "console.log"))
+            print(f"console: open http://127.0.0.1:{args.console}/ (log {out / 'logs' / 'console.log'})", flush=True)
         from flex_nav.ros.node import init_node  # noqa: PLC0415
 
         init_node("nav_demo")
@@ -443,6 +482,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
                     print(f"demo: {' '.join(dead[0].argv[:4])} exited; logs in {out / 'logs'}", file=sys.stderr)
                     break
                 time.sleep(0.1)
+            if args.hold and not rospy.is_shutdown():
+                print(f"holding after the goals: {hold(processes, rospy.is_shutdown)}; stopping everything",
+                      flush=True)
         except KeyboardInterrupt:
             print("interrupted: stopping everything", flush=True)
         monitor.stopping = True

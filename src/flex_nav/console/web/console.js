@@ -577,7 +577,7 @@
       canvas.getContext("2d").drawImage(img, 0, 0);
       map.image = canvas;
       const yawNote = data.origin[2] ? "; its origin's rotation is not shown" : "";
-      $("map-info").textContent = `map ${data.width} x ${data.height} cells of ${data.resolution} m in ` +
+      $("map-info").textContent = `map ${data.width} x ${data.height} cells of ${Number(data.resolution.toPrecision(6))} m in ` +
         `${data.frame}${yawNote}`;
       drawMapSoon();
     });
