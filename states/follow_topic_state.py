@@ -39,6 +39,8 @@ class FollowTopicState(ActionClientBase):
                                 one (at most fresh_path_s, when > 0), never done: for a controller beside a
                                 planner that decides arrival (a local plan that stops short of the goal, e.g.
                                 before a person standing on it, must not leave the controller idle).
+    -- final_heading     bool   True: at a path's end the server turns the robot to the last pose's yaw (within
+                                its yaw_goal_tolerance); False: reaching the position is enough.
 
     <= done       The server reached the end of the path (code SUCCESS; not with follow_next_path).
     <= failed     The server failed (no path on the topic, blocked, stale sensors), is missing, or timed out;
@@ -48,7 +50,7 @@ class FollowTopicState(ActionClientBase):
 
     def __init__(self, path_topic: str = "follow_path_server/plan", action_name: str = "pure_pursuit_topic",
                  server_timeout_s: float = 5.0, timeout_s: float = 0.0, *, fresh_path_s: float = 0.0,
-                 follow_next_path: bool = False) -> None:
+                 follow_next_path: bool = False, final_heading: bool = True) -> None:
         super().__init__(
             ActionServer(type(self).__name__, FOLLOW_TOPIC, action_name, server_timeout_s, timeout_s),
             outcomes=["done", "failed", "preempted"],
@@ -58,6 +60,7 @@ class FollowTopicState(ActionClientBase):
         self._path_topic = validation.name(owner, "path_topic", path_topic)
         self._fresh_path_s = validation.number(owner, "fresh_path_s", fresh_path_s, minimum=0.0, unit="[s]")
         self._follow_next_path = bool(follow_next_path)
+        self._final_heading = validation.boolean(owner, "final_heading", final_heading)
         self._paths: Optional[SubscriptionLike] = None
         self._entered_s = 0.0
         self._path_is_fresh = True
@@ -95,7 +98,7 @@ class FollowTopicState(ActionClientBase):
         return outcome
 
     def make_goal(self, userdata: UserDataView) -> Any:
-        goal = FollowTopicGoal(topic=String(data=self._path_topic))
+        goal = FollowTopicGoal(topic=String(data=self._path_topic), ignore_final_heading=not self._final_heading)
         if self._fresh_path_s > 0.0 or self._follow_next_path:
             # Paths count from entry (or the re-arm): where the state first waits for one stamped since, the server
             # takes it at once instead of waiting up to 1 s for one newer than the goal; where it sends at once

@@ -21,6 +21,7 @@ class FollowUntilBlockedState(FollowPathState):
     -- action_name       str    FollowPath server name, relative to the behavior's namespace.
     -- server_timeout_s  float  [s] Fail if the server is not connected this long after entry.
     -- timeout_s         float  [s] Cancel and fail if no result this long after sending (0: no limit).
+    -- final_heading     bool   True: the path's last yaw is the goal heading; False: the position is enough.
 
     ># plan  Path  The path to follow (nav_msgs/Path, at least one pose).
 

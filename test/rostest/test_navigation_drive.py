@@ -15,7 +15,7 @@ import rospy
 import rostest
 import tf2_ros
 from actionlib_msgs.msg import GoalStatus
-from geometry_msgs.msg import PoseStamped
+from geometry_msgs.msg import PolygonStamped, PoseStamped
 from nav_msgs.msg import Odometry, Path
 from std_msgs.msg import String
 
@@ -41,12 +41,17 @@ RADIUS = 0.177  # [m] TurtleBot 2 (config/turtlebot2.yaml)
 MAP = os.path.join(rospkg.RosPack().get_path("flex_nav"), "test", "data", "maps", "test_rooms.yaml")
 
 
-def goal_pose(x, y):
+def goal_pose(x, y, yaw=0.0):
     msg = PoseStamped()
     msg.header.frame_id = "map"
     msg.pose.position.x, msg.pose.position.y = x, y
-    msg.pose.orientation.w = 1.0
+    msg.pose.orientation.z, msg.pose.orientation.w = math.sin(yaw / 2.0), math.cos(yaw / 2.0)
     return msg
+
+
+def angle_error(a, b):
+    """a - b [rad], wrapped into (-pi, pi]."""
+    return math.atan2(math.sin(a - b), math.cos(a - b))
 
 
 class TestNavigationDrive(unittest.TestCase):
@@ -74,12 +79,26 @@ class TestNavigationDrive(unittest.TestCase):
         tf = self.tf.lookup_transform("map", BASE, rospy.Time(0), rospy.Duration(2.0))
         return tf.transform.translation.x, tf.transform.translation.y
 
-    def plan_to(self, x, y):
+    def robot_pose(self):
+        tf = self.tf.lookup_transform("map", BASE, rospy.Time(0), rospy.Duration(2.0))
+        q = tf.transform.rotation
+        yaw = math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
+        return tf.transform.translation.x, tf.transform.translation.y, yaw
+
+    def plan_to(self, x, y, yaw=0.0):
         client = self.clients["get_path_server"]
-        client.send_goal(GetPathGoal(pose=goal_pose(x, y)))
+        client.send_goal(GetPathGoal(pose=goal_pose(x, y, yaw)))
         self.assertTrue(client.wait_for_result(10.0))
         self.assertEqual(client.state(), GoalStatus.SUCCEEDED, client.result().message)
         return client.result().plan
+
+    def test_0_footprint_is_latched_in_the_base_frame(self):
+        msg = rospy.wait_for_message(NS + "footprint", PolygonStamped, timeout=10.0)
+        self.assertEqual(msg.header.frame_id, BASE)
+        radii = [math.hypot(p.x, p.y) for p in msg.polygon.points]
+        self.assertEqual(len(radii), 24)
+        self.assertAlmostEqual(min(radii), max(radii), places=5)
+        self.assertTrue(RADIUS < radii[0] < RADIUS * 1.01, radii[0])  # around the robot_radius circle
 
     def test_1_follow_topic_server_replans_along_a_topic_path(self):
         start = self.robot_xy()
@@ -144,6 +163,48 @@ class TestNavigationDrive(unittest.TestCase):
         x, y = self.robot_xy()
         self.assertLess(math.hypot(x - goal[0], y - goal[1]), 0.25)
         self.assertGreater(worst, RADIUS, f"the robot came within {worst:.3f} m of a wall")
+
+    def navigate(self, plan, ignore_final_heading):
+        """follow_path_server decides arrival; pure_pursuit_topic follows its local plans and is sent a new goal
+        when it reaches the end of one first (flex_navigate's Controller with follow_next_path). The planner's
+        result."""
+        planner, controller = self.clients["follow_path_server"], self.clients["pure_pursuit_topic"]
+        topic = String(data=NS + "follow_path_server/plan")
+        controller.send_goal(FollowTopicGoal(topic=topic, ignore_final_heading=ignore_final_heading))
+        planner.send_goal(FollowPathGoal(path=plan, ignore_final_heading=ignore_final_heading))
+        deadline = rospy.get_time() + DRIVE_WAIT_S
+        while rospy.get_time() < deadline and planner.state() in (GoalStatus.PENDING, GoalStatus.ACTIVE):
+            if controller.state() == GoalStatus.SUCCEEDED:
+                controller.send_goal(FollowTopicGoal(topic=topic, newer_than=rospy.Time.now(),
+                                                     ignore_final_heading=ignore_final_heading))
+            self.assertIn(controller.state(), (GoalStatus.PENDING, GoalStatus.ACTIVE, GoalStatus.SUCCEEDED),
+                          controller.result())
+            rospy.sleep(0.05)
+        controller.cancel()
+        self.assertEqual(planner.state(), GoalStatus.SUCCEEDED, planner.result())
+        return planner.result()
+
+    def test_3b_goal_heading_is_reached_within_the_tolerance(self):
+        goal = (1.0, 2.0, math.pi / 2)  # from the corner of the block, arriving heading south-west: a 135+ deg turn
+        plan = self.plan_to(*goal)
+        yaw = plan.poses[-1].pose.orientation
+        self.assertAlmostEqual(2.0 * math.atan2(yaw.z, yaw.w), goal[2], places=6)  # the plan carries the goal's yaw
+        result = self.navigate(plan, ignore_final_heading=False)
+        x, y, heading = self.robot_pose()
+        error = angle_error(heading, goal[2])
+        rospy.loginfo(f"goal heading 90 deg reached at ({x:.3f}, {y:.3f}), heading error "
+                      f"{math.degrees(error):+.1f} deg; planner: {result.message}")
+        self.assertLess(math.hypot(x - goal[0], y - goal[1]), 0.25)
+        self.assertLessEqual(abs(error), 0.25, f"heading error {math.degrees(error):.1f} deg")  # yaw_goal_tolerance
+        self.assertIn("heading", result.message)
+
+    def test_3c_goal_heading_ignored_when_the_goal_says_so(self):
+        goal = (3.0, 2.0, math.pi)  # the robot comes from the west: arriving, it faces about 0, not pi
+        plan = self.plan_to(*goal)
+        self.navigate(plan, ignore_final_heading=True)
+        x, y, heading = self.robot_pose()
+        self.assertLess(math.hypot(x - goal[0], y - goal[1]), 0.25)
+        self.assertGreater(abs(angle_error(heading, goal[2])), 1.0, "the robot turned to a heading it should ignore")
 
     def test_4_cancel_stops_the_robot(self):
         plan = self.plan_to(1.0, 1.0)

@@ -18,8 +18,8 @@ def test_result_codes() -> None:
 def test_fields_and_types() -> None:
     expected = {
         "GetPath": (["pose"], ["code", "plan", "message"], ["location", "goal"]),
-        "FollowPath": (["path"], ["code", "pose", "message"], ["twist", "pose"]),
-        "FollowTopic": (["topic", "newer_than"], ["code", "pose", "message"], ["path", "pose"]),
+        "FollowPath": (["path", "ignore_final_heading"], ["code", "pose", "message"], ["twist", "pose"]),
+        "FollowTopic": (["topic", "newer_than", "ignore_final_heading"], ["code", "pose", "message"], ["path", "pose"]),
         "ClearCostmap": ([], ["code", "message"], []),
     }
     for name, (goal, result, feedback) in expected.items():
@@ -28,7 +28,8 @@ def test_fields_and_types() -> None:
         assert list(spec.result.__slots__) == result
         assert list(spec.feedback.__slots__) == feedback
     assert ACTION_TYPES["GetPath"].goal._slot_types == ["geometry_msgs/PoseStamped"]
-    assert ACTION_TYPES["FollowTopic"].goal._slot_types == ["std_msgs/String", "time"]
+    assert ACTION_TYPES["FollowTopic"].goal._slot_types == ["std_msgs/String", "time", "bool"]
+    assert ACTION_TYPES["FollowPath"].goal._slot_types == ["nav_msgs/Path", "bool"]
     assert ACTION_TYPES["GetPath"].result._slot_types == ["uint8", "nav_msgs/Path", "string"]
 
 

@@ -9,7 +9,12 @@ point on its own costmap ``~local_costmap/`` (rolling window with the static map
 and publishes the plan on ``~plan`` -- the path a ``pure_pursuit_topic`` controller follows. The lookahead
 point backs off along the path until it lies on the costmap on a passable cell.
 
-The goal succeeds within ``~goal_tolerance`` [m] of the path's end; it aborts with the reason on a bad
+The goal succeeds within ``~goal_tolerance`` [m] of the path's end facing the yaw of its last pose within
+``~yaw_goal_tolerance`` [rad] (0.25; move_base's goal check; a goal with ``ignore_final_heading`` needs the
+position alone). Near the end the local plan ends at the path's last pose with its yaw, and it is
+republished while the robot turns there, so the controller (``use_final_heading``) turns in place to it;
+keep the controller's ``yaw_goal_tolerance`` below this one, or it may stop turning before this check
+passes. It aborts with the reason on a bad
 path (empty, NaN, unknown frame), when no plan could be made for ``~failure_timeout`` [s] of ROS time (blocked path,
 no robot pose, no map) or when the node that sent it is gone for ``~client_timeout`` [s] (2.0; 0: off), and it
 is preempted by a cancel or replaced by a newer goal. Replanning is paced on ROS time: while ROS time stands
@@ -25,6 +30,7 @@ planner usually takes ``lethal_cost: 254`` so that a robot inside the inscribed 
 
 from __future__ import annotations
 
+import math
 import time
 from typing import Optional, Tuple
 
@@ -52,6 +58,7 @@ from flex_nav.ros.topic_path import TopicPath, TopicPaths
 PARAMETERS = (
     "global_frame", "robot_base_frame", "lookahead_distance", "planner_frequency", "goal_tolerance",
     "failure_timeout", "topic_timeout", "transform_timeout", "local_costmap", "planner", "client_timeout",
+    "yaw_goal_tolerance",
 )
 CLOCK_POLL_S = 0.01  # [s] wall: on simulated time, how often the replanning loop reads ROS time
 
@@ -64,6 +71,7 @@ class FollowServer(FollowNode):
         self.lookahead_distance = param_float("~lookahead_distance", 1.5, 0.05, 1000.0)
         self.period_s = 1.0 / param_float("~planner_frequency", 2.0, 0.05, 100.0)
         self.goal_tolerance = param_float("~goal_tolerance", 0.25, 0.001, 100.0)
+        self.yaw_goal_tolerance = param_float("~yaw_goal_tolerance", 0.25, 0.001, 3.15)  # [rad]
         self.failure_timeout_s = param_float("~failure_timeout", 3.0, 0.0, 3600.0)
         self.topic_timeout_s = param_float("~topic_timeout", 2.0, 0.0, 600.0)
         self.transform_timeout_s = param_float("~transform_timeout", 0.2, 0.0, 10.0)
@@ -84,13 +92,14 @@ class FollowServer(FollowNode):
                       f"replanning at {1.0 / self.period_s:.1f} Hz in '{self.global_frame}'")
 
     # ------------------------------------------------------------------ goals
-    def _progress_of(self, msg: Path) -> PathProgress:
+    def _progress_of(self, msg: Path, final_heading: bool) -> PathProgress:
         poses = path_in_frame(self.tf_buffer, msg, self.global_frame, self.transform_timeout_s)
-        return PathProgress(poses, self.lookahead_distance, self.goal_tolerance)
+        return PathProgress(poses, self.lookahead_distance, self.goal_tolerance,
+                            self.yaw_goal_tolerance if final_heading else None)
 
     def _pursue(self, ticket: GoalTicket, first: GoalPath) -> None:
         try:
-            progress = self._progress_of(first.msg)
+            progress = self._progress_of(first.msg, not ticket.goal.ignore_final_heading)
         except (ConfigError, NotReadyError) as err:
             self._end(ticket, GoalOutcome.ABORTED, bad_path(first.topic, err))
             return
@@ -119,7 +128,7 @@ class FollowServer(FollowNode):
             if source is not None and source.count != used and source.msg is not None:
                 used = source.count
                 try:
-                    progress = self._progress_of(source.msg)
+                    progress = self._progress_of(source.msg, not ticket.goal.ignore_final_heading)
                 except (ConfigError, NotReadyError) as err:
                     self._end(ticket, GoalOutcome.ABORTED, bad_path(source, err), pose)
                     return
@@ -129,8 +138,10 @@ class FollowServer(FollowNode):
             except NotReadyError as err:
                 state, problem = None, f"robot pose unknown: {err}"
             if state is not None and state.done:
+                heading = (f", heading {math.degrees(state.heading_error):+.1f} deg off"
+                           if math.isfinite(state.heading_error) else "")
                 self._end(ticket, GoalOutcome.SUCCEEDED,
-                          f"reached the end of the path ({state.distance_to_end:.3f} m from it)", pose)
+                          f"reached the end of the path ({state.distance_to_end:.3f} m from it{heading})", pose)
                 return
             now_s = self.clock.now()
             if problem is None:
@@ -154,14 +165,17 @@ class FollowServer(FollowNode):
             cell = geometry.world_to_cell(x, y)
             return geometry.in_bounds(cell) and self.planner.passable(int(costs[cell]))
 
-        state = progress.update(pose[0], pose[1], inside=usable)
+        state = progress.update(pose[0], pose[1], inside=usable, yaw=pose[2])
         self._feedback(ticket, pose, source)
         if state.done:
             return state, None
         start_cell = geometry.world_to_cell(pose[0], pose[1])
         if geometry.in_bounds(start_cell):
             costs[start_cell] = FREE  # the robot's own cell (navfn's clearRobotCell): sensors may mark it
-        result = self.planner.plan(costs, geometry, pose, state.target)
+        # the path's end carries its yaw only when it is a goal heading; otherwise the plan ends facing along itself
+        heading_counts = progress.yaw_goal_tolerance is not None
+        target = state.target if heading_counts or not state.target_is_end else state.target[:2]
+        result = self.planner.plan(costs, geometry, pose, target)
         if not result.ok:
             return state, f"{result.status.name}: {result.reason}"
         if ticket.cancelled.is_set():

@@ -2,7 +2,9 @@
 
 ``pure_pursuit_path`` serves FollowPath (the path is in the goal); ``pure_pursuit_topic`` serves FollowTopic
 (it follows the newest nav_msgs/Path on the topic named in the goal, e.g. a follow server's ``plan``).
-Both publish geometry_msgs/TwistStamped on ``cmd_vel_stamped`` (see ``twist_relay`` for a Twist driver).
+Both publish geometry_msgs/TwistStamped on ``cmd_vel_stamped`` (see ``twist_relay`` for a Twist driver), and
+the robot's footprint on ``footprint`` (geometry_msgs/PolygonStamped, latched, in ``~robot_base_frame``: the
+circle of the local costmap's ``robot_radius``, :func:`flex_nav.nav.footprint.circle_footprint`), for RViz.
 
 Control ticks are synchronised to odometry: a tick runs as soon as a new ``odom`` message has arrived and
 one period of ``~controller_frequency`` has passed since the previous tick (so the rate never exceeds it,
@@ -24,6 +26,8 @@ crashed) -> one zero twist, then no command until ROS time moves again (the goal
 on ROS time (:class:`flex_nav.ros.ros_clock.RosClock`). A cancel publishes a zero twist from the cancel callback
 itself (before it returns), and no later command of that goal can follow it; a newer goal replacing the current
 one also starts from a zero twist. A FollowTopic goal naming an illegal topic (empty, ``..``, blanks) aborts at once.
+At the end of a path the robot turns in place to the last pose's yaw (``pure_pursuit/use_final_heading``, within
+``pure_pursuit/yaw_goal_tolerance`` [rad]) unless the goal sets ``ignore_final_heading``.
 
 Parameters (private): ``global_frame`` ("map"), ``robot_base_frame`` ("base_footprint"),
 ``controller_frequency`` [Hz] (20), ``sensor_timeout`` [s] (0.5), ``collision_timeout`` [s] (2.0),
@@ -48,13 +52,14 @@ from typing import Optional, Tuple
 import numpy as np
 import rospy
 import tf2_ros
-from geometry_msgs.msg import TwistStamped
+from geometry_msgs.msg import Point32, PolygonStamped, TwistStamped
 from nav_msgs.msg import Odometry
 
 from flex_nav.exceptions import ConfigError, NotReadyError
 from flex_nav.nav.control.clock_watch import ClockChange, ClockWatch
 from flex_nav.nav.control.controller import Decision, LocalCostmap, Outcome, SafeFollower, no_tracks, warm_up
 from flex_nav.nav.control.pure_pursuit import PurePursuitParams
+from flex_nav.nav.footprint import circle_footprint
 from flex_nav.nav.planar import transform_poses
 from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.nodes.follow_base import FollowNode, GoalPath, GoalSource, Pose2D, bad_path
@@ -85,6 +90,14 @@ class Wake(enum.Enum):
     STALLED = "stalled"
     JUMPED_BACK = "jumped back"
     LINK_LOST = "link lost"
+
+
+def footprint_msg(radius_m: float, base_frame: str) -> PolygonStamped:
+    """The footprint polygon of a round base of ``radius_m`` [m] in ``base_frame`` (stamp 0: valid at any time)."""
+    msg = PolygonStamped()
+    msg.header.frame_id = base_frame
+    msg.polygon.points = [Point32(x=float(x), y=float(y), z=0.0) for x, y in circle_footprint(radius_m)]
+    return msg
 
 
 def pursuit_params(raw: dict, costmap: CostmapROS) -> PurePursuitParams:
@@ -151,6 +164,10 @@ class PurePursuitController(FollowNode):
         self._publish_lock = threading.Lock()
         self._topics = TopicPaths(self._wake, self.clock)
         self.cmd_publisher = rospy.Publisher("cmd_vel_stamped", TwistStamped, queue_size=1, tcp_nodelay=True)
+        self.footprint_publisher = rospy.Publisher("footprint", PolygonStamped, queue_size=1, latch=True)
+        if self.costmap.inflation.inscribed_radius > 0.0:  # a point robot (robot_radius 0) has no outline to draw
+            self.footprint_publisher.publish(footprint_msg(self.costmap.inflation.inscribed_radius,
+                                                          self.robot_base_frame))
         self._shut_down = False  # set by the shutdown hook: no moving command after its zero twist
         rospy.on_shutdown(self._on_shutdown)
         self.odom_subscriber = rospy.Subscriber("odom", Odometry, self._on_odom, queue_size=1, tcp_nodelay=True)
@@ -236,7 +253,8 @@ class PurePursuitController(FollowNode):
         if first.topic is None:  # a goal's own path is taken now; a topic's Paths by the control loop
             try:
                 self.follower.set_path(path_in_frame(self.tf_buffer, first.msg, self.global_frame,
-                                                     self.transform_timeout_s))
+                                                     self.transform_timeout_s),
+                                       final_heading=not ticket.goal.ignore_final_heading)
             except (ConfigError, NotReadyError) as err:
                 self._end(ticket, GoalOutcome.ABORTED, bad_path(first.topic, err))
                 return
@@ -303,7 +321,8 @@ class PurePursuitController(FollowNode):
             if path_msg is not None:
                 try:
                     self.follower.set_path(path_in_frame(self.tf_buffer, path_msg, self.global_frame,
-                                                         self.transform_timeout_s))
+                                                         self.transform_timeout_s),
+                                           final_heading=not ticket.goal.ignore_final_heading)
                 except (ConfigError, NotReadyError) as err:
                     self._end(ticket, GoalOutcome.ABORTED, bad_path(source, err))
                     return

@@ -101,3 +101,38 @@ def test_bad_construction(args, match):
 def test_bad_position():
     with pytest.raises(ConfigError, match="finite"):
         PathProgress(L_PATH, 1.0, 0.1).update(math.nan, 0.0)
+
+
+def test_done_waits_for_the_final_heading_when_it_counts():
+    path = np.array([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [2.0, 0.0, math.pi / 2]])  # ends facing +y
+    progress = PathProgress(path, lookahead_distance=1.0, goal_tolerance=0.2, yaw_goal_tolerance=0.25)
+    p = progress.update(1.95, 0.0, yaw=0.0)
+    assert p.position_reached and not p.done
+    assert p.heading_error == pytest.approx(math.pi / 2)
+    assert p.target_is_end and p.target == pytest.approx((2.0, 0.0, math.pi / 2))  # plan to the end, its yaw
+    p = progress.update(1.95, 0.0, yaw=math.pi / 2 - 0.2)
+    assert p.done and p.heading_error == pytest.approx(0.2)
+    p = progress.update(1.95, 0.0, yaw=-3.0 * math.pi / 2 + 0.3)  # the same heading, one turn further: wrapped
+    assert not p.done and p.heading_error == pytest.approx(-0.3)
+    p = progress.update(1.5, 0.0, yaw=math.pi / 2)  # facing right, but not there
+    assert not p.done and not p.position_reached
+
+
+def test_heading_ignored_without_a_yaw_tolerance():
+    path = np.array([[0.0, 0.0, 0.0], [2.0, 0.0, math.pi / 2]])
+    p = PathProgress(path, lookahead_distance=1.0, goal_tolerance=0.2).update(1.95, 0.0)
+    assert p.done and p.position_reached and math.isnan(p.heading_error)
+
+
+@pytest.mark.parametrize("tolerance", [0.0, -0.1, math.nan, math.inf])
+def test_bad_yaw_tolerance_is_refused(tolerance):
+    with pytest.raises(ConfigError, match="yaw_goal_tolerance"):
+        PathProgress(L_PATH, lookahead_distance=1.0, goal_tolerance=0.2, yaw_goal_tolerance=tolerance)
+
+
+def test_yaw_is_needed_when_the_heading_counts():
+    progress = PathProgress(L_PATH, lookahead_distance=1.0, goal_tolerance=0.2, yaw_goal_tolerance=0.25)
+    with pytest.raises(ConfigError, match="yaw"):
+        progress.update(1.0, 0.0)
+    with pytest.raises(ConfigError, match="yaw"):
+        progress.update(1.0, 0.0, yaw=math.nan)

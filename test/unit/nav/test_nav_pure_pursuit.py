@@ -303,3 +303,48 @@ def test_closed_loop_turns_the_corner_of_a_sparse_path():
     else:
         pytest.fail(f"goal not reached; robot at ({x:.2f}, {y:.2f})")
     assert math.hypot(x - 2.43, y - 5.58) <= params.goal_dist_tol
+
+
+def test_goal_heading_ignored_for_a_path_set_without_final_heading():
+    # the same path with yaw: set_path(final_heading=False) makes the position enough; the next path counts again
+    path = straight(yaw=1.0)
+    ctl = controller(path, yaw_goal_tolerance=0.01)
+    ctl.set_path(path, final_heading=False)
+    cmd = ctl.step((5.0, 0.05, 0.0), (0.0, 0.0), DT)
+    assert cmd.status is PursuitStatus.GOAL_REACHED and (cmd.v, cmd.w) == (0.0, 0.0)
+    ctl.set_path(path)
+    cmd = ctl.step((5.0, 0.05, 0.0), (0.0, 0.0), DT)
+    assert cmd.status is PursuitStatus.ROTATING_TO_GOAL and cmd.w > 0.0
+    # use_final_heading false in the parameters wins over a path that asks for it
+    off = controller(path, yaw_goal_tolerance=0.01, use_final_heading=False)
+    assert off.step((5.0, 0.05, 0.0), (0.0, 0.0), DT).status is PursuitStatus.GOAL_REACHED
+
+
+def test_closed_loop_turns_to_a_goal_heading_behind_the_robot():
+    """A goal facing back along the path (pi from the direction of travel) is reached within the tolerance,
+    turning in place at the end (the shortest way) without leaving the goal position."""
+    params = PurePursuitParams(desired_linear_vel=0.5, lookahead_dist=0.6, goal_dist_tol=0.15,
+                               yaw_goal_tolerance=0.2, max_angular_vel=1.8, rotate_to_heading_angular_vel=1.5)
+    ctl = RegulatedPurePursuit(params)
+    path = straight(length=2.0, n=41, yaw=0.0)
+    path[-1, 2] = -(math.pi - 0.3)  # 171 deg: clockwise is the short way
+    ctl.set_path(path)
+    x = y = yaw = v = w = 0.0
+    turned_at = None
+    for _ in range(1000):
+        cmd = ctl.step((x, y, yaw), (v, w), DT)
+        if cmd.status is PursuitStatus.GOAL_REACHED:
+            break
+        assert cmd.status.moving, cmd.reason
+        if cmd.status is PursuitStatus.ROTATING_TO_GOAL:
+            assert cmd.v == 0.0 and cmd.w < 0.0
+            turned_at = (x, y) if turned_at is None else turned_at
+        v, w = cmd.v, cmd.w
+        yaw += w * DT
+        x += v * math.cos(yaw) * DT
+        y += v * math.sin(yaw) * DT
+    else:
+        pytest.fail("goal not reached in 1000 steps")
+    assert turned_at is not None
+    assert math.hypot(x - 2.0, y) <= params.goal_dist_tol
+    assert abs(math.atan2(math.sin(path[-1, 2] - yaw), math.cos(path[-1, 2] - yaw))) <= params.yaw_goal_tolerance

@@ -23,6 +23,7 @@ from flex_nav_states.action_base import SEND_WAIT_S, SERVER_LOST_S
 from flex_nav_states.clear_costmaps_state import ClearCostmapsState
 from flex_nav_states.follow_path_state import FollowPathState, FollowPlannerState
 from flex_nav_states.follow_topic_state import FollowTopicState
+from flex_nav_states.follow_until_blocked_state import FollowUntilBlockedState
 from flex_nav_states.get_path_state import GetPathState
 
 SUCCEEDED, ABORTED, PREEMPTED = GoalStatus.SUCCEEDED, GoalStatus.ABORTED, GoalStatus.PREEMPTED
@@ -251,6 +252,33 @@ def test_follow_path_result_before_exit_is_not_cancelled():
     client.respond(SUCCEEDED, FollowPathResult(code=FollowPathResult.SUCCESS, message="arrived"))
     assert h.start().run(max_time_s=2.0).outcome == "done"
     assert client.cancels == 0
+
+
+@pytest.mark.parametrize("final_heading", [True, False])
+@pytest.mark.parametrize("cls", [FollowPathState, FollowPlannerState, FollowUntilBlockedState])
+def test_follow_path_goal_says_whether_the_final_heading_counts(cls, final_heading):
+    h = Harness(cls(final_heading=final_heading), inputs={"plan": path([(0, 0), (1, 0)])})
+    client = h.proxies.client(cls().action_name, FollowPathAction)
+    client.respond(SUCCEEDED, FollowPathResult(code=FollowPathResult.SUCCESS, message="arrived"))
+    assert h.start().run(max_time_s=2.0).outcome == "done"
+    assert client.goals[0].ignore_final_heading is (not final_heading)
+    assert any(("to its final heading" in t) is final_heading for t in h.texts())
+
+
+@pytest.mark.parametrize("final_heading", [True, False])
+def test_follow_topic_goal_says_whether_the_final_heading_counts(final_heading):
+    h = Harness(FollowTopicState(path_topic="mid/plan", action_name="ctrl", final_heading=final_heading))
+    client = h.proxies.client("ctrl", FollowTopicAction)
+    client.respond(SUCCEEDED, FollowTopicResult(code=FollowTopicResult.SUCCESS, message="arrived"))
+    assert h.start().run(max_time_s=2.0).outcome == "done"
+    assert client.goals[0].ignore_final_heading is (not final_heading)
+
+
+@pytest.mark.parametrize("cls", [FollowPathState, FollowTopicState])
+@pytest.mark.parametrize("value", [1, "true", None])
+def test_final_heading_must_be_a_boolean(cls, value):
+    with pytest.raises(ConfigError, match="final_heading must be true or false"):
+        cls(final_heading=value)
 
 
 def test_follow_topic_sends_the_topic_and_maps_failure():

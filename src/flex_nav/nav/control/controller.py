@@ -114,16 +114,17 @@ class SafeFollower:
         self._path: Optional[np.ndarray] = None
         self._lengths = np.zeros(1)
 
-    def set_path(self, poses: object) -> None:
+    def set_path(self, poses: object, final_heading: bool = True) -> None:
         """Follow ``poses`` ((N, 2|3) in the controller's frame); ConfigError if empty or not finite.
 
         The previous command is kept, so a replaced path continues smoothly. So are the time the robot has
         been held by a collision ahead and the time an obstacle has sat on the path: a planner that replaces
         the path every second must not keep a robot standing in front of an obstacle from ever reaching
         ``collision_timeout`` or ``blocked_timeout`` (a new path that avoids the obstacle ends the latter at
-        the next tick). Both start afresh with the first path after :meth:`stop`.
+        the next tick). Both start afresh with the first path after :meth:`stop`. ``final_heading`` False:
+        the last pose's yaw is no goal (see :meth:`RegulatedPurePursuit.set_path`).
         """
-        self.pursuit.set_path(poses)
+        self.pursuit.set_path(poses, final_heading)
         self._path = as_path(poses)
         self._lengths = cumulative_lengths(self._path)
 

@@ -5,7 +5,8 @@ the local costmap (all in the path's frame) and returns a :class:`Command` ``(v 
 :class:`PursuitStatus`. In order:
 
 1. goal: within ``goal_dist_tol`` [m] of the last pose the robot turns in place to the final heading
-   (``use_final_heading`` and a path with yaw) and then reports GOAL_REACHED with a zero command;
+   until it is within ``yaw_goal_tolerance`` [rad] of it (``use_final_heading``, a path with yaw, and
+   not ``set_path(..., final_heading=False)``) and then reports GOAL_REACHED with a zero command;
 2. the path is pruned to the closest point ahead (a bounded, monotonic search);
 3. the carrot is where the path leaves the lookahead circle (fixed ``lookahead_dist``, or
    ``|v|·lookahead_time`` clamped to [``min_lookahead_dist``, ``max_lookahead_dist``]);
@@ -180,16 +181,19 @@ class RegulatedPurePursuit:
         self._last_v = 0.0
         self._last_w = 0.0
         self._xy_reached = False
+        self._final_heading = True  # this path's last yaw is a goal heading
 
     @property
     def path(self) -> Optional[np.ndarray]:
         """The path being followed (N, 2|3) or None."""
         return self._path
 
-    def set_path(self, poses: object) -> None:
-        """Start following a new path (validated: :class:`ConfigError` if empty or not finite)."""
+    def set_path(self, poses: object, final_heading: bool = True) -> None:
+        """Start following a new path (validated: :class:`ConfigError` if empty or not finite). With
+        ``final_heading`` False the last pose's yaw is no goal: reaching its position is enough."""
         path = as_path(poses)
         self._path = path
+        self._final_heading = bool(final_heading)
         self._lengths = cumulative_lengths(path)
         self._index = 0
         self._fresh = True
@@ -263,7 +267,7 @@ class RegulatedPurePursuit:
         # 1. goal position reached: final heading, then done
         if self._xy_reached or (to_goal <= p.goal_dist_tol and remaining <= p.goal_dist_tol + 1e-9):
             self._xy_reached = True
-            if p.use_final_heading and path.shape[1] == 3:
+            if p.use_final_heading and self._final_heading and path.shape[1] == 3:
                 error = wrap_angle(float(path[-1, 2]) - yaw)
                 if abs(error) > p.yaw_goal_tolerance:
                     w = self._limited_rotation(math.copysign(p.rotate_to_heading_angular_vel, error), w_now, dt)
