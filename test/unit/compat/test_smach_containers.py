@@ -115,6 +115,22 @@ def test_concurrence_consistency_checks_children_named_in_the_outcome_map():
         smach.Concurrence(outcomes=["a"], default_outcome="a").execute()
 
 
+def test_concurrence_initial_states_are_ignored_with_a_warning_and_userdata_merged(caplog):
+    # SMACH: a Concurrence always starts every child; labels (even of children added later) are no error
+    seen = []
+    cc = smach.Concurrence(outcomes=["ok"], default_outcome="ok", input_keys=["v"])
+    injected = smach.UserData()
+    injected.v = 7
+    cc.set_initial_state(["LATER"], injected)
+    assert "initial states ['LATER'] ignored" in caplog.text
+    with cc:
+        smach.Concurrence.add("LATER", smach.CBState(lambda ud: seen.append(ud.v) or "done", outcomes=["done"],
+                                                      input_keys=["v"]))
+        smach.Concurrence.add("OTHER", smach.CBState(lambda ud: seen.append("other") or "done", outcomes=["done"]))
+    assert cc.execute() == "ok"
+    assert sorted(map(str, seen)) == ["7", "other"]
+
+
 # --- Concurrence: running --------------------------------------------------------------------------------
 def test_children_really_run_at_the_same_time():
     barrier = threading.Barrier(2, timeout=WAIT_S)

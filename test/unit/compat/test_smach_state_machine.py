@@ -303,10 +303,43 @@ def test_set_initial_state_with_userdata_and_invalid_choices():
     assert sm.get_initial_states() == ["B"] and starts == [["B"]]  # introspection hears about it
     assert sm.execute() == "done"
     assert (a.runs, b.runs, seen) == (0, 1, [42])
-    with pytest.raises(smach.InvalidStateError, match=r"'C' is not a state of the machine \(states: A, B\)"):
-        sm.set_initial_state(["C"])
-    with pytest.raises(smach.InvalidStateError, match="exactly one initial state"):
-        sm.set_initial_state(["A", "B"])
+
+
+def test_set_initial_state_before_the_state_is_added_is_checked_at_execute(caplog):
+    # SMACH stores the label and checks it when the machine runs: it may name a state added later
+    a, b = Scripted(["done"]), Scripted(["done"])
+    sm = smach.StateMachine(outcomes=["done"])
+    starts = []
+    sm.register_start_cb(lambda ud, initial: starts.append(initial))
+    sm.set_initial_state(["B"])
+    assert sm.get_initial_states() == ["B"] and starts == []  # nothing to announce yet
+    assert "'B' is not a state of the machine yet (states: none)" in caplog.text
+    with sm:
+        smach.StateMachine.add("A", a, transitions={"done": "done"})  # added first, but not the initial state
+        smach.StateMachine.add("B", b, transitions={"done": "done"})
+    assert "consistency check failed" not in caplog.text
+    assert sm.execute() == "done"
+    assert (a.runs, b.runs) == (0, 1)
+
+
+def test_an_initial_state_never_added_fails_at_execute_naming_it():
+    sm = machine(("A", Scripted(["done"]), {}))
+    sm.set_initial_state(["C"])
+    assert sm.get_initial_states() == ["C"]
+    with pytest.raises(smach.InvalidTransitionError, match=r"initial state 'C' is not in the state machine"):
+        sm.execute()
+    assert not sm.is_running()
+    sm.set_initial_state(["A"])  # put right, the machine runs
+    assert sm.execute() == "done"
+
+
+def test_more_than_one_initial_state_takes_the_first_with_a_warning(caplog):
+    a, b = Scripted(["done"]), Scripted(["done"])
+    sm = machine(("A", a, {}), ("B", b, {}))
+    sm.set_initial_state(["B", "A"])
+    assert "exactly one initial state" in caplog.text and "taking 'B'" in caplog.text
+    assert sm.get_initial_states() == ["B"]
+    assert sm.execute() == "done" and (a.runs, b.runs) == (0, 1)
 
 
 def test_getitem_names_the_available_states():

@@ -119,10 +119,11 @@ class Concurrence(Container):
         return list(self._states)
 
     def set_initial_state(self, initial_states: Sequence[str], userdata: Optional[UserData] = None) -> None:
-        """All children always start; only ``userdata`` is merged (as in SMACH)."""
-        unknown = [s for s in initial_states if s not in self._states]
-        if unknown:
-            raise InvalidStateError(f"Concurrence has no children {unknown} (children: {listed(list(self._states))})")
+        """All children always start; only ``userdata`` is merged (as in SMACH, which ignores the labels with a
+        warning: they may name children added later)."""
+        if initial_states and set(initial_states) != set(self._states):
+            HOOKS.warn(f"Concurrence starts all its children (now: {listed(list(self._states))}); "
+                       f"initial states {list(initial_states)} ignored")
         if userdata is not None:
             self.userdata.update(userdata)
 

@@ -12,7 +12,7 @@ Transitions map each outcome of a state to another state's label or to an outcom
 An outcome left out (or mapped to ``None``) falls through: the machine finishes with the outcome of
 the same name, which must then be one of its outcomes. The first state added is the initial state
 unless ``set_initial_state`` says otherwise. ``add_auto`` connects the given outcomes of a state to
-the state added next.
+the state added next. ``set_initial_state`` may name a state that is added later (checked at ``execute``).
 
 Preemption (as in SMACH): ``request_preempt()`` sets the machine's flag and forwards the request to the
 running state. When that state returns, the machine checks whether it serviced the request
@@ -151,21 +151,23 @@ class StateMachine(Container):
         return labelled_child(self._states, key, "state machine has no state", "states")
 
     def set_initial_state(self, initial_states: Sequence[str], userdata: Optional[UserData] = None) -> None:
-        """Start at ``initial_states[0]`` next time; merge ``userdata`` into the machine's userdata."""
+        """Start at ``initial_states[0]`` next time; merge ``userdata`` into the machine's userdata.
+
+        As in SMACH, the label is checked when the machine runs, not here: it may name a state added later
+        (a label that is still unknown is logged as a warning; ``execute`` raises InvalidTransitionError if it
+        is unknown then). More than one label: a warning, and the first one is taken.
+        """
         states = [initial_states] if isinstance(initial_states, str) else list(initial_states)
         if len(states) > 1:
-            raise InvalidStateError(
-                f"a StateMachine has exactly one initial state, got {states} (states: {listed(list(self._states))})"
-            )
+            HOOKS.warn(f"a StateMachine has exactly one initial state, got {states}: taking {states[0]!r}")
         if states:
-            if states[0] not in self._states:
-                raise InvalidStateError(
-                    f"initial state {states[0]!r} is not a state of the machine (states: {listed(list(self._states))})"
-                )
             self._initial_state_label = states[0]
         if userdata is not None:
             self.userdata.update(userdata)
-        if not self._is_running:
+        if self._initial_state_label is not None and self._initial_state_label not in self._states:
+            HOOKS.warn(f"initial state {self._initial_state_label!r} is not a state of the machine yet "
+                       f"(states: {listed(list(self._states))}); it must be added before the machine runs")
+        elif not self._is_running:
             self.call_start_cbs()  # introspection tools learn about the new initial state
 
     def get_active_states(self) -> List[str]:
