@@ -3,6 +3,8 @@ result each run leaves behind, ``--resume`` and bad arguments. ``run_one`` is re
 writes what ``scenario_run`` would print, so no master is needed."""
 
 import json
+import socket
+import time
 from typing import List, Tuple
 
 import pytest
@@ -50,9 +52,68 @@ def test_a_run_without_result_is_reported_and_fails_the_evaluation(tmp_path, mon
     (["--scenarios", "s7_nothing"], "s7_nothing"),
     (["--seeds", "0"], "--seeds 0"),
     (["--behaviors", "push_or_avoid,move_base"], "move_base_like"),  # the message lists the valid ones
+    (["--workers", "0"], "--workers 0"),
 ])
 def test_bad_arguments_name_the_value(argv, needle, capsys):
     with pytest.raises(SystemExit) as stop:
         scenarios.parse_args(argv)
     assert stop.value.code == 2
     assert needle in capsys.readouterr().err
+
+
+def test_a_run_without_result_or_whose_worker_was_lost_is_tried_once_more_and_reported(tmp_path, monkeypatch,
+                                                                                        capsys):
+    attempts: List[Tuple[str, int]] = []
+    succeed = fake_run_one([])
+
+    def flaky(args, world, behavior, seed, out):
+        attempts.append((behavior, seed))
+        first = attempts.count((behavior, seed)) == 1
+        if first and behavior == "move_base_like":
+            return None  # the run process crashed
+        if first and behavior == "push_or_avoid":
+            raise ConnectionError("worker lost")  # what a future of a lost worker raises
+        return succeed(args, world, behavior, seed, out)
+
+    monkeypatch.setattr(scenarios, "run_one", flaky)
+    argv = ["--scenarios", "s1_light_box_door", "--seeds", "1", "--out", str(tmp_path)]
+    assert scenarios.main(argv) == 0
+    assert sorted(attempts) == [("move_base_like", 0)] * 2 + [("push_or_avoid", 0)] * 2
+    assert len((tmp_path / "results.csv").read_text().strip().splitlines()) == 1 + 2
+    err = capsys.readouterr().err
+    assert "run tried again: s1_light_box_door move_base_like seed 0: no result" in err
+    assert "run tried again: s1_light_box_door push_or_avoid seed 0: ConnectionError: worker lost" in err
+
+
+def test_workers_run_at_the_same_time_and_the_table_keeps_the_plan_order(tmp_path, monkeypatch, capsys):
+    spans: List[Tuple[float, float]] = []
+    succeed = fake_run_one([])
+
+    def slow(args, world, behavior, seed, out):
+        start = time.monotonic()
+        time.sleep(0.3 if seed == 0 else 0.05)  # seed 0 ends last
+        spans.append((start, time.monotonic()))
+        return succeed(args, world, behavior, seed, out)
+
+    monkeypatch.setattr(scenarios, "run_one", slow)
+    argv = ["--scenarios", "s1_light_box_door", "--behaviors", "push_or_avoid", "--seeds", "2", "--workers", "2",
+            "--out", str(tmp_path)]
+    assert scenarios.main(argv) == 0
+    (a_start, a_end), (b_start, b_end) = spans
+    assert a_start < b_end and b_start < a_end  # they overlapped
+    seeds = [line.split(",")[2] for line in (tmp_path / "results.csv").read_text().strip().splitlines()[1:]]
+    assert seeds == ["0", "1"]
+    assert "on 1 worker(s)" in capsys.readouterr().out  # threads of one process: one host:pid
+
+
+def test_an_unreachable_cluster_is_named_and_nothing_runs(tmp_path, monkeypatch, capsys):
+    calls: List[Tuple[str, str, int]] = []
+    monkeypatch.setattr(scenarios, "run_one", fake_run_one(calls))
+    monkeypatch.setattr(scenarios, "CLUSTER_CONNECT_TIMEOUT_S", 1.0)
+    with socket.socket() as sock:  # a port nobody listens on
+        sock.bind(("127.0.0.1", 0))
+        address = f"tcp://127.0.0.1:{sock.getsockname()[1]}"
+    assert scenarios.main(["--scenarios", "s1_light_box_door", "--seeds", "1", "--cluster", address,
+                           "--out", str(tmp_path)]) == 2
+    assert f"cannot reach the Dask scheduler at '{address}'" in capsys.readouterr().err
+    assert calls == []

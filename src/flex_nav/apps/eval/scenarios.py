@@ -2,26 +2,37 @@
 
 Runs every scenario (S1..S6 worlds) x behavior (move_base_like, push_or_avoid) x seed headless, one
 ``python -m flex_nav.apps.scenario_run`` process per run (each with its own private master, so a failed run
-cannot affect the next), with a progress bar on stderr. Writes ``results.csv`` (one row per run),
-``results.md`` (summary per scenario and behavior) and one ``<scenario>-<behavior>-<seed>/run.png`` per
-run to ``--out``, plus the run's own ``result.json``. ``--resume`` keeps the runs of ``--out`` that have a
-``result.json`` (an interrupted evaluation goes on where it stopped; more behaviors or seeds can be added
-later). Exit 0 when every run was recorded, 1 when a run could not start or crashed.
+cannot affect the next), with a progress bar on stderr. Runs are independent, so they run in parallel:
+``--workers N`` of them at once on this machine (default: one per core), or on a Dask distributed cluster with
+``--cluster ADDRESS`` (a ``dask scheduler`` and ``dask worker ADDRESS`` processes started from checkouts of this
+repository where tools/install.sh has run; each worker runs one run at a time with ``--nthreads 1``). A run that
+ends without a result (it crashed, timed out, or its worker was lost) is tried once more, and reported; one that
+fails twice is reported and fails the evaluation, never dropped silently. Writes ``results.csv`` (one row per
+run), ``results.md`` (summary per scenario and behavior), both rewritten as each run ends, and one
+``<scenario>-<behavior>-<seed>/run.png`` per run to ``--out`` (on a cluster: on the worker's file system, at the
+same path), plus the run's own ``result.json``. ``--resume`` keeps the runs of ``--out`` that have a
+``result.json`` (an interrupted evaluation goes on where it stopped; more behaviors or seeds can be added later).
+Exit 0 when every run was recorded, 1 when a run could not start or crashed twice, 2 when the cluster cannot be
+reached.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import os
+import socket
 import subprocess
 import sys
 import time
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
 from pathlib import Path
-from typing import List, Optional, Sequence
+from typing import Any, Callable, Dict, List, Optional, Protocol, Sequence, Tuple
 
 from flex_nav.apps.eval.metrics import RunResult
 from flex_nav.apps.eval.table import to_csv, to_markdown
-from flex_nav.exceptions import choices_message
+from flex_nav.exceptions import FlexNavError, choices_message
 from flex_nav.resources import behaviors_dir
 
 REPO_ROOT = Path(__file__).resolve().parents[4]  # a source checkout: the scenario runs start tools/ scripts
@@ -35,6 +46,9 @@ SCENARIOS = (
 )
 BEHAVIORS = ("move_base_like", "push_or_avoid")
 RUN_WALL_LIMIT_S = 900.0  # [s] wall bound of one run process
+CLUSTER_CONNECT_TIMEOUT_S = 20.0  # [s] to reach a Dask scheduler
+POLL_PERIOD_S = 0.2  # [s] wall: how often the driver looks at the runs in flight
+ATTEMPTS = 2  # a run without a result is tried once more
 
 
 def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
@@ -49,6 +63,10 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     parser.add_argument("--resume", action="store_true", help="keep the runs in --out that have a result.json")
     parser.add_argument("--localization", choices=("localizer", "oracle"), default="localizer",
                         help="map -> odom from flex_nav's localizer (default) or the simulator's ground truth")
+    parser.add_argument("--workers", type=int, default=os.cpu_count() or 1,
+                        help="runs at once on this machine (default: one per core; 1: one after another)")
+    parser.add_argument("--cluster", default="", metavar="ADDRESS",
+                        help="run on a Dask distributed scheduler (e.g. tcp://10.0.0.5:8786) instead of locally")
     args = parser.parse_args(argv)
     args.scenario_list = [s for s in args.scenarios.split(",") if s]
     args.behavior_list = [b for b in args.behaviors.split(",") if b]
@@ -61,6 +79,8 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
             parser.error(choices_message("behavior", name, known_behaviors))
     if args.seeds < 1:
         parser.error(f"--seeds {args.seeds} must be >= 1")
+    if args.workers < 1:
+        parser.error(f"--workers {args.workers} must be >= 1")
     return args
 
 
@@ -100,34 +120,143 @@ def recorded(out: Path) -> Optional[RunResult]:
     return RunResult.from_dict(json.loads(path.read_text())) if path.is_file() else None
 
 
+@dataclass(frozen=True)
+class PlannedRun:
+    world: str
+    behavior: str
+    seed: int
+
+    @property
+    def label(self) -> str:
+        return f"{self.world} {self.behavior} seed {self.seed}"
+
+    @property
+    def directory(self) -> str:
+        return f"{self.world}-{self.behavior}-{self.seed}"
+
+
+class RunFuture(Protocol):
+    """What the driver needs of a future: concurrent.futures' and Dask distributed's both have it."""
+
+    def done(self) -> bool: ...
+
+    def result(self) -> Any: ...
+
+
+Submit = Callable[[PlannedRun, int], RunFuture]  # (run, attempt) -> the future of (result or None, worker)
+
+
+def run_on_worker(args: argparse.Namespace, run: PlannedRun, out: Path) -> Tuple[Optional[RunResult], str]:
+    """One run where a worker executes it; with the worker's name (host:pid) for the report."""
+    return run_one(args, run.world, run.behavior, run.seed, out), f"{socket.gethostname()}:{os.getpid()}"
+
+
+@dataclass
+class Evaluation:
+    """The runs' outcomes as they come in."""
+
+    results: Dict[PlannedRun, RunResult]
+    broken: List[str]  # labels of runs without a result after every attempt, with the reason
+    retried: List[str]  # labels of runs tried again, with the reason
+    workers: Dict[PlannedRun, str]  # who ran each recorded run
+
+
+def evaluate(plan: Sequence[PlannedRun], submit: Submit, on_result: Callable[[Evaluation, str], None],
+             ) -> Evaluation:
+    """Submit every run, collect them as they end (in any order), try a run without a result once more."""
+    evaluation = Evaluation({}, [], [], {})
+    in_flight: Dict[Any, Tuple[PlannedRun, int]] = {}
+    for run in plan:
+        in_flight[submit(run, 1)] = (run, 1)
+    while in_flight:
+        finished = [future for future in in_flight if future.done()]
+        if not finished:
+            time.sleep(POLL_PERIOD_S)
+            continue
+        for future in finished:
+            run, attempt = in_flight.pop(future)
+            try:
+                result, worker = future.result()
+                reason = "no result (see its run.log)" if result is None else ""
+            except Exception as err:  # a lost worker, a run that raised: the run is what failed, not the driver
+                result, worker, reason = None, "", f"{type(err).__name__}: {err}"
+            if result is not None:
+                evaluation.results[run] = result
+                evaluation.workers[run] = worker
+                on_result(evaluation, run.label)
+            elif attempt < ATTEMPTS:
+                evaluation.retried.append(f"{run.label}: {reason}")
+                in_flight[submit(run, attempt + 1)] = (run, attempt + 1)
+            else:
+                evaluation.broken.append(f"{run.label}: {reason}")
+                on_result(evaluation, run.label)
+    return evaluation
+
+
+def local_submitter(pool: ThreadPoolExecutor, args: argparse.Namespace, out: Path) -> Submit:
+    """Runs in this machine's pool of threads (each waits for its own run process)."""
+    return lambda run, _attempt: pool.submit(run_on_worker, args, run, out / run.directory)
+
+
+def cluster_submitter(client: Any, args: argparse.Namespace, out: Path) -> Submit:
+    """Runs on a Dask distributed cluster; every attempt is a new task (pure=False, its own key)."""
+    def submit(run: PlannedRun, attempt: int) -> RunFuture:
+        future: RunFuture = client.submit(run_on_worker, args, run, out / run.directory, pure=False,
+                                          key=f"flex_nav-{run.directory}-try{attempt}", retries=0)
+        return future
+    return submit
+
+
+def connect_cluster(address: str) -> Any:
+    """A Dask distributed client of the scheduler at ``address``; FlexNavError naming it when it cannot be
+    reached within CLUSTER_CONNECT_TIMEOUT_S."""
+    from distributed import Client  # noqa: PLC0415 - only for --cluster
+
+    try:
+        return Client(address, timeout=CLUSTER_CONNECT_TIMEOUT_S, set_as_default=False)
+    except (OSError, TimeoutError) as err:
+        raise FlexNavError(f"cannot reach the Dask scheduler at {address!r} within "
+                           f"{CLUSTER_CONNECT_TIMEOUT_S:g} s: {err}") from err
+
+
 def main(argv: Optional[Sequence[str]] = None) -> int:
     args = parse_args(argv)
-    out = args.out or REPO_ROOT / "out" / time.strftime("scenarios-%Y%m%d-%H%M%S")
+    out = (args.out or REPO_ROOT / "out" / time.strftime("scenarios-%Y%m%d-%H%M%S")).resolve()
     out.mkdir(parents=True, exist_ok=True)
-    plan = [(w, b, s) for w in args.scenario_list for b in args.behavior_list for s in range(args.seeds)]
-    results: List[RunResult] = []
-    broken: List[str] = []
+    plan = [PlannedRun(w, b, s) for w in args.scenario_list for b in args.behavior_list for s in range(args.seeds)]
+    kept = {run: result for run in plan if args.resume and (result := recorded(out / run.directory)) is not None}
+    todo = [run for run in plan if run not in kept]
     started = time.monotonic()
-    for index, (world, behavior, seed) in enumerate(plan):
-        label = f"{world} {behavior} seed {seed}"
-        progress(index, len(plan), started, label)
-        run_dir = out / f"{world}-{behavior}-{seed}"
-        result = recorded(run_dir) if args.resume else None
-        if result is None:
-            result = run_one(args, world, behavior, seed, run_dir)
-        if result is None:
-            broken.append(label)
-            continue
-        results.append(result)
-        (out / "results.csv").write_text(to_csv(results))  # written after every run: partial results survive
-        (out / "results.md").write_text(to_markdown(results))
-    progress(len(plan), len(plan), started, "done")
+
+    def on_result(evaluation: Evaluation, label: str) -> None:
+        ordered = [r for run in plan if (r := kept.get(run) or evaluation.results.get(run)) is not None]
+        (out / "results.csv").write_text(to_csv(ordered))  # rewritten after every run: partial results survive
+        (out / "results.md").write_text(to_markdown(ordered))
+        progress(len(evaluation.results) + len(evaluation.broken), len(todo), started, label)
+
+    progress(0, len(todo), started, "starting")
+    if args.cluster:
+        try:
+            client = connect_cluster(args.cluster)
+        except FlexNavError as err:
+            print(f"scenarios: {err}", file=sys.stderr)
+            return 2
+        with client:
+            evaluation = evaluate(todo, cluster_submitter(client, args, out), on_result)
+    else:
+        with ThreadPoolExecutor(max_workers=args.workers, thread_name_prefix="scenario-run") as pool:
+            evaluation = evaluate(todo, local_submitter(pool, args, out), on_result)
+    if not todo:
+        on_result(evaluation, "done")
     sys.stderr.write("\n")
-    print(to_markdown(results))
-    print(f"results: {out / 'results.md'}, {out / 'results.csv'}")
-    for label in broken:
-        print(f"run did not produce a result: {label} (see its run.log)", file=sys.stderr)
-    return 1 if broken else 0
+    print(to_markdown([r for run in plan if (r := kept.get(run) or evaluation.results.get(run)) is not None]))
+    print(f"results: {out / 'results.md'}, {out / 'results.csv'}; {len(evaluation.results)} run(s) on "
+          f"{len(set(evaluation.workers.values()))} worker(s) in {time.monotonic() - started:.0f} s")
+    for label in evaluation.retried:
+        print(f"run tried again: {label}", file=sys.stderr)
+    for label in evaluation.broken:
+        print(f"run did not produce a result: {label}", file=sys.stderr)
+    return 1 if evaluation.broken else 0
 
 
 if __name__ == "__main__":
