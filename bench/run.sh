@@ -18,7 +18,7 @@ status=0
 for name in "${names[@]}"; do
   script="$REPO/bench/bench_${name}.py"
   if [ ! -f "$script" ]; then
-    echo "[bench] no such bench: $script (valid: ${ALL[*]} classifier localization_accuracy)" >&2
+    echo "[bench] no such bench: $script (valid: ${ALL[*]} classifier localization_accuracy console_latency)" >&2
     exit 2
   fi
   echo "=== bench_${name} ==="

@@ -100,10 +100,10 @@
       case "robots": setRobots(data.robots); break;
       case "structure": onStructure(data); break;
       case "svg": onSvg(data); break;
-      case "status": robotState(data.robot).status = data; if (data.robot === current) showStatus(); break;
-      case "activity": robotState(data.robot).activity = data; if (data.robot === current) showActivity(); break;
+      case "status": robotState(data.robot).status = data; if (data.robot === current) soon("status"); break;
+      case "activity": robotState(data.robot).activity = data; if (data.robot === current) soon("activity"); break;
       case "transition": onTransition(data); break;
-      case "log": addLine(data.robot, "lines", data); if (data.robot === current) showLog(); break;
+      case "log": addLine(data.robot, "lines", data); if (data.robot === current) soon("log"); break;
       case "feedback": onFeedback(data); break;
       case "sent": onSent(data); break;
       case "refused": onRefused(data); break;
@@ -114,6 +114,24 @@
       case "goal_sent": onGoalSent(data); break;
       default: break;
     }
+  }
+
+  // Live events change the page at most once per frame: at 100 transitions/s, redrawing the lists per event
+  // falls seconds behind (measured in bench/bench_console_latency.py).
+  const dirty = new Set();
+  let frame = 0;
+  const RENDER = [["status", () => showStatus()], ["activity", () => showActivity()], ["log", () => showLog()],
+    ["transitions", () => showTransitions()], ["fired", () => markFired()]];
+
+  function soon(what) {
+    dirty.add(what);
+    if (!frame) frame = requestAnimationFrame(flush);
+  }
+
+  function flush() {
+    frame = 0;
+    for (const [what, render] of RENDER) if (dirty.has(what)) render();
+    dirty.clear();
   }
 
   function addLine(robot, key, item) {
@@ -155,14 +173,14 @@
     addLine(data.robot, "events", { kind: "transition", ...data });
     state.lastEdge = edgeId(data.path, data.outcome);
     state.lastEdgeAt = Date.now();
-    if (data.robot === current) { showTransitions(); markFired(); }
+    if (data.robot === current) { soon("transitions"); soon("fired"); }
   }
 
   function onSent(data) {
     const node = waiting.get(data.ref);
     if (node) showFeedback(node, `sent: ${[data.command, ...data.args].join(" ")}`, "pending");
     addLine(data.robot, "events", { kind: "command", text: `→ ${[data.command, ...data.args].join(" ")}` });
-    if (data.robot === current) showTransitions();
+    if (data.robot === current) soon("transitions");
   }
 
   function onRefused(data) {
@@ -181,7 +199,7 @@
     }
     addLine(data.robot, "events", { kind: "feedback", ok: data.ok,
       text: `← ${[data.command, ...data.args].join(" ")}: ${text}` });
-    if (data.robot === current) showTransitions();
+    if (data.robot === current) soon("transitions");
   }
 
   function showError(message) {
@@ -734,7 +752,7 @@
       `${(data.yaw * 180 / Math.PI).toFixed(0)} deg`;
     if (node) { showFeedback(node, text, "ok"); waiting.delete(data.ref); }
     addLine(data.robot, "events", { kind: "command", text: `→ ${text}` });
-    if (data.robot === current) showTransitions();
+    if (data.robot === current) soon("transitions");
   }
 
   // --- wiring -------------------------------------------------------------------------------------------------
