@@ -265,7 +265,12 @@ def test_a_goal_placed_by_clicking_the_map_is_reached(stack: Stack) -> None:
                                   "window.innerWidth, window.innerHeight];")
     assert math.dist(placed, home) < 0.1, f"{sent}: placed off {home}; view {view}, canvas {pixels} pixels, " \
         f"{width} x {height} CSS pixels, offset ({cx:.1f}, {cy:.1f}), layout {layout}"
-    stack.wait(lambda: _colour_pixels(stack, (0x15, 0x65, 0xC0)) > 20, "the global plan drawn", 30.0)
+    def plan_to_the_goal() -> bool:
+        drawn = json.loads(canvas.get_attribute("data-drawn") or "{}").get(ROBOT, {}).get("global_plan")
+        return bool(drawn) and drawn[0] >= 2 and math.dist(drawn[1], home) < 0.35
+
+    stack.wait(plan_to_the_goal, "the global plan to the placed goal drawn", 30.0)
+    assert _colour_pixels(stack, (0x15, 0x65, 0xC0)) > 10, "no pixel of the global plan's colour on the map"
     stack.wait(lambda: "--arrived--> Arrived" in stack.text("transitions"), "the goal reached (Arrived)", 120.0)
     end = stack.latest()
     assert end is not None, "no ground-truth odometry"

@@ -229,6 +229,11 @@
     $("status-reason").textContent = status ? status.reason : "";
     if (status) {
       $("autonomy-now").textContent = `autonomy ${LEVELS[status.autonomy] || status.autonomy}`;
+      const level = LEVELS[status.autonomy];
+      if (level && state.shownAutonomy !== level) {  // follow the runner's level when it changes, not on every status
+        state.shownAutonomy = level;
+        $("autonomy-level").value = level;
+      }
     }
   }
 
@@ -646,6 +651,15 @@
     ctx.drawImage(map.image, v.left, v.bottom - map.info.height * map.info.resolution * v.k,
       map.info.width * map.info.resolution * v.k, map.info.height * map.info.resolution * v.k);
     [...robots.keys()].forEach((name, index) => drawRobot(ctx, v, name, ROBOT_COLOURS[index % ROBOT_COLOURS.length]));
+    // what was drawn, for tools and tests: per robot and kind, the pose or [points, the last point]
+    const drawn = {};
+    for (const [name, state] of robots) {
+      drawn[name] = {};
+      for (const [kind, o] of Object.entries(state.overlays)) {
+        drawn[name][kind] = kind === "pose" ? [o.x, o.y] : [o.points.length, o.points[o.points.length - 1] || null];
+      }
+    }
+    canvas.dataset.drawn = JSON.stringify(drawn);
     if (map.drag) {
       const [ax, ay] = toCanvas(v, map.drag.x, map.drag.y);
       ctx.strokeStyle = map.drag.kind === "goal" ? "#1565c0" : "#2e7d32";
@@ -674,8 +688,8 @@
       ctx.fillStyle = "rgba(142, 36, 170, 0.6)";
       for (const [x, y] of o.particles.points) { const [cx, cy] = toCanvas(v, x, y); ctx.fillRect(cx - 1, cy - 1, 2, 2); }
     }
-    polyline(ctx, v, o.global_plan && o.global_plan.points, mine ? "#1565c0" : "rgba(21, 101, 192, 0.45)", 2);
-    polyline(ctx, v, o.local_plan && o.local_plan.points, "#2e7d32", 2.5);
+    polyline(ctx, v, o.global_plan && o.global_plan.points, mine ? "#1565c0" : "rgba(21, 101, 192, 0.45)", 4);
+    polyline(ctx, v, o.local_plan && o.local_plan.points, "#2e7d32", 1.5);  // thinner: the global plan shows beside
     if (o.scan) {
       ctx.fillStyle = "#d32f2f";
       for (const [x, y] of o.scan.points) { const [cx, cy] = toCanvas(v, x, y); ctx.fillRect(cx - 1.5, cy - 1.5, 3, 3); }
