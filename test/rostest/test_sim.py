@@ -79,6 +79,10 @@ class TestSim(unittest.TestCase):
         for robot, beams in (("robot1", 681), ("robot2", 681)):
             odom = self.odom[robot].last()
             self.assertEqual((odom.header.frame_id, odom.child_frame_id), (f"{robot}/odom", f"{robot}/base_footprint"))
+            for covariance in (odom.pose.covariance, odom.twist.covariance):  # planar: small, positive, diagonal
+                diagonal = [covariance[7 * i] for i in range(6)]
+                self.assertEqual(diagonal, [0.001, 0.001, 1e-6, 1e-6, 1e-6, 0.003])
+                self.assertEqual(sum(abs(c) for c in covariance), sum(diagonal))
             truth = self.truth[robot].last()
             self.assertEqual((truth.header.frame_id, truth.child_frame_id), ("map", f"{robot}/base_footprint"))
             scan = self.scan[robot].last()

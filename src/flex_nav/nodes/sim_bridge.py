@@ -89,7 +89,10 @@ KOBUKI_CODES = {"left": BumperEvent.LEFT, "center": BumperEvent.CENTER, "right":
 PACE_SLACK_S = 0.002  # [s] sleep only when this far ahead of the real-time schedule
 MAX_LAG_S = 0.25  # [s] further behind than this: re-anchor the schedule instead of bursting to catch up
 STATS_PERIOD_S = 30.0  # [s] wall time between log lines with the achieved real-time factor
-ODOM_COVARIANCE = (0.001, 0.001, 1e6, 1e6, 1e6, 0.003)  # diagonal [m^2, m^2, -, -, -, rad^2] (planar)
+# odometry covariance, diagonal [m^2, m^2, m^2, rad^2, rad^2, rad^2] (x, y, z, roll, pitch, yaw). The base is
+# planar: z, roll and pitch are known to be 0, so their variances are small (not 0: an EKF needs them positive;
+# not huge, as 1e6 once was: RViz's Odometry display draws the covariance to scale, over the whole view)
+ODOM_COVARIANCE = (0.001, 0.001, 1e-6, 1e-6, 1e-6, 0.003)
 INITIAL_STD_XY_M = 0.1  # [m] standard deviation of the published initial pose (an operator's click)
 INITIAL_STD_YAW_RAD = 0.1  # [rad]
 TELEPORT_WAIT_S = 5.0  # [s, wall] bound on waiting for the stepping thread to do a teleport
