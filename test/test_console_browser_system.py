@@ -275,3 +275,41 @@ def test_a_goal_placed_by_clicking_the_map_is_reached(stack: Stack) -> None:
     end = stack.latest()
     assert end is not None, "no ground-truth odometry"
     assert math.dist(home, end[1:3]) < 0.35, f"{sent}; the robot ended at {end[1:3]}"
+    drawn = json.loads(canvas.get_attribute("data-drawn") or "{}").get(ROBOT, {})
+    assert drawn.get("particles", [0])[0] > 0, f"the localizer's particles not drawn: {sorted(drawn)}"
+    assert math.dist(drawn["pose"], end[1:3]) < 0.2, f"the robot drawn at {drawn['pose']}, truly at {end[1:3]}"
+
+
+def test_an_initial_pose_placed_on_the_map_reaches_the_localizer(stack: Stack) -> None:
+    import json  # noqa: PLC0415
+
+    import rospy  # noqa: PLC0415
+    from geometry_msgs.msg import PoseWithCovarianceStamped  # noqa: PLC0415
+    from selenium.webdriver.common.action_chains import ActionChains  # noqa: PLC0415
+    from selenium.webdriver.common.by import By  # noqa: PLC0415
+
+    received: List[Any] = []
+    listener = rospy.Subscriber("/robot1/initialpose", PoseWithCovarianceStamped, received.append)
+    try:
+        here = stack.latest()
+        assert here is not None
+        stack.click('input[name="map-mode"][value="initial_pose"]')
+        canvas = stack.browser.driver.find_element(By.ID, "map")
+        stack.browser.script("arguments[0].scrollIntoView({block: 'center'});", canvas)
+        view = json.loads(canvas.get_attribute("data-view"))
+        pixels = stack.browser.script("const c = document.getElementById('map'); return [c.width, c.height];")
+        width, height = canvas.size["width"], canvas.size["height"]
+        cx = (view["left"] + (here[1] - view["ox"]) * view["k"]) * width / pixels[0] - width / 2
+        cy = (view["bottom"] - (here[2] - view["oy"]) * view["k"]) * height / pixels[1] - height / 2
+        ActionChains(stack.browser.driver).move_to_element_with_offset(canvas, round(cx), round(cy)) \
+            .click_and_hold().move_by_offset(0, -20).release().perform()  # pulled north: facing +y
+        stack.wait(lambda: stack.feedback("map").startswith("initial pose sent to /robot1/behavior_runner"),
+                   "the initial pose sent", 20.0)
+        stack.wait(lambda: bool(received), "the initial pose on /robot1/initialpose", 10.0)
+        pose = received[-1].pose.pose
+        assert received[-1].header.frame_id == "map"
+        assert math.dist((pose.position.x, pose.position.y), here[1:3]) < 0.1
+        assert pose.orientation.z == pytest.approx(math.sin(math.pi / 4), abs=0.05)  # yaw 90 deg
+        assert received[-1].pose.covariance[0] == pytest.approx(0.25)
+    finally:
+        listener.unregister()

@@ -7,8 +7,9 @@ functions take):
 ``map``        frame, resolution [m/cell], width, height [cells], origin [x m, y m, yaw rad], png (base64 of a
                grayscale PNG, row 0 = the map's top, i.e. its largest y), version
 ``map_patch``  version, x, y, width, height [cells: the rectangle's top-left column and row in the PNG's rows], png
-``overlay``    robot, kind (``pose``, ``global_plan``, ``local_plan``, ``scan``, ``particles``), stamp [s] and
-               ``pose``: x, y, yaw, radius [m, rad]; the others: points [[x, y], ...] (particles [[x, y, yaw]]),
+``overlay``    robot, kind (``pose``, ``global_plan``, ``local_plan``, ``scan``, ``particles``, ``people``), stamp [s]
+               and ``pose``: x, y, yaw, radius [m, rad]; the others: points [[x, y], ...] (particles and tracked
+               people [[x, y, yaw]]),
                in the map frame, rounded to millimetres and thinned to at most the kind's point budget
 
 From a page: ``{"type": "goal", "id", "robot", "kind": "goal" | "initial_pose", "x", "y", "yaw"}`` in the map
@@ -30,9 +31,10 @@ import numpy as np
 from flex_nav.console.errors import CommandRefused, MapViewError
 
 GOAL_KINDS = ("goal", "initial_pose")
-OVERLAY_KINDS = ("pose", "global_plan", "local_plan", "scan", "particles")
-MAX_POINTS = {"global_plan": 2000, "local_plan": 500, "scan": 720, "particles": 500}  # per overlay message
-MIN_PERIOD_S = {"pose": 0.1, "global_plan": 0.2, "local_plan": 0.2, "scan": 0.2, "particles": 0.5}  # [s]
+OVERLAY_KINDS = ("pose", "global_plan", "local_plan", "scan", "particles", "people")
+MAX_POINTS = {"global_plan": 2000, "local_plan": 500, "scan": 720, "particles": 500, "people": 100}  # per message
+MIN_PERIOD_S = {"pose": 0.1, "global_plan": 0.2, "local_plan": 0.2, "scan": 0.2, "particles": 0.5,
+                "people": 0.2}  # [s]
 MAX_MAP_CELLS = 25_000_000  # a 5000 x 5000 grid; a larger one is not shown
 PNG_LEVEL = 6  # zlib level of the map's PNG (a 2000 x 2000 map: ~60 ms here)
 # map_server's picture of a grid: free white, occupied black, unknown grey; costs in between shade linearly
@@ -165,11 +167,12 @@ def scan_overlay(robot: str, stamp: float, *, ranges: Sequence[float] | np.ndarr
             "points": _points(rows, MAX_POINTS["scan"])}
 
 
-def particles_overlay(robot: str, stamp: float, poses: np.ndarray) -> Dict[str, Any]:
-    """The localizer's particles, (x [m], y [m], yaw [rad]) rows in the map frame."""
+def poses_overlay(robot: str, kind: str, stamp: float, poses: np.ndarray) -> Dict[str, Any]:
+    """The localizer's ``particles`` or the tracked ``people``: (x [m], y [m], yaw [rad]) rows in the map frame."""
+    if kind not in ("particles", "people"):
+        raise MapViewError(f"overlay kind {kind!r} is not a set of poses (valid: particles, people)")
     rows = np.asarray(poses, dtype=float).reshape(-1, 3)
-    return {"type": "overlay", "robot": robot, "kind": "particles", "stamp": stamp,
-            "points": _points(rows, MAX_POINTS["particles"])}
+    return {"type": "overlay", "robot": robot, "kind": kind, "stamp": stamp, "points": _points(rows, MAX_POINTS[kind])}
 
 
 class Throttle:

@@ -8,7 +8,8 @@ subscribes each runner's ``status``, ``activity``, ``structure``, ``log``, ``tra
 
 The map view: the latched ``~map_topic`` (OccupancyGrid) and, in each runner's namespace (``/robot1`` for
 ``/robot1/behavior_runner``), ``get_path_server/plan`` and ``follow_path_server/plan`` (nav_msgs/Path),
-``scan`` (LaserScan, carried into the map frame by tf) and ``particlecloud`` (PoseArray, the localizer's); the
+``scan`` (LaserScan, carried into the map frame by tf), ``particlecloud`` (PoseArray, the localizer's) and the
+controllers' tracked people (``pure_pursuit_path/people``, ``pure_pursuit_topic/people``, PoseArray); the
 robot's pose is tf's ``map -> <ns>/base_footprint`` every ``pose_period_s`` and its footprint the circle of the
 namespace's ``robot_radius`` parameter. Goals placed on the page are published as PoseStamped on
 ``<ns>/<goal_topic>``, initial poses as PoseWithCovarianceStamped on ``<ns>/initialpose`` (RViz's covariance).
@@ -58,9 +59,9 @@ from flex_nav.console.mapview import (
     GoalRequest,
     GridGeometry,
     Throttle,
-    particles_overlay,
     path_overlay,
     pose_overlay,
+    poses_overlay,
     robot_namespace,
     scan_overlay,
 )
@@ -155,7 +156,10 @@ class MapLink:
             rospy.Subscriber(f"{ns}/follow_path_server/plan", Path, self._on_plan, callback_args="local_plan",
                              queue_size=1),
             rospy.Subscriber(f"{ns}/scan", LaserScan, self._on_scan, queue_size=1),
-            rospy.Subscriber(f"{ns}/particlecloud", PoseArray, self._on_particles, queue_size=1),
+            rospy.Subscriber(f"{ns}/particlecloud", PoseArray, self._on_poses, callback_args="particles",
+                             queue_size=1),
+            *(rospy.Subscriber(f"{ns}/{controller}/people", PoseArray, self._on_poses, callback_args="people",
+                               queue_size=1) for controller in ("pure_pursuit_path", "pure_pursuit_topic")),
         ]
 
     def _due(self, kind: str) -> bool:
@@ -202,14 +206,14 @@ class MapLink:
                 angle_increment=msg.angle_increment, range_min=msg.range_min, range_max=msg.range_max,
                 laser_pose=laser))
 
-    def _on_particles(self, msg: PoseArray) -> None:
-        if not self._due("particles"):
+    def _on_poses(self, msg: PoseArray, kind: str) -> None:
+        if not self._due(kind):
             return
         rows = np.array([(p.position.x, p.position.y, _yaw(p.orientation)) for p in msg.poses],
                         dtype=float).reshape(-1, 3)
         points = self._transformed(msg.header.frame_id, rows)
         if points is not None:
-            self.console.submit_overlay(particles_overlay(self.runner, msg.header.stamp.to_sec(), points))
+            self.console.submit_overlay(poses_overlay(self.runner, kind, msg.header.stamp.to_sec(), points))
 
     def publish_pose(self) -> None:
         pose = self._to_map(self.base_frame)

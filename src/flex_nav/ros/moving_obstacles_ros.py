@@ -12,7 +12,9 @@ everything the scan sees; the static mask and the tracks handed to the controlle
 frame (the newest transform). The yield rule's parameters are :class:`flex_nav.nav.control.yielding.YieldParams`
 by name under ``~yielding/``; ``robot_radius_m`` defaults to the local costmap's inscribed radius and
 ``speed_mps`` to pure pursuit's ``desired_linear_vel``. Publishes std_msgs/Bool ``~yielding``: True on every
-control tick spent giving way, False once when that ends (for a progress monitor, see ``StuckMonitorState``).
+control tick spent giving way, False once when that ends (for a progress monitor, see ``StuckMonitorState``), and,
+when someone listens (the operator console's map), geometry_msgs/PoseArray ``~people``: the confirmed tracks at
+each scan's stamp in the tracking frame, each facing its direction of motion.
 """
 
 from __future__ import annotations
@@ -25,6 +27,7 @@ from typing import List, Optional, Tuple
 import numpy as np
 import rospy
 import tf2_ros
+from geometry_msgs.msg import Pose, PoseArray
 from nav_msgs.msg import OccupancyGrid
 from sensor_msgs.msg import LaserScan as LaserScanMsg
 from std_msgs.msg import Bool
@@ -63,6 +66,19 @@ def yield_rule(robot_radius_m: float, speed_mps: float) -> YieldRule:
         raise ConfigError(f"{rospy.resolve_name(YIELD_NS)}: {err}") from err
 
 
+def people_message(tracks: List[Track], frame: str, stamp: rospy.Time) -> PoseArray:
+    """The tracks as a PoseArray in ``frame``: each at its centre, facing its velocity (yaw 0 when standing)."""
+    msg = PoseArray()
+    msg.header.frame_id, msg.header.stamp = frame, stamp
+    for track in tracks:
+        pose = Pose()
+        pose.position.x, pose.position.y = track.x, track.y
+        yaw = math.atan2(track.vy, track.vx) if track.speed > 0.0 else 0.0
+        pose.orientation.z, pose.orientation.w = math.sin(yaw / 2.0), math.cos(yaw / 2.0)
+        msg.poses.append(pose)
+    return msg
+
+
 class MovingObstaclesROS:
     """Scan (+ map) -> tracks in ``global_frame``; :meth:`tracks` is safe to call from the control loop."""
 
@@ -83,6 +99,7 @@ class MovingObstaclesROS:
         self.tracker = MovingObstacleTracker(params)
         self._last_kind: Optional[Tuple[YieldMode, Optional[int]]] = None  # (mode, track) last logged
         self.yielding_publisher = rospy.Publisher("~yielding", Bool, queue_size=1)
+        self.people_publisher = rospy.Publisher("~people", PoseArray, queue_size=1)
         scan_topic = param_str(TRACKER_NS + "scan_topic", "scan")
         map_topic = param_str(TRACKER_NS + "map_topic", "map")
         self._subscribers = [rospy.Subscriber(scan_topic, LaserScanMsg, self._on_scan, queue_size=1)]
@@ -127,6 +144,10 @@ class MovingObstaclesROS:
             xs, ys = np.where(keep, xs, np.nan), np.where(keep, ys, np.nan)
         with self.lock:
             self.tracker.update_scan(xs, ys, (lx, ly), msg.header.stamp.to_sec(), wrap=bool(full_circle))
+            listened = self.people_publisher.get_num_connections() > 0
+            shown = self.tracker.tracks(msg.header.stamp.to_sec()) if listened else None
+        if shown is not None:
+            self.people_publisher.publish(people_message(shown, self.tracking_frame, msg.header.stamp))
 
     def _planar(self, target: str, source: str, stamp: rospy.Time) -> Tuple[float, float, float]:
         if target == source.lstrip("/"):

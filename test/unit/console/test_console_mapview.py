@@ -26,9 +26,9 @@ from flex_nav.console.mapview import (
     MapPicture,
     Throttle,
     check_goal,
-    particles_overlay,
     path_overlay,
     pose_overlay,
+    poses_overlay,
     robot_namespace,
     scan_overlay,
 )
@@ -92,8 +92,12 @@ def test_overlays_are_in_the_map_frame_rounded_and_thinned() -> None:
     assert plan["points"][0] == [0.0, 0.0] and plan["points"][-1] == [10.0, 0.0]  # both ends kept
     with pytest.raises(MapViewError, match="'scan' is not a plan"):
         path_overlay(ROBOT, "scan", 3.0, long_plan)
-    cloud = particles_overlay(ROBOT, 4.0, np.zeros((2000, 3)))
+    cloud = poses_overlay(ROBOT, "particles", 4.0, np.zeros((2000, 3)))
     assert len(cloud["points"]) == MAX_POINTS["particles"] and len(cloud["points"][0]) == 3
+    people = poses_overlay(ROBOT, "people", 4.0, np.array([[1.0, 2.0, 0.5]]))
+    assert people["kind"] == "people" and people["points"] == [[1.0, 2.0, 0.5]]
+    with pytest.raises(MapViewError, match="'scan' is not a set of poses"):
+        poses_overlay(ROBOT, "scan", 4.0, np.zeros((1, 3)))
 
 
 def test_the_throttle_lets_one_overlay_of_a_kind_through_per_period() -> None:

@@ -694,6 +694,21 @@
       ctx.fillStyle = "#d32f2f";
       for (const [x, y] of o.scan.points) { const [cx, cy] = toCanvas(v, x, y); ctx.fillRect(cx - 1.5, cy - 1.5, 3, 3); }
     }
+    if (o.people) {  // tracked people: a 0.25 m disc facing the way they walk
+      ctx.strokeStyle = "#e65100";
+      ctx.fillStyle = "rgba(249, 168, 37, 0.55)";
+      ctx.lineWidth = 1.5;
+      for (const [x, y, yaw] of o.people.points) {
+        const [cx, cy] = toCanvas(v, x, y);
+        const r = Math.max(3, 0.25 * v.k);
+        ctx.beginPath();
+        ctx.arc(cx, cy, r, 0, 2 * Math.PI);
+        ctx.fill();
+        ctx.moveTo(cx, cy);
+        ctx.lineTo(cx + Math.cos(yaw) * r * 1.5, cy - Math.sin(yaw) * r * 1.5);
+        ctx.stroke();
+      }
+    }
     if (o.pose) {
       const [cx, cy] = toCanvas(v, o.pose.x, o.pose.y);
       const r = Math.max(3, o.pose.radius * v.k);
