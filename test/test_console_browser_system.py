@@ -226,10 +226,26 @@ def _colour_pixels(stack: Stack, rgb: Tuple[int, int, int]) -> int:
         "return n;", *rgb))
 
 
+def _on_canvas(stack: Stack, canvas: Any, point: Tuple[float, float]) -> Tuple[int, int]:
+    """Selenium's offset (CSS pixels from the element's centre) of map point (x, y) [m] on the map's canvas, the
+    canvas scrolled wholly into view first (an action's offset counts from the centre of the element's visible
+    part, W3C's in-view centre)."""
+    import json  # noqa: PLC0415
+
+    stack.browser.script("arguments[0].scrollIntoView({block: 'center'});", canvas)
+    view = json.loads(canvas.get_attribute("data-view"))
+    pixels = stack.browser.script("const c = document.getElementById('map'); return [c.width, c.height];")
+    width, height = canvas.size["width"], canvas.size["height"]
+    cx = (view["left"] + (point[0] - view["ox"]) * view["k"]) * width / pixels[0] - width / 2
+    cy = (view["bottom"] - (point[1] - view["oy"]) * view["k"]) * height / pixels[1] - height / 2
+    return round(cx), round(cy)
+
+
 def test_a_goal_placed_by_clicking_the_map_is_reached(stack: Stack) -> None:
     import json  # noqa: PLC0415
 
     from selenium.webdriver.common.action_chains import ActionChains  # noqa: PLC0415
+    from selenium.webdriver.common.actions.wheel_input import ScrollOrigin  # noqa: PLC0415
     from selenium.webdriver.common.by import By  # noqa: PLC0415
 
     _set_parameter(stack, "navigate", "flex_navigate")
@@ -246,25 +262,19 @@ def test_a_goal_placed_by_clicking_the_map_is_reached(stack: Stack) -> None:
     here = stack.latest()
     assert here is not None and math.dist(home, here[1:3]) > 0.3, "the robot should be away from its start"
     canvas = stack.browser.driver.find_element(By.ID, "map")
-    # wholly in view: an action's offset counts from the centre of the element's visible part (W3C in-view centre)
-    stack.browser.script("arguments[0].scrollIntoView({block: 'center'});", canvas)
-    view = json.loads(canvas.get_attribute("data-view"))
-    pixels = stack.browser.script("const c = document.getElementById('map'); return [c.width, c.height];")
-    width, height = canvas.size["width"], canvas.size["height"]
-    sx, sy = width / pixels[0], height / pixels[1]  # CSS pixels per canvas pixel
-    # Selenium's offsets are from the element's centre, in CSS pixels
-    cx = (view["left"] + (home[0] - view["ox"]) * view["k"]) * sx - width / 2
-    cy = (view["bottom"] - (home[1] - view["oy"]) * view["k"]) * sy - height / 2
-    ActionChains(stack.browser.driver).move_to_element_with_offset(canvas, round(cx), round(cy)).click_and_hold() \
+    fitted = json.loads(canvas.get_attribute("data-view"))["k"]
+    x, y = _on_canvas(stack, canvas, home)
+    ActionChains(stack.browser.driver).scroll_from_origin(ScrollOrigin.from_element(canvas, x, y), 0, -100) \
+        .perform()  # zoom in about the robot's start: the goal is placed on the zoomed map
+    stack.wait(lambda: json.loads(canvas.get_attribute("data-view"))["k"] > fitted * 1.2, "the map zoomed in")
+    x, y = _on_canvas(stack, canvas, home)
+    ActionChains(stack.browser.driver).move_to_element_with_offset(canvas, x, y).click_and_hold() \
         .move_by_offset(-20, 0).release().perform()  # pulled west: the goal faces west
     stack.wait(lambda: stack.feedback("map").startswith("goal sent to /robot1/behavior_runner"), "the goal sent")
     sent = stack.feedback("map")
     placed = [float(v) for v in sent.split("(")[1].split(")")[0].split(",")]
-    layout = stack.browser.script("const r = document.getElementById('map').getBoundingClientRect(); "
-                                  "return [r.left, r.top, r.width, r.height, window.scrollX, window.scrollY, "
-                                  "window.innerWidth, window.innerHeight];")
-    assert math.dist(placed, home) < 0.1, f"{sent}: placed off {home}; view {view}, canvas {pixels} pixels, " \
-        f"{width} x {height} CSS pixels, offset ({cx:.1f}, {cy:.1f}), layout {layout}"
+    assert math.dist(placed, home) < 0.1, f"{sent}: placed off {home} (view {canvas.get_attribute('data-view')})"
+    assert sent.endswith(", 180 deg"), sent
     def plan_to_the_goal() -> bool:
         drawn = json.loads(canvas.get_attribute("data-drawn") or "{}").get(ROBOT, {}).get("global_plan")
         return bool(drawn) and drawn[0] >= 2 and math.dist(drawn[1], home) < 0.35
@@ -295,13 +305,11 @@ def test_an_initial_pose_placed_on_the_map_reaches_the_localizer(stack: Stack) -
         assert here is not None
         stack.click('input[name="map-mode"][value="initial_pose"]')
         canvas = stack.browser.driver.find_element(By.ID, "map")
-        stack.browser.script("arguments[0].scrollIntoView({block: 'center'});", canvas)
-        view = json.loads(canvas.get_attribute("data-view"))
-        pixels = stack.browser.script("const c = document.getElementById('map'); return [c.width, c.height];")
-        width, height = canvas.size["width"], canvas.size["height"]
-        cx = (view["left"] + (here[1] - view["ox"]) * view["k"]) * width / pixels[0] - width / 2
-        cy = (view["bottom"] - (here[2] - view["oy"]) * view["k"]) * height / pixels[1] - height / 2
-        ActionChains(stack.browser.driver).move_to_element_with_offset(canvas, round(cx), round(cy)) \
+        zoomed = json.loads(canvas.get_attribute("data-view"))["k"]
+        stack.click("#map-fit")
+        stack.wait(lambda: json.loads(canvas.get_attribute("data-view"))["k"] < zoomed / 1.2, "the map fitted again")
+        x, y = _on_canvas(stack, canvas, (here[1], here[2]))
+        ActionChains(stack.browser.driver).move_to_element_with_offset(canvas, x, y) \
             .click_and_hold().move_by_offset(0, -20).release().perform()  # pulled north: facing +y
         stack.wait(lambda: stack.feedback("map").startswith("initial pose sent to /robot1/behavior_runner"),
                    "the initial pose sent", 20.0)

@@ -580,7 +580,12 @@
   // --- the map ------------------------------------------------------------------------------------------------
   // The grid arrives as a PNG (row 0 = largest y) and is kept on an offscreen canvas; patches are drawn into it.
   // Everything else is drawn in map metres: canvas x = left + (x - ox) * k, canvas y = bottom - (y - oy) * k.
-  const map = { info: null, image: null, version: 0, view: null, drag: null, pending: false };
+  // zoom (1 = the whole map fits) and centre [x, y] in map metres (null: the map's centre); wheel zooms about the
+  // pointer, a drag with the right or middle button (or with Shift) pans, "fit" resets
+  const map = { info: null, image: null, version: 0, view: null, drag: null, pan: null, pending: false, zoom: 1,
+    centre: null };
+  const ZOOM_STEP = 1.25;
+  const MAX_ZOOM = 64;
   const ROBOT_COLOURS = ["#ef6c00", "#00838f", "#6d4c41", "#c2185b"];
 
   function loadPng(png, done) {
@@ -590,6 +595,9 @@
   }
 
   function onMap(data) {
+    const old = map.info;
+    if (!old || old.width !== data.width || old.height !== data.height || old.resolution !== data.resolution ||
+        old.origin.join() !== data.origin.join()) { map.zoom = 1; map.centre = null; }  // another map: fit it
     map.info = data;
     map.version = data.version;
     loadPng(data.png, (img) => {
@@ -626,10 +634,28 @@
     const info = map.info;
     const widthM = info.width * info.resolution;
     const heightM = info.height * info.resolution;
-    const k = Math.min(canvas.width / widthM, canvas.height / heightM);
-    const left = (canvas.width - widthM * k) / 2;
-    const bottom = canvas.height - (canvas.height - heightM * k) / 2;
-    return { k, left, bottom, ox: info.origin[0], oy: info.origin[1] };
+    const k = Math.min(canvas.width / widthM, canvas.height / heightM) * map.zoom;
+    const [ox, oy] = info.origin;
+    const [cx, cy] = map.centre || [ox + widthM / 2, oy + heightM / 2];
+    return { k, left: canvas.width / 2 - (cx - ox) * k, bottom: canvas.height / 2 + (cy - oy) * k, ox, oy };
+  }
+
+  function onMapWheel(event) {
+    if (!map.view) return;
+    event.preventDefault();
+    const canvas = $("map");
+    const [px, py] = mapPoint(event);
+    const [x, y] = toMap(map.view, px, py);
+    map.zoom = Math.min(MAX_ZOOM, Math.max(1, map.zoom * (event.deltaY < 0 ? ZOOM_STEP : 1 / ZOOM_STEP)));
+    const k = mapView(canvas).k;  // the new scale; the point under the pointer stays there
+    map.centre = [x + (canvas.width / 2 - px) / k, y - (canvas.height / 2 - py) / k];
+    drawMap();
+  }
+
+  function fitMap() {
+    map.zoom = 1;
+    map.centre = null;
+    drawMapSoon();
   }
 
   const toCanvas = (v, x, y) => [v.left + (x - v.ox) * v.k, v.bottom - (y - v.oy) * v.k];
@@ -743,7 +769,15 @@
   }
 
   function onMapDown(event) {
-    if (!map.view || event.button !== 0) return;
+    if (!map.view) return;
+    if (event.button === 1 || event.button === 2 || (event.button === 0 && event.shiftKey)) {
+      const [cx, cy] = mapPoint(event);
+      const v = map.view;
+      map.pan = { cx, cy, centre: toMap(v, $("map").width / 2, $("map").height / 2) };
+      $("map").setPointerCapture(event.pointerId);
+      return;
+    }
+    if (event.button !== 0) return;
     const [cx, cy] = mapPoint(event);
     const [x, y] = toMap(map.view, cx, cy);
     map.drag = { x, y, cx, cy, sx: cx, sy: cy, kind: mapMode() };
@@ -752,12 +786,20 @@
   }
 
   function onMapMove(event) {
+    if (map.pan) {
+      const [cx, cy] = mapPoint(event);
+      const k = map.view ? map.view.k : 1;
+      map.centre = [map.pan.centre[0] - (cx - map.pan.cx) / k, map.pan.centre[1] + (cy - map.pan.cy) / k];
+      drawMapSoon();
+      return;
+    }
     if (!map.drag) return;
     [map.drag.cx, map.drag.cy] = mapPoint(event);
     drawMapSoon();
   }
 
   function onMapUp(event) {
+    if (map.pan) { map.pan = null; return; }
     const drag = map.drag;
     map.drag = null;
     drawMapSoon();
@@ -793,7 +835,10 @@
     canvas.addEventListener("pointerdown", onMapDown);
     canvas.addEventListener("pointermove", onMapMove);
     canvas.addEventListener("pointerup", onMapUp);
-    canvas.addEventListener("pointercancel", () => { map.drag = null; drawMapSoon(); });
+    canvas.addEventListener("pointercancel", () => { map.drag = null; map.pan = null; drawMapSoon(); });
+    canvas.addEventListener("wheel", onMapWheel, { passive: false });
+    canvas.addEventListener("contextmenu", (event) => event.preventDefault());
+    $("map-fit").addEventListener("click", fitMap);
     window.addEventListener("resize", drawMapSoon);
     if (typeof ResizeObserver === "function") new ResizeObserver(drawMapSoon).observe(canvas);  // layout changes
     const run = document.querySelector('[data-feedback="run"]');
