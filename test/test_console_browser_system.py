@@ -287,7 +287,8 @@ def test_a_goal_placed_by_clicking_the_map_is_reached(stack: Stack) -> None:
     assert math.dist(home, end[1:3]) < 0.35, f"{sent}; the robot ended at {end[1:3]}"
     drawn = json.loads(canvas.get_attribute("data-drawn") or "{}").get(ROBOT, {})
     assert drawn.get("particles", [0])[0] > 0, f"the localizer's particles not drawn: {sorted(drawn)}"
-    assert math.dist(drawn["pose"], end[1:3]) < 0.2, f"the robot drawn at {drawn['pose']}, truly at {end[1:3]}"
+    assert math.dist(drawn["pose"][:2], end[1:3]) < 0.2, f"the robot drawn at {drawn['pose']}, truly at {end[1:3]}"
+    assert drawn["pose"][2] >= 3, "the controller's footprint polygon not drawn"
 
 
 def test_an_initial_pose_placed_on_the_map_reaches_the_localizer(stack: Stack) -> None:

@@ -8,9 +8,10 @@ functions take):
                grayscale PNG, row 0 = the map's top, i.e. its largest y), version
 ``map_patch``  version, x, y, width, height [cells: the rectangle's top-left column and row in the PNG's rows], png
 ``overlay``    robot, kind (``pose``, ``global_plan``, ``local_plan``, ``scan``, ``particles``, ``people``), stamp [s]
-               and ``pose``: x, y, yaw, radius [m, rad]; the others: points [[x, y], ...] (particles and tracked
-               people [[x, y, yaw]]),
-               in the map frame, rounded to millimetres and thinned to at most the kind's point budget
+               and ``pose``: x, y, yaw, radius [m, rad] and footprint ([[x, y], ...] in the robot's base frame,
+               when the robot publishes one; else the circle of radius); the others: points [[x, y], ...]
+               (particles and tracked people [[x, y, yaw]]), in the map frame, rounded to millimetres and thinned to
+               at most the kind's point budget
 
 From a page: ``{"type": "goal", "id", "robot", "kind": "goal" | "initial_pose", "x", "y", "yaw"}`` in the map
 frame; :func:`check_goal` refuses a robot not on the master, a non-finite number, a point off the map.
@@ -35,6 +36,7 @@ OVERLAY_KINDS = ("pose", "global_plan", "local_plan", "scan", "particles", "peop
 MAX_POINTS = {"global_plan": 2000, "local_plan": 500, "scan": 720, "particles": 500, "people": 100}  # per message
 MIN_PERIOD_S = {"pose": 0.1, "global_plan": 0.2, "local_plan": 0.2, "scan": 0.2, "particles": 0.5,
                 "people": 0.2}  # [s]
+MAX_FOOTPRINT_POINTS = 64
 MAX_MAP_CELLS = 25_000_000  # a 5000 x 5000 grid; a larger one is not shown
 PNG_LEVEL = 6  # zlib level of the map's PNG (a 2000 x 2000 map: ~60 ms here)
 # map_server's picture of a grid: free white, occupied black, unknown grey; costs in between shade linearly
@@ -137,11 +139,16 @@ def _points(values: np.ndarray, budget: int) -> List[List[float]]:
     return rows
 
 
-def pose_overlay(robot: str, stamp: float, pose: Tuple[float, float, float], radius: float) -> Dict[str, Any]:
-    """A robot's ``pose`` (x [m], y [m], yaw [rad]) and its round footprint's ``radius`` [m] in the map frame."""
+def pose_overlay(robot: str, stamp: float, pose: Tuple[float, float, float], radius: float,
+                 footprint: Optional[np.ndarray] = None) -> Dict[str, Any]:
+    """A robot's ``pose`` (x [m], y [m], yaw [rad]) in the map frame, the ``radius`` [m] of its round footprint and
+    its ``footprint`` polygon ((x, y) rows [m] in its base frame; None: draw the circle)."""
     x, y, yaw = pose
-    return {"type": "overlay", "robot": robot, "kind": "pose", "stamp": stamp, "x": round(x, 3), "y": round(y, 3),
-            "yaw": round(yaw, 4), "radius": round(radius, 3)}
+    event = {"type": "overlay", "robot": robot, "kind": "pose", "stamp": stamp, "x": round(x, 3), "y": round(y, 3),
+             "yaw": round(yaw, 4), "radius": round(radius, 3)}
+    if footprint is not None and len(footprint) >= 3:
+        event["footprint"] = _points(np.asarray(footprint, dtype=float).reshape(-1, 2), MAX_FOOTPRINT_POINTS)
+    return event
 
 
 def path_overlay(robot: str, kind: str, stamp: float, points: np.ndarray) -> Dict[str, Any]:

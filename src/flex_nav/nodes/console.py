@@ -10,8 +10,9 @@ The map view: the latched ``~map_topic`` (OccupancyGrid) and, in each runner's n
 ``/robot1/behavior_runner``), ``get_path_server/plan`` and ``follow_path_server/plan`` (nav_msgs/Path),
 ``scan`` (LaserScan, carried into the map frame by tf), ``particlecloud`` (PoseArray, the localizer's) and the
 controllers' tracked people (``pure_pursuit_path/people``, ``pure_pursuit_topic/people``, PoseArray); the
-robot's pose is tf's ``map -> <ns>/base_footprint`` every ``pose_period_s`` and its footprint the circle of the
-namespace's ``robot_radius`` parameter. Goals placed on the page are published as PoseStamped on
+robot's pose is tf's ``map -> <ns>/base_footprint`` every ``pose_period_s`` and its footprint the polygon the
+controller latches on ``<ns>/footprint`` (PolygonStamped in the base frame), else the circle of the namespace's
+``robot_radius`` parameter. Goals placed on the page are published as PoseStamped on
 ``<ns>/<goal_topic>``, initial poses as PoseWithCovarianceStamped on ``<ns>/initialpose`` (RViz's covariance).
 
 Parameters (private; unknown names are refused):
@@ -46,7 +47,7 @@ from typing import Any, Callable, Dict, List, Sequence, Tuple
 import numpy as np
 import rospy
 import tf2_ros
-from geometry_msgs.msg import PoseArray, PoseStamped, PoseWithCovarianceStamped
+from geometry_msgs.msg import PolygonStamped, PoseArray, PoseStamped, PoseWithCovarianceStamped
 from nav_msgs.msg import OccupancyGrid, Path
 from rospy.numpy_msg import numpy_msg
 from sensor_msgs.msg import LaserScan
@@ -148,6 +149,7 @@ class MapLink:
         self.base_frame = f"{ns.strip('/')}/base_footprint" if ns else "base_footprint"
         radius = rospy.get_param(f"{ns}/robot_radius", DEFAULT_RADIUS_M)
         self.radius_m = float(radius) if isinstance(radius, (int, float)) else DEFAULT_RADIUS_M
+        self.footprint: np.ndarray | None = None  # (x, y) rows [m] in the base frame, from <ns>/footprint
         self.goal_publisher = rospy.Publisher(f"{ns}/{view.goal_topic}", PoseStamped, queue_size=1)
         self.pose_publisher = rospy.Publisher(f"{ns}/initialpose", PoseWithCovarianceStamped, queue_size=1)
         self.subscribers = [
@@ -156,6 +158,7 @@ class MapLink:
             rospy.Subscriber(f"{ns}/follow_path_server/plan", Path, self._on_plan, callback_args="local_plan",
                              queue_size=1),
             rospy.Subscriber(f"{ns}/scan", LaserScan, self._on_scan, queue_size=1),
+            rospy.Subscriber(f"{ns}/footprint", PolygonStamped, self._on_footprint, queue_size=1),
             rospy.Subscriber(f"{ns}/particlecloud", PoseArray, self._on_poses, callback_args="particles",
                              queue_size=1),
             *(rospy.Subscriber(f"{ns}/{controller}/people", PoseArray, self._on_poses, callback_args="people",
@@ -196,6 +199,9 @@ class MapLink:
         if points is not None:
             self.console.submit_overlay(path_overlay(self.runner, kind, msg.header.stamp.to_sec(), points))
 
+    def _on_footprint(self, msg: PolygonStamped) -> None:
+        self.footprint = np.array([(p.x, p.y) for p in msg.polygon.points], dtype=float).reshape(-1, 2)
+
     def _on_scan(self, msg: LaserScan) -> None:
         if not self._due("scan"):
             return
@@ -218,7 +224,8 @@ class MapLink:
     def publish_pose(self) -> None:
         pose = self._to_map(self.base_frame)
         if pose is not None:
-            self.console.submit_overlay(pose_overlay(self.runner, rospy.get_time(), pose, self.radius_m))
+            self.console.submit_overlay(pose_overlay(self.runner, rospy.get_time(), pose, self.radius_m,
+                                                     self.footprint))
 
     def send(self, request: GoalRequest) -> None:
         publisher = self.goal_publisher if request.kind == "goal" else self.pose_publisher

@@ -82,6 +82,10 @@ def test_overlays_are_in_the_map_frame_rounded_and_thinned() -> None:
     pose = pose_overlay(ROBOT, 1.5, (1.23456, -2.0, 0.5), 0.177)
     assert pose == {"type": "overlay", "robot": ROBOT, "kind": "pose", "stamp": 1.5, "x": 1.235, "y": -2.0,
                     "yaw": 0.5, "radius": 0.177}
+    square = np.array([[0.2, 0.2], [-0.2, 0.2], [-0.2, -0.2], [0.2, -0.20004]])
+    with_polygon = pose_overlay(ROBOT, 1.5, (0.0, 0.0, 0.0), 0.2, square)
+    assert with_polygon["footprint"] == [[0.2, 0.2], [-0.2, 0.2], [-0.2, -0.2], [0.2, -0.2]]
+    assert "footprint" not in pose_overlay(ROBOT, 1.5, (0.0, 0.0, 0.0), 0.2, square[:2])  # not a polygon
     # a laser at (1, 2) facing +y: a reading of 1 m straight ahead ends at (1, 3); out of range / inf dropped
     scan = scan_overlay(ROBOT, 2.0, ranges=[1.0, float("inf"), 9.0, 0.01], angle_min=0.0, angle_increment=0.1,
                         range_min=0.05, range_max=5.0, laser_pose=(1.0, 2.0, math.pi / 2))

@@ -682,7 +682,8 @@
     for (const [name, state] of robots) {
       drawn[name] = {};
       for (const [kind, o] of Object.entries(state.overlays)) {
-        drawn[name][kind] = kind === "pose" ? [o.x, o.y] : [o.points.length, o.points[o.points.length - 1] || null];
+        drawn[name][kind] = kind === "pose" ? [o.x, o.y, o.footprint ? o.footprint.length : 0]
+          : [o.points.length, o.points[o.points.length - 1] || null];
       }
     }
     canvas.dataset.drawn = JSON.stringify(drawn);
@@ -742,7 +743,17 @@
       ctx.strokeStyle = "#000";
       ctx.lineWidth = mine ? 2 : 1;
       ctx.beginPath();
-      ctx.arc(cx, cy, r, 0, 2 * Math.PI);
+      if (o.pose.footprint) {  // the robot's polygon, from its base frame into the map
+        const c = Math.cos(o.pose.yaw);
+        const s = Math.sin(o.pose.yaw);
+        o.pose.footprint.forEach(([fx, fy], i) => {
+          const [px, py] = toCanvas(v, o.pose.x + c * fx - s * fy, o.pose.y + s * fx + c * fy);
+          if (i) ctx.lineTo(px, py); else ctx.moveTo(px, py);
+        });
+        ctx.closePath();
+      } else {
+        ctx.arc(cx, cy, r, 0, 2 * Math.PI);
+      }
       ctx.fill();
       ctx.stroke();
       ctx.beginPath();
