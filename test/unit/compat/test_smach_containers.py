@@ -117,18 +117,25 @@ def test_concurrence_consistency_checks_children_named_in_the_outcome_map():
 
 def test_concurrence_initial_states_are_ignored_with_a_warning_and_userdata_merged(caplog):
     # SMACH: a Concurrence always starts every child; labels (even of children added later) are no error
-    seen = []
+    seen: Dict[str, Any] = {}
+
+    def record(name: str) -> Callable[[Any], str]:
+        def run(ud: Any) -> str:
+            seen[name] = ud.v if name == "LATER" else True
+            return "done"
+
+        return run
+
     cc = smach.Concurrence(outcomes=["ok"], default_outcome="ok", input_keys=["v"])
     injected = smach.UserData()
     injected.v = 7
     cc.set_initial_state(["LATER"], injected)
     assert "initial states ['LATER'] ignored" in caplog.text
     with cc:
-        smach.Concurrence.add("LATER", smach.CBState(lambda ud: seen.append(ud.v) or "done", outcomes=["done"],
-                                                      input_keys=["v"]))
-        smach.Concurrence.add("OTHER", smach.CBState(lambda ud: seen.append("other") or "done", outcomes=["done"]))
+        smach.Concurrence.add("LATER", smach.CBState(record("LATER"), outcomes=["done"], input_keys=["v"]))
+        smach.Concurrence.add("OTHER", smach.CBState(record("OTHER"), outcomes=["done"]))
     assert cc.execute() == "ok"
-    assert sorted(map(str, seen)) == ["7", "other"]
+    assert seen == {"LATER": 7, "OTHER": True}
 
 
 # --- Concurrence: running --------------------------------------------------------------------------------
