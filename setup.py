@@ -37,5 +37,5 @@ setup(
         "flex_nav_states": ["py.typed"],
         "flex_nav_sim": ["py.typed", "worlds/*.yaml", "worlds/maps/*", "robots/*", "models/*"],
     },
-    data_files=share_files("behaviors", "models", "config", "launch"),
+    data_files=share_files("behaviors", "models", "config", "launch", "urdf", "rviz"),
 )

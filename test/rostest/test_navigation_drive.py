@@ -14,6 +14,7 @@ import rospkg
 import rospy
 import rostest
 import tf2_ros
+import yaml
 from actionlib_msgs.msg import GoalStatus
 from geometry_msgs.msg import PolygonStamped, PoseStamped
 from nav_msgs.msg import Odometry, Path
@@ -39,6 +40,7 @@ WAIT_S = 40.0  # [s] bound on the servers appearing (eight nodes start on a shar
 DRIVE_WAIT_S = 60.0  # [s] bound on reaching the goal
 RADIUS = 0.177  # [m] TurtleBot 2 (config/turtlebot2.yaml)
 MAP = os.path.join(rospkg.RosPack().get_path("flex_nav"), "test", "data", "maps", "test_rooms.yaml")
+RVIZ = os.path.join(rospkg.RosPack().get_path("flex_nav"), "rviz", "flex_nav.rviz")
 
 
 def goal_pose(x, y, yaw=0.0):
@@ -99,6 +101,15 @@ class TestNavigationDrive(unittest.TestCase):
         self.assertEqual(len(radii), 24)
         self.assertAlmostEqual(min(radii), max(radii), places=5)
         self.assertTrue(RADIUS < radii[0] < RADIUS * 1.01, radii[0])  # around the robot_radius circle
+
+    def test_0_rviz_config_shows_what_the_stack_publishes(self):
+        with open(RVIZ) as f:
+            config = yaml.safe_load(f)["Visualization Manager"]
+        shown = {d["Topic"] for d in config["Displays"] if "Topic" in d}
+        published = {name for name, _ in rospy.get_published_topics()}
+        not_here = {NS + "particlecloud", NS + "move_base_like/plan"}  # no localizer or behavior in this test
+        self.assertEqual(sorted(shown - published - not_here), [])
+        self.assertTrue(not_here <= shown)
 
     def test_1_follow_topic_server_replans_along_a_topic_path(self):
         start = self.robot_xy()

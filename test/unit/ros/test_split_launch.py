@@ -85,3 +85,11 @@ def test_the_simulator_launch_leaves_map_to_odom_to_the_localizer_unless_oracle(
     assert params["/sim/publish_map_odom"] is True
     _nodes, params = load("sim_multi.launch")
     assert params["/sim/publish_map_odom"] is False
+
+
+@pytest.mark.parametrize("profile", ["kobuki", "create2", "turtlebot4"])
+def test_the_robot_part_sets_the_profiles_robot_description(profile: str) -> None:
+    _, params = load("flex_nav_robot.launch", "robot:=robot2", f"profile:={profile}")
+    assert params["/robot2/robot_description"] == (REPO_ROOT / "urdf" / f"{profile}.urdf").read_text()
+    _, operator = load("flex_nav_robot.launch", "part:=operator", f"profile:={profile}")
+    assert "/robot1/robot_description" not in operator  # the robot's side sets it, once
