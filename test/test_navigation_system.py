@@ -20,6 +20,7 @@ SUMMARY = re.compile(
 LOCALIZATION = re.compile(r"localization: median (?P<median>[\d.]+) cm, p95 (?P<p95>[\d.]+) cm, max (?P<max>[\d.]+) cm "
                           r"\(heading median (?P<heading>[\d.]+) deg")
 RUN_TIMEOUT_S = 420.0  # [s] wall bound of one system run (a lap takes ~45-80 s of wall time here)
+REPLAY_BAG_S = 20.0  # [s] of the demo's bag replayed (the first goal is planned by then)
 
 
 def run_demo(out: Path, *args: str) -> Tuple[int, str, re.Match]:
@@ -34,8 +35,9 @@ def run_demo(out: Path, *args: str) -> Tuple[int, str, re.Match]:
 
 @pytest.mark.ros
 @pytest.mark.parametrize("profile", ["turtlebot2", "create", "turtlebot4"])
-def test_flex_planner_lap_with_bumper_recovery(tmp_path: Path, profile: str) -> None:
-    code, output, summary = run_demo(tmp_path, "--profile", profile)
+def test_flex_planner_lap_with_bumper_recovery(tmp_path: Path, profile: str, request: pytest.FixtureRequest) -> None:
+    out = tmp_path / "demo"  # beside the replay's master (tmp_path / "ros_home")
+    code, output, summary = run_demo(out, "--profile", profile)
     assert code == 0, output[-5000:]
     assert summary["reached"] == summary["total"] == "4", output[-5000:]
     assert int(summary["recoveries"]) >= 1, "the low step must be found by the bumper and recovered from"
@@ -45,8 +47,14 @@ def test_flex_planner_lap_with_bumper_recovery(tmp_path: Path, profile: str) -> 
     assert error is not None, output[-3000:]
     assert float(error["median"]) <= 3.0 and float(error["p95"]) <= 8.0, error.group(0)
     assert float(error["heading"]) <= 1.0, error.group(0)
-    assert (tmp_path / "run.png").stat().st_size > 10_000
-    assert (tmp_path / "run.bag").stat().st_size > 10_000
+    assert (out / "run.png").stat().st_size > 10_000
+    assert (out / "run.bag").stat().st_size > 10_000
+    if profile == "turtlebot2":  # the bag replays into RViz: scans placed in map through tf, costmap, plan, footprint
+        master = request.getfixturevalue("ros_master")
+        replay = run_command_bounded(
+            [sys.executable, str(REPO_ROOT / "test" / "system" / "bag_replay_check.py"), str(out / "run.bag"),
+             "robot1", str(REPLAY_BAG_S)], env=master.env, timeout_s=REPLAY_BAG_S * 4 + 120.0)
+        assert replay.returncode == 0 and "REPLAY PASSED" in replay.output, replay.output[-3000:]
 
 
 @pytest.mark.ros

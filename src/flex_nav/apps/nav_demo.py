@@ -362,17 +362,21 @@ def start_system(stack: contextlib.ExitStack, args: argparse.Namespace, runs: Li
 
 def start_recorder(stack: contextlib.ExitStack, bag: Path, robots: Sequence[str], env: Mapping[str, str],
                    log_path: Path) -> ManagedProcess:
-    """Record the robots' ground truth, localization estimates and status, odometry, plans, bumper hits, commands
-    and behavior topics (plus /tf, /map and the world's events) to ``bag``; registered on ``stack`` so that it
-    stops before what was registered earlier."""
+    """Record what replays the run in RViz -- /clock, /tf, /tf_static, /map, each robot's scan, footprint, global
+    and local plans and costmaps (published at their ``publish_frequency``, 1 Hz) -- and what evaluates it:
+    ground truth, localization estimates and status, odometry, bumper hits, commands, behavior topics and the
+    world's events; to ``bag``, registered on ``stack`` so that it stops before what was registered earlier.
+    ``rosbag play run.bag`` then drives a use_sim_time RViz from the bag's own /clock (no ``--clock``)."""
     topics = [t for name in robots for t in (
-        f"/{name}/ground_truth", f"/{name}/amcl_pose", f"/{name}/odom", f"/{name}/get_path_server/plan",
+        f"/{name}/ground_truth", f"/{name}/amcl_pose", f"/{name}/odom", f"/{name}/scan", f"/{name}/footprint",
+        f"/{name}/get_path_server/plan", f"/{name}/follow_path_server/plan",
+        f"/{name}/get_path_server/global_costmap/costmap", f"/{name}/pure_pursuit_path/local_costmap/costmap",
         f"/{name}/bumper_hits", f"/{name}/localizer/status",
         f"/{name}/cmd_vel", f"/{name}/behavior_runner/transitions", f"/{name}/behavior_runner/status")]
     # the recorder itself (not the rosbag wrapper script), so SIGINT reaches it and it closes the bag
     recorder = "/usr/lib/rosbag/record" if Path("/usr/lib/rosbag/record").is_file() else "rosbag"
     proc = ManagedProcess([recorder, *([] if recorder != "rosbag" else ["record"]), "-O", str(bag),
-                           "/tf", "/map", "/sim_events", *topics], env=env, log_path=log_path)
+                           "/clock", "/tf", "/tf_static", "/map", "/sim_events", *topics], env=env, log_path=log_path)
     stack.callback(proc.stop, 10.0)  # stopped first (LIFO): SIGINT lets rosbag close the bag file
     return proc
 
