@@ -12,6 +12,10 @@ Then a 2000 x 2000 OccupancyGrid (5 cm cells: 100 m x 100 m of rooms, walls and 
 ``/map`` while the page is open, timed until the page says it shows it ("map 2000 x 2000 ..."), and once more
 for a page opened afterwards (its snapshot). Target: first shown <= 1 s.
 
+``--soak MINUTES``: instead, the memory of the console node (resident set) and of the page (JS heap, DOM nodes)
+sampled every minute while the fake runner sends 20 transitions, 20 activity updates and 5 log lines a second
+(a busy behavior; the demo's runner sends far fewer) -- the issue's "flat over 30 min".
+
 Prints each figure with its ratio to the target and the machine's load average beside it (2 cores shared with
 other work here: the figures move with the load), then PASS or FAIL (exit status 1). Needs Debian's chromium and
 chromium-driver (tools/install.sh). ``bench/run.sh console_latency``.
@@ -25,7 +29,7 @@ import sys
 import tempfile
 import time
 from pathlib import Path
-from typing import Any, Dict, Tuple
+from typing import Any, Dict, List, Tuple
 
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO / "src"))
@@ -38,7 +42,7 @@ from std_msgs.msg import String  # noqa: E402
 
 from flex_nav.behavior.structure import structure_json  # noqa: E402
 from flex_nav.behavior.yaml_loader import load_behavior  # noqa: E402
-from flex_nav.msg import BehaviorActivity, BehaviorStatus, BehaviorTransition  # noqa: E402
+from flex_nav.msg import BehaviorActivity, BehaviorLog, BehaviorStatus, BehaviorTransition  # noqa: E402
 from flex_nav.testing.browser import HeadlessBrowser  # noqa: E402
 from flex_nav.testing.private_master import PrivateMaster, free_port  # noqa: E402
 from flex_nav.testing.process import ManagedProcess  # noqa: E402
@@ -51,6 +55,25 @@ TARGET_P95_MS = 100.0
 MAP_CELLS = 2000  # per side
 TARGET_MAP_S = 1.0
 WAIT_S = 60.0  # [s] bound of every wait
+SOAK_HZ = 20.0  # [1/s] transitions (and activity updates) during --soak; log lines at a quarter of it
+SOAK_SAMPLE_S = 60.0  # [s] between two memory samples
+
+# injected before the page's own script (CDP): when each transition's websocket message arrives, before the page
+# handles it -- splits the latency into transport (runner -> console node -> websocket) and the page's drawing
+ARRIVALS = """
+window.benchArrived = {};
+const Socket = window.WebSocket;
+window.WebSocket = function (url, protocols) {
+  const socket = new Socket(url, protocols);
+  socket.addEventListener("message", (event) => {
+    const m = /"outcome":"(o\\d+)"/.exec(event.data);
+    if (m && !(m[1] in window.benchArrived)) window.benchArrived[m[1]] = performance.timeOrigin + performance.now();
+  });
+  return socket;
+};
+window.WebSocket.prototype = Socket.prototype;
+for (const name of ["CONNECTING", "OPEN", "CLOSING", "CLOSED"]) window.WebSocket[name] = Socket[name];
+"""
 
 OBSERVER = """
 window.benchSeen = {};
@@ -99,6 +122,7 @@ class FakeRunner:
         self.activity = rospy.Publisher(f"{RUNNER}/activity", BehaviorActivity, queue_size=1, latch=True)
         self.transitions = rospy.Publisher(f"{RUNNER}/transitions", BehaviorTransition, queue_size=200,
                                            tcp_nodelay=True)
+        self.log = rospy.Publisher(f"{RUNNER}/log", BehaviorLog, queue_size=200)
         self.structure.publish(String(data=text))
         status = BehaviorStatus(behavior="flex_planner", code=BehaviorStatus.RUNNING, autonomy=3)
         status.header.stamp = rospy.Time.from_sec(time.time())
@@ -123,20 +147,98 @@ class FakeRunner:
         return sent
 
 
+    def busy(self, seconds: float, rate_hz: float, first: int) -> int:
+        """Transitions, activity updates and log lines for ``seconds`` [s]; the next transition number."""
+        states = ("/ReceiveGoal", "/GetPath", "/ApprovePlan", "/Navigate")
+        start, i = time.monotonic(), first
+        while time.monotonic() - start < seconds:
+            delay = start + (i - first) / rate_hz - time.monotonic()
+            if delay > 0:
+                time.sleep(delay)
+            stamp = rospy.Time.from_sec(time.time())
+            msg = BehaviorTransition(behavior="flex_planner", path=states[i % 4], outcome=f"o{i}",
+                                     target=states[(i + 1) % 4].lstrip("/"))
+            msg.header.stamp = stamp
+            self.transitions.publish(msg)
+            activity = BehaviorActivity(behavior="flex_planner", autonomy=3, active_paths=[states[(i + 1) % 4]])
+            activity.header.stamp = stamp
+            self.activity.publish(activity)
+            if i % 4 == 0:
+                line = BehaviorLog(behavior="flex_planner", level=BehaviorLog.INFO, path=states[i % 4],
+                                   text=f"log line {i}: " + "x" * 80)
+                line.header.stamp = stamp
+                self.log.publish(line)
+            i += 1
+        return i
+
+
+def rss_mb(pid: int) -> float:
+    """[MB] resident set of process ``pid`` (0 when it is gone)."""
+    try:
+        for line in Path(f"/proc/{pid}/status").read_text().splitlines():
+            if line.startswith("VmRSS:"):
+                return int(line.split()[1]) / 1024.0
+    except OSError:
+        pass
+    return 0.0
+
+
+def console_pid(group: int) -> int:
+    """The console node's Python process in the process group ``group`` (rosrun may run it as a child)."""
+    for entry in Path("/proc").iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            if os.getpgid(int(entry.name)) != group:
+                continue
+            cmdline = (entry / "cmdline").read_bytes().replace(b"\0", b" ").decode(errors="replace")
+        except (OSError, ProcessLookupError):
+            continue
+        if "python" in cmdline and "console" in cmdline and "rosrun" not in cmdline:
+            return int(entry.name)
+    return group
+
+
+def soak(browser: HeadlessBrowser, runner: FakeRunner, pid: int, minutes: float) -> bool:
+    """Memory samples every SOAK_SAMPLE_S while the runner is busy; True when neither grew by more than 20 %
+    (and 20 MB) from the second sample to the last."""
+    page = ("return [performance.memory ? performance.memory.usedJSHeapSize / 1048576 : -1, "
+            "document.getElementsByTagName('*').length];")
+    samples: List[Tuple[float, float, float, int]] = []
+    started, i = time.monotonic(), 0
+    print("minute  console RSS [MB]  page JS heap [MB]  page DOM nodes  load (1 min)")
+    while True:
+        heap, nodes = browser.script(page)
+        elapsed = (time.monotonic() - started) / 60.0
+        samples.append((elapsed, rss_mb(pid), float(heap), int(nodes)))
+        print(f"{elapsed:6.1f}  {samples[-1][1]:16.1f}  {samples[-1][2]:17.1f}  {nodes:14d}  "
+              f"{os.getloadavg()[0]:.2f}", flush=True)
+        if elapsed >= minutes:
+            break
+        i = runner.busy(min(SOAK_SAMPLE_S, (minutes - elapsed) * 60.0), SOAK_HZ, i)
+    base, last = samples[min(1, len(samples) - 1)], samples[-1]
+    flat = all(last[k] <= max(base[k] * 1.2, base[k] + 20.0) for k in (1, 2))
+    print(f"{i} transitions in {last[0]:.1f} min; console {base[1]:.1f} -> {last[1]:.1f} MB, page heap "
+          f"{base[2]:.1f} -> {last[2]:.1f} MB, DOM nodes {base[3]} -> {last[3]}: {'flat' if flat else 'GROWS'}")
+    return flat
+
+
 def wait(browser: HeadlessBrowser, script: str, what: str) -> Any:
     return browser.wait_for(lambda: browser.script(script), what, WAIT_S)
 
 
-def transition_latency(browser: HeadlessBrowser, runner: FakeRunner) -> Tuple[np.ndarray, int]:
+def transition_latency(browser: HeadlessBrowser, runner: FakeRunner) -> Tuple[np.ndarray, np.ndarray, int]:
     browser.script(OBSERVER)
     sent = runner.send(TRANSITIONS, RATE_HZ)
     last = f"o{TRANSITIONS - 1}"
     browser.wait_for(lambda: browser.script(f"return '{last}' in window.benchSeen;") or None,
                      "the last transition shown", WAIT_S)
     seen: Dict[str, float] = browser.script("return window.benchSeen;")
+    arrived: Dict[str, float] = browser.script("return window.benchArrived || {};")
     counted = [f"o{i}" for i in range(WARMUP, TRANSITIONS)]
     latencies = np.array([seen[key] - sent[key] * 1e3 for key in counted if key in seen])
-    return latencies, sum(1 for key in counted if key not in seen)
+    transport = np.array([arrived[key] - sent[key] * 1e3 for key in counted if key in arrived])
+    return latencies, transport, sum(1 for key in counted if key not in seen)
 
 
 def map_first_shown(browser: HeadlessBrowser, url: str) -> Tuple[float, float, float]:
@@ -169,6 +271,7 @@ def map_first_shown(browser: HeadlessBrowser, url: str) -> Tuple[float, float, f
 
 
 def main() -> int:
+    soak_minutes = float(sys.argv[sys.argv.index("--soak") + 1]) if "--soak" in sys.argv else 0.0
     with tempfile.TemporaryDirectory() as home:
         master = PrivateMaster(ros_home=Path(home) / "ros_home").start()
         os.environ.update(master.env)
@@ -182,7 +285,9 @@ def main() -> int:
             rospy.init_node("bench_console_latency", disable_signals=True)
             runner = FakeRunner()
             url = f"http://127.0.0.1:{port}/"
-            with HeadlessBrowser() as browser:
+            # precise: without it Chrome reports a coarse JS heap size, refreshed rarely
+            with HeadlessBrowser(extra_arguments=("--enable-precise-memory-info",)) as browser:
+                browser.driver.execute_cdp_cmd("Page.addScriptToEvaluateOnNewDocument", {"source": ARRIVALS})
                 deadline = time.monotonic() + WAIT_S
                 while True:
                     try:
@@ -194,13 +299,20 @@ def main() -> int:
                         time.sleep(0.5)
                 wait(browser, "return document.querySelectorAll('#graph svg g.node').length > 0;",
                      "the runner's graph drawn")
+                if soak_minutes > 0:
+                    flat = soak(browser, runner, console_pid(console.popen.pid), soak_minutes)
+                    print(f"{'PASS' if flat else 'FAIL'}: memory over {soak_minutes:g} min ({load()})")
+                    return 0 if flat else 1
                 before = load()
-                latencies, lost = transition_latency(browser, runner)
+                latencies, transport, lost = transition_latency(browser, runner)
                 after = load()
                 p50, p95 = np.percentile(latencies, 50), np.percentile(latencies, 95)
                 print(f"transition -> page at {RATE_HZ:.0f}/s ({len(latencies)} counted, {lost} not shown): "
                       f"median {p50:.1f} ms, p95 {p95:.1f} ms, max {latencies.max():.1f} ms; "
                       f"ratio p95 / {TARGET_P95_MS:.0f} ms target = {p95 / TARGET_P95_MS:.2f}")
+                if transport.size:
+                    print(f"  of which to the page's websocket: median {np.percentile(transport, 50):.1f} ms, "
+                          f"p95 {np.percentile(transport, 95):.1f} ms (the rest is the page's drawing)")
                 print(f"  machine: {before} before, {after} after")
                 in_open, new_page, serialise = map_first_shown(browser, url)
                 print(f"{MAP_CELLS} x {MAP_CELLS} map first shown: {in_open * 1e3:.0f} ms from publish (open page), "

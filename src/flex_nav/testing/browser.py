@@ -10,7 +10,7 @@ from __future__ import annotations
 import shutil
 import time
 from pathlib import Path
-from typing import Any, Callable, Optional, TypeVar
+from typing import Any, Callable, Optional, Sequence, TypeVar
 
 from flex_nav.exceptions import NotReadyError
 from flex_nav.testing.process import StopsOnExit
@@ -34,7 +34,7 @@ def _found(candidates: tuple[str, ...]) -> Optional[str]:
 class HeadlessBrowser(StopsOnExit):
     """One headless Chromium window of ``width`` x ``height`` pixels; ``driver`` is its Selenium WebDriver."""
 
-    def __init__(self, width: int = 1500, height: int = 1000) -> None:
+    def __init__(self, width: int = 1500, height: int = 1000, extra_arguments: Sequence[str] = ()) -> None:
         chromium, chromedriver = _found(CHROMIUM), _found(CHROMEDRIVER)
         if chromium is None or chromedriver is None:
             raise NotReadyError("the browser tests need Debian's chromium and chromium-driver "
@@ -47,7 +47,8 @@ class HeadlessBrowser(StopsOnExit):
         options = webdriver.ChromeOptions()
         options.binary_location = chromium
         for argument in ("--headless=new", "--no-sandbox", "--disable-dev-shm-usage", "--disable-gpu",
-                         "--no-first-run", "--disable-extensions", f"--window-size={width},{height}"):
+                         "--no-first-run", "--disable-extensions", f"--window-size={width},{height}",
+                         *extra_arguments):
             options.add_argument(argument)
         self.driver: Any = webdriver.Chrome(options=options, service=Service(chromedriver))
         self.driver.set_page_load_timeout(PAGE_LOAD_TIMEOUT_S)
