@@ -53,8 +53,16 @@ def test_the_operator_part_is_the_runner_alone() -> None:
 def test_an_unknown_part_is_refused() -> None:
     import roslaunch.core  # noqa: PLC0415
 
-    with pytest.raises(roslaunch.core.RLException, match="robots"):
+    with pytest.raises(roslaunch.core.RLException, match="part:=robots is not all, robot or operator"):
         load("flex_nav_robot.launch", "part:=robots")
+
+
+def test_an_unknown_profile_is_refused_with_the_choices() -> None:
+    import roslaunch.core  # noqa: PLC0415
+
+    with pytest.raises(roslaunch.core.RLException,
+                       match="profile:=kobuki2 is not a robot profile: kobuki, create2 or turtlebot4"):
+        load("flex_nav_robot.launch", "profile:=kobuki2")
 
 
 def test_the_simulators_twist_relay_takes_a_heartbeat_timeout() -> None:
