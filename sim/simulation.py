@@ -95,6 +95,7 @@ class _RobotSlot:
         self.next_scan = 0.0
         self.next_bumper = 0.0
         self.next_image = 0.0
+        self.camera_wanted = True  # False: nobody looks, its frames are not rendered (set_camera_wanted)
         self.drift = np.zeros(3)  # localization error (x [m], y [m], yaw [rad])
 
 
@@ -216,6 +217,12 @@ class Simulation:
         self.robot(robot)
         camera = self._slots[robot].camera
         return camera.spec if camera is not None else None
+
+    def set_camera_wanted(self, robot: str, wanted: bool) -> None:
+        """Render ``robot``'s camera frames (at their rate) only while ``wanted``: rendering is most of the
+        simulator's cost, and a frame nobody receives is wasted. Frames are due on the same schedule either way."""
+        self.robot(robot)
+        self._slots[robot].camera_wanted = bool(wanted)
 
     @property
     def robot_names(self) -> List[str]:
@@ -405,9 +412,10 @@ class Simulation:
             mid = end
         if slot.camera is not None and t >= slot.next_image - _EPS:
             slot.next_image += 1.0 / slot.camera.spec.rate
-            if pose is None:
-                pose = robot.truth()[0]
-            out.append(ImageReading(robot.name, t, *slot.camera.render(pose)))
+            if slot.camera_wanted:
+                if pose is None:
+                    pose = robot.truth()[0]
+                out.append(ImageReading(robot.name, t, *slot.camera.render(pose)))
             costs["camera"] += time.perf_counter() - mid
 
     def _contact_events(self, robot: SimRobot, contacts: Mapping[int, Contact], out: List[Reading]) -> None:

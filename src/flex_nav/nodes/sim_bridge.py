@@ -14,7 +14,8 @@ Private parameters:
   ~rtf           float  1.0    real-time factor to keep; 0 = as fast as possible
   ~physics_rate  float  240    [Hz] fixed physics step rate
   ~clock_rate    float  100    [Hz] /clock publication rate (in simulated time)
-  ~lidar, ~camera, ~bumpers  bool  true  simulate these sensors
+  ~lidar, ~camera, ~bumpers  bool  true  simulate these sensors (a camera renders only while its image or
+                                          depth topic has a subscriber)
   ~gui           bool   false  pybullet GUI window (only if a display exists)
   ~drift_xy, ~drift_yaw, ~drift_tau  float  0, 0, 10  localization drift: [m], [rad], [s] (0 = exact)
   ~map_frame     str    map
@@ -357,6 +358,13 @@ class SimBridge:
             if notice is not None:
                 self._on_notice(notice)
 
+    def _render_cameras_watched(self) -> None:
+        """A camera renders only while something subscribes to its image or depth topic."""
+        for name, io in self.robots.items():
+            if io.pub_image is not None and io.pub_depth is not None:
+                watched = io.pub_image.get_num_connections() + io.pub_depth.get_num_connections() > 0
+                self.sim.set_camera_wanted(name, watched)
+
     # -- main loop --------------------------------------------------------------------------------
     def run(self) -> None:
         """Step and publish until shutdown (or ``duration``); logs the achieved real-time factor."""
@@ -374,6 +382,7 @@ class SimBridge:
         next_stats = wall_start + STATS_PERIOD_S
         while not rospy.is_shutdown():
             self._apply_commands()
+            self._render_cameras_watched()
             readings = sim.step()
             t = sim.time
             start = time.perf_counter()

@@ -414,6 +414,21 @@ def test_camera_sees_a_person_ahead(tmp_path: Path) -> None:
     assert np.isinf(image.depth[0]).any() or (image.depth[0] > 2.0).all()  # the top row looks past the walls
 
 
+def test_a_camera_nobody_watches_renders_nothing_and_resumes_on_its_schedule(tmp_path: Path) -> None:
+    with Simulation(make_world(tmp_path), [spawn()], seed=0) as sim:
+        spec = sim.camera_spec_of("r1")
+        assert spec is not None
+        sim.set_camera_wanted("r1", False)
+        unwatched = [r for r in sim.run(1.0) if isinstance(r, ImageReading)]
+        sim.set_camera_wanted("r1", True)
+        watched = [r for r in sim.run(1.0) if isinstance(r, ImageReading)]
+        with pytest.raises(ConfigError):
+            sim.set_camera_wanted("nobody", True)
+    assert unwatched == []
+    assert len(watched) == pytest.approx(spec.rate, abs=1)  # the schedule went on: a frame per period again
+    assert watched[0].stamp == pytest.approx(1.0, abs=1.0 / spec.rate + 1e-6)
+
+
 def test_shipped_worlds_run(tmp_path: Path) -> None:
     for name in ("lab", "two_rooms", "open_room", "corridor"):
         with Simulation(load_world(name), seed=0, sensors=NO_CAMERA) as sim:
