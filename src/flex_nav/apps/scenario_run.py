@@ -38,6 +38,7 @@ from flex_nav.apps.nav_demo import (
     write_picture,
 )
 from flex_nav.exceptions import FlexNavError
+from flex_nav.nav.angles import wrap_angle
 from flex_nav.testing.process import ManagedProcess
 
 PROFILE = "turtlebot4"
@@ -167,6 +168,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
         with monitor.lock:
             result.success = run.reached == 1
             result.time_s = (end_sim_s - goal_sim_s) if result.success else math.nan
+            if result.success and run.pose is not None:
+                result.heading_error_deg = math.degrees(wrap_angle(run.pose[2] - goal[2]))
             result.path_m = run.distance_m
             result.pushes_tried = monitor.pushes_tried
             result.pushes_succeeded = monitor.pushes_succeeded

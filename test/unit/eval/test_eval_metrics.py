@@ -49,7 +49,7 @@ def results():
     return [
         RunResult("s1", "move_base_like", 0, success=False, note="goal given up", path_m=3.0),
         RunResult("s1", "push_or_avoid", 0, success=True, time_s=40.0, path_m=8.0, pushes_tried=1,
-                  pushes_succeeded=1),
+                  pushes_succeeded=1, heading_error_deg=-3.5),
         RunResult("s1", "push_or_avoid", 1, success=True, time_s=50.0, path_m=9.0, pushes_tried=2,
                   pushes_succeeded=1, min_people_clearance_m=0.4),
     ]
@@ -59,13 +59,17 @@ def test_result_round_trips_through_json_values():
     for result in results():
         assert RunResult.from_dict(result.to_dict()).to_dict() == result.to_dict()
     back = RunResult.from_dict(results()[0].to_dict())
-    assert math.isnan(back.time_s) and back.min_people_clearance_m == math.inf
+    assert math.isnan(back.time_s) and back.min_people_clearance_m == math.inf and math.isnan(back.heading_error_deg)
+    assert RunResult.from_dict(results()[1].to_dict()).heading_error_deg == -3.5
+    recorded_before = {k: v for k, v in results()[1].to_dict().items() if k != "heading_error_deg"}
+    assert math.isnan(RunResult.from_dict(recorded_before).heading_error_deg)  # older results.csv rows load
 
 
 def test_csv_has_one_row_per_run_and_empty_cells_for_missing_values():
     rows = list(csv.DictReader(io.StringIO(to_csv(results()))))
     assert len(rows) == 3
     assert rows[0]["time_s"] == "" and rows[0]["success"] == "False"
+    assert rows[0]["heading_error_deg"] == "" and rows[1]["heading_error_deg"] == "-3.5"
     assert rows[2]["pushes_tried"] == "2"
 
 

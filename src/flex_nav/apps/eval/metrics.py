@@ -26,6 +26,7 @@ class RunResult:
     success: bool = False
     time_s: float = math.nan  # [s] simulated time from the goal to arrival (NaN if not reached)
     path_m: float = 0.0  # [m] distance driven (ground truth)
+    heading_error_deg: float = math.nan  # [deg] final heading minus the goal's (ground truth; NaN: not reached)
     pushes_tried: int = 0
     pushes_succeeded: int = 0
     people_contacts: int = 0  # contacts that began between the robot and a person
@@ -35,7 +36,7 @@ class RunResult:
 
     def to_dict(self) -> Dict[str, Any]:
         values = asdict(self)
-        for key in ("time_s", "min_people_clearance_m"):  # JSON has no NaN / inf
+        for key in ("time_s", "heading_error_deg", "min_people_clearance_m"):  # JSON has no NaN / inf
             value = values[key]
             values[key] = None if not math.isfinite(value) else value
         return values
@@ -43,7 +44,8 @@ class RunResult:
     @classmethod
     def from_dict(cls, values: Dict[str, Any]) -> RunResult:
         data = dict(values)
-        data["time_s"] = math.nan if data.get("time_s") is None else float(data["time_s"])
+        for key in ("time_s", "heading_error_deg"):  # results recorded before the heading was measured lack it
+            data[key] = math.nan if data.get(key) is None else float(data[key])
         clearance = data.get("min_people_clearance_m")
         data["min_people_clearance_m"] = math.inf if clearance is None else float(clearance)
         return cls(**data)
