@@ -82,6 +82,8 @@ class Progress:
     frontiers: int = 0
     outcome: Optional[str] = None
     reason: str = ""
+    behavior_started_s: Optional[float] = None  # [s] sim time the runner reported the behavior running
+    behavior_ended_s: Optional[float] = None  # [s] sim time it reported the end
     mapper_status: str = ""
     known_cells: int = 0
 
@@ -145,10 +147,16 @@ class MappingMonitor:
                 self.progress.touched[msg.other] = self.progress.touched.get(msg.other, 0) + 1
 
     def _on_status(self, msg: Any) -> None:
+        now = msg.header.stamp.to_sec() or self.sim_s()  # latched: the stamp says when it changed
+        if msg.code == msg.RUNNING:
+            with self.progress.lock:
+                if self.progress.behavior_started_s is None:
+                    self.progress.behavior_started_s = now
         if msg.code in (msg.FINISHED, msg.PREEMPTED, msg.FAILED):
             with self.progress.lock:
                 self.progress.outcome = msg.outcome or ("failed" if msg.code == msg.FAILED else "preempted")
                 self.progress.reason = msg.reason
+                self.progress.behavior_ended_s = now
 
     def _on_transition(self, msg: Any) -> None:
         if msg.path.endswith("/FindFrontier") and msg.outcome == "found":
@@ -274,6 +282,8 @@ def write_results(out: Path, args: argparse.Namespace, progress: Progress, *, si
     metrics: Dict[str, Any] = {
         "world": world.name, "profile": PROFILES[args.profile], "seed": args.seed, "rtf": args.rtf,
         "outcome": progress.outcome, "reason": progress.reason, "sim_time_s": sim_s, "wall_time_s": wall_s,
+        "behavior_time_s": (None if progress.behavior_started_s is None or progress.behavior_ended_s is None
+                            else progress.behavior_ended_s - progress.behavior_started_s),
         "distance_m": progress.distance_m, "bumper_contacts": progress.contacts, "touched": dict(progress.touched),
         "frontiers_visited": progress.frontiers,
         "loop_closure": not args.no_loop_closure, "mapper_status": progress.mapper_status,
@@ -395,9 +405,14 @@ def _cm(value: Optional[float]) -> str:
     return "n/a" if value is None else f"{value:.1f}"
 
 
+def _s(value: Optional[float]) -> str:
+    return "n/a" if value is None else f"{value:.1f} s"
+
+
 def _print_summary(metrics: Dict[str, Any], out: Path) -> None:
     print(f"behavior: {metrics['outcome']} {metrics['reason']}".rstrip(), flush=True)
-    print(f"time: sim {metrics['sim_time_s']:.1f} s, wall {metrics['wall_time_s']:.1f} s; driven "
+    print(f"time: sim {metrics['sim_time_s']:.1f} s (the behavior {_s(metrics['behavior_time_s'])}), wall "
+          f"{metrics['wall_time_s']:.1f} s; driven "
           f"{metrics['distance_m']:.1f} m; frontiers {metrics['frontiers_visited']}; bumper contacts "
           f"{metrics['bumper_contacts']}; touched (simulator) "
           f"{', '.join(f'{name} x{n}' for name, n in sorted(metrics['touched'].items())) or 'nothing'}", flush=True)
