@@ -138,7 +138,7 @@ class FollowServer(FollowNode):
             except NotReadyError as err:
                 state, problem = None, f"robot pose unknown: {err}"
             if state is not None and state.done:
-                heading = (f", heading {math.degrees(state.heading_error):+.1f} deg off"
+                heading = (f", heading {math.degrees(-state.heading_error):+.1f} deg from its yaw"  # robot - path
                            if math.isfinite(state.heading_error) else "")
                 self._end(ticket, GoalOutcome.SUCCEEDED,
                           f"reached the end of the path ({state.distance_to_end:.3f} m from it{heading})", pose)
