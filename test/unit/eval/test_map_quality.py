@@ -6,8 +6,9 @@ import numpy as np
 import pytest
 from unit.localization.room import asymmetric_room
 
-from flex_nav.apps.eval.map_quality import ate_rmse_cm, draw_map, reachable_free, score_map
+from flex_nav.apps.eval.map_quality import aligned_placement, ate_rmse_cm, draw_map, reachable_free, score_map
 from flex_nav.nav.costmap.grid_map import GridMap
+from flex_nav.nav.planar import inverse_pose, transform_poses
 
 START = (1.5, 1.2)
 RADIUS = 0.18  # [m]
@@ -75,3 +76,15 @@ def test_ate_is_zero_for_the_truth_and_grows_with_an_offset():
     noisy_cm = ate_rmse_cm(noisy, truths, align=True)
     assert noisy_cm is not None and 0.5 < noisy_cm < 2.0
     assert ate_rmse_cm(truths[:2], truths[:2]) is None
+
+
+def test_the_aligned_placement_recovers_a_rigid_offset_and_refuses_a_line():
+    truths = [(1.0 + 0.1 * i, 2.0 + 0.05 * i * i, 0.1 * i) for i in range(20)]
+    placement = (0.3, -0.2, 0.05)  # the map frame in the world
+    estimates = transform_poses(np.array(truths), *inverse_pose(placement))  # the same poses in that map frame
+    found = aligned_placement([tuple(p) for p in estimates], truths)
+    assert found is not None
+    np.testing.assert_allclose(found, placement, atol=1e-9)
+    line = [(0.1 * i, 0.0, 0.0) for i in range(10)]
+    assert aligned_placement(line, line) is None  # on a line the rotation is not determined in the plane's terms
+    assert aligned_placement(truths[:2], truths[:2]) is None

@@ -91,6 +91,27 @@ def score_map(built: GridMap, truth: GridMap, map_in_world: Pose2D, start_xy: Tu
                     float(np.mean(d > GHOST_M)), explored)
 
 
+def aligned_placement(estimates: Sequence[Pose2D], truths: Sequence[Pose2D]) -> Optional[Pose2D]:
+    """The rigid placement of the map frame in the world that maps the estimated positions onto the true ones best
+    (least squares: evo's Umeyama alignment, the one behind the aligned ATE), as (x [m], y [m], yaw [rad]); None
+    with fewer than 3 pairs, without evo, or when the positions are degenerate (all on a line)."""
+    if len(estimates) < 3 or len(estimates) != len(truths):
+        return None
+    try:
+        from evo.core.geometry import GeometryException, umeyama_alignment  # noqa: PLC0415 - evaluation only
+    except ImportError:
+        return None
+    source = np.array([(p[0], p[1], 0.0) for p in estimates]).T
+    target = np.array([(p[0], p[1], 0.0) for p in truths]).T
+    try:
+        rotation, translation, _scale = umeyama_alignment(source, target, with_scale=False)
+    except GeometryException:
+        return None
+    if not math.isclose(rotation[2, 2], 1.0, abs_tol=1e-6):  # a flip about an in-plane axis: positions on a line
+        return None
+    return float(translation[0]), float(translation[1]), math.atan2(rotation[1, 0], rotation[0, 0])
+
+
 def ate_rmse_cm(estimates: Sequence[Pose2D], truths: Sequence[Pose2D], align: bool = True) -> Optional[float]:
     """Absolute trajectory error (translation RMSE) [cm] of ``estimates`` against ``truths`` (pairs taken at the same
     stamps) computed with evo: after an SE(3) Umeyama alignment when ``align``, else as given. None without evo or
