@@ -348,3 +348,24 @@ def test_closed_loop_turns_to_a_goal_heading_behind_the_robot():
     assert turned_at is not None
     assert math.hypot(x - 2.0, y) <= params.goal_dist_tol
     assert abs(math.atan2(math.sin(path[-1, 2] - yaw), math.cos(path[-1, 2] - yaw))) <= params.yaw_goal_tolerance
+
+
+@pytest.mark.parametrize("turn", [math.pi - 0.05, -(math.pi - 0.05), 1.0])
+def test_the_final_turn_ends_within_tolerance_on_a_base_that_needs_time_to_stop(turn):
+    """At the goal, facing away from its heading: the base stops at its own deceleration after the last command
+    (a Kobuki: 5 rad/s²), not at once, so the turn must end with the robot standing within the tolerance, not
+    merely pass through it."""
+    base_accel = 5.0  # [rad/s²] the base's own limit (sim/robots/kobuki.yaml)
+    params = PurePursuitParams(rotate_to_heading_angular_vel=1.8, max_angular_accel=3.2, yaw_goal_tolerance=0.2)
+    ctl = controller(straight(length=1.0, yaw=0.0), **vars(params))
+    x, yaw, w = 1.0, turn, 0.0  # at the end of the path, its heading 0
+    for _ in range(400):
+        cmd = ctl.step((x, 0.0, yaw), (0.0, w), DT)
+        target = cmd.w if cmd.status is PursuitStatus.ROTATING_TO_GOAL else 0.0
+        w += max(-base_accel * DT, min(base_accel * DT, target - w))
+        yaw += w * DT
+        if cmd.status is PursuitStatus.GOAL_REACHED and w == 0.0:
+            break
+    else:
+        pytest.fail("the turn did not end")
+    assert abs(math.atan2(math.sin(yaw), math.cos(yaw))) <= params.yaw_goal_tolerance
