@@ -45,19 +45,20 @@ def shell(command: str, *, activate: bool, env: dict[str, str] | None = None) ->
     ("rosmsg", "flex_nav/GetPathActionGoal", "flex_nav/GetPathGoal goal"),  # expanded from action/GetPath.action
     ("rossrv", "flex_nav/MapFile", "bool ok"),
 ])
-def test_rosmsg_and_rossrv_show_flex_nav_types(tool, type_name, expected):
+def test_rosmsg_and_rossrv_show_flex_nav_types(tool: str, type_name: str, expected: str) -> None:
     shown = shell(f"/usr/bin/{tool} show {type_name}", activate=True)
     assert shown.returncode == 0, shown.stderr
     assert expected in shown.stdout
 
 
-def test_without_the_activation_rosmsg_does_not_know_the_action_messages():
+def test_without_the_activation_rosmsg_does_not_know_the_action_messages() -> None:
     shown = shell("/usr/bin/rosmsg show flex_nav/GetPathActionGoal", activate=False)
     assert shown.returncode != 0
     assert "Cannot locate message [GetPathActionGoal]" in shown.stdout + shown.stderr
 
 
-def test_rostopic_echoes_a_flex_nav_message(ros_master: PrivateMaster):
+@pytest.mark.ros
+def test_rostopic_echoes_a_flex_nav_message(ros_master: PrivateMaster) -> None:
     publisher = subprocess.Popen(  # a latched flex_nav message from the venv's python
         [sys.executable, "-c", (
             "import rospy; from flex_nav.msg import BumperEvent\n"
@@ -89,12 +90,12 @@ def bag_with_flex_nav_message(tmp_path: Path) -> Path:
     return path
 
 
-def test_rosbag_check_finds_no_migration_with_the_activation(bag_with_flex_nav_message: Path):
+def test_rosbag_check_finds_no_migration_with_the_activation(bag_with_flex_nav_message: Path) -> None:
     checked = shell(f"/usr/bin/rosbag check {bag_with_flex_nav_message}", activate=True)
     assert checked.returncode == 0, checked.stderr
     assert "Bag file does not need any migrations" in checked.stdout
 
 
-def test_rosbag_check_without_the_activation_reports_the_type_unknown(bag_with_flex_nav_message: Path):
+def test_rosbag_check_without_the_activation_reports_the_type_unknown(bag_with_flex_nav_message: Path) -> None:
     checked = shell(f"/usr/bin/rosbag check {bag_with_flex_nav_message}", activate=False)
     assert "flex_nav/BumperEvent" in checked.stdout and "Unknown" in checked.stdout
