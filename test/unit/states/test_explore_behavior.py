@@ -150,6 +150,20 @@ def test_a_turn_that_fails_is_logged_and_exploring_goes_on(tmp_path):
     assert len(scene.plan_goals()) == 2
 
 
+@pytest.mark.parametrize(("home_max_tries", "outcome"), [(10.0, "finished"), (3.0, "failed")])
+def test_the_way_home_gets_its_own_tries(tmp_path, home_max_tries, outcome):
+    """Four failed drives home (late scans on a loaded machine abort the controller): the default ten tries
+    bring the robot home; the frontiers' three would leave it where it stands."""
+    aborted = GoalStatus.ABORTED
+    scene = Scene(tmp_path, room(40), follow=[GoalStatus.SUCCEEDED, aborted, aborted, aborted, aborted,
+                                              GoalStatus.SUCCEEDED], home_max_tries=home_max_tries)
+    result = scene.run(explored_after=1)
+    assert result.outcome == outcome, scene.h.log_text()
+    homeward = scene.plan_goals()[1:]
+    assert all(g == pytest.approx(START) for g in homeward)
+    assert len(homeward) == (5 if outcome == "finished" else 4)  # max_tries failed retries after the first try
+
+
 def test_a_map_that_is_not_saved_still_brings_the_robot_back_but_fails(tmp_path):
     scene = Scene(tmp_path, room(), follow=[GoalStatus.SUCCEEDED], saved=False)
     result = scene.run()
