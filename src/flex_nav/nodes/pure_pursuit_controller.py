@@ -15,7 +15,8 @@ carried into ``~global_frame`` by tf (``global_frame -> odom frame``); the path 
 default, see :mod:`flex_nav.ros.costmap_ros`) feeds pure pursuit's obstacle regulation and collision check.
 
 Safety (see :class:`flex_nav.nav.control.controller.SafeFollower`): empty path, path in an unknown frame, bad
-pose, stale ``odom`` or scan (``~sensor_timeout`` [s]), a global-frame transform older than
+pose, stale ``odom`` or scan (``~sensor_timeout`` [s]; a zero twist at once, the goal aborted only if the sensor is
+not fresh again within ``~sensor_grace`` [s] more, 0 by default), a global-frame transform older than
 ``~localization_timeout`` [s] (1.0; 0: off; static transforms have no age), an obstacle ahead for
 ``~collision_timeout`` [s], any exception in the control loop, the node that sent the goal gone for
 ``~client_timeout`` [s] (2.0; 0: off; see :mod:`flex_nav.ros.goal_server`), no heartbeat from the operator side
@@ -30,7 +31,8 @@ At the end of a path the robot turns in place to the last pose's yaw (``pure_pur
 ``pure_pursuit/yaw_goal_tolerance`` [rad]) unless the goal sets ``ignore_final_heading``.
 
 Parameters (private): ``global_frame`` ("map"), ``robot_base_frame`` ("base_footprint"),
-``controller_frequency`` [Hz] (20), ``sensor_timeout`` [s] (0.5), ``collision_timeout`` [s] (2.0),
+``controller_frequency`` [Hz] (20), ``sensor_timeout`` [s] (0.5), ``sensor_grace`` [s] (0),
+``collision_timeout`` [s] (2.0),
 ``client_timeout`` [s] (2.0), ``localization_timeout`` [s] (1.0), ``transform_timeout`` [s] (0.2),
 ``topic_timeout`` [s] (2.0, FollowTopic: wait for the first Path), ``feedback_frequency`` [Hz] (5),
 ``heartbeat_timeout`` [s of wall time] (0: off),
@@ -74,7 +76,7 @@ from flex_nav.ros.ros_clock import RosClock
 from flex_nav.ros.topic_path import TopicPath, TopicPaths
 
 PARAMETERS = (
-    "global_frame", "robot_base_frame", "controller_frequency", "sensor_timeout", "collision_timeout",
+    "global_frame", "robot_base_frame", "controller_frequency", "sensor_timeout", "sensor_grace", "collision_timeout",
     "transform_timeout", "topic_timeout", "feedback_frequency", "local_costmap", "pure_pursuit",
     "blocked_distance", "blocked_timeout", "yield_to_people", "yielding", "people_tracker", "client_timeout",
     "localization_timeout", "heartbeat_timeout",
@@ -158,6 +160,7 @@ class PurePursuitController(FollowNode):
             blocked_distance_m=param_float("~blocked_distance", 0.0, 0.0, 100.0),
             blocked_timeout_s=param_float("~blocked_timeout", 0.5, 0.0, 600.0),
             yielding=yielding,
+            sensor_grace_s=param_float("~sensor_grace", 0.0, 0.0, 600.0),
         )
         self._odom: Optional[Odometry] = None
         self._odom_count = 0

@@ -77,6 +77,45 @@ def test_stale_sensor_aborts_with_zero_and_names_it(stale):
     assert d.reason.startswith(f"stale {stale}")
 
 
+def with_grace(grace_s):
+    f = SafeFollower(PARAMS, sensors=("odom", "scan"), sensor_timeout_s=0.5, collision_timeout_s=1.0,
+                     nominal_period_s=0.05, start_s=0.0, sensor_grace_s=grace_s)
+    f.set_path(STRAIGHT)
+    return f
+
+
+def test_a_late_scan_within_the_grace_stops_the_robot_and_the_goal_goes_on():
+    f = with_grace(1.5)
+    fresh(f, 1.0)
+    assert f.tick(1.2, at(0.5), (0.3, 0.0), no_costmap).v > 0.0
+    f.watchdog.saw("odom", 1.6)  # the scan is 0.6 s old: stale
+    held = f.tick(1.6, at(0.5), (0.3, 0.0), no_costmap)
+    assert held.outcome is Outcome.RUNNING and held.stops  # a zero command at once, the goal kept
+    assert held.reason.startswith("stale scan") and "waiting up to 1.5 s" in held.reason
+    fresh(f, 2.0)  # it came back
+    again = f.tick(2.0, at(0.5), (0.0, 0.0), no_costmap)
+    assert again.outcome is Outcome.RUNNING and 0.0 < again.v <= 2.5 * 0.05 + 1e-9  # ramps up from the stop
+    f.watchdog.saw("odom", 3.0)  # stale again: the grace starts afresh
+    assert f.tick(3.0, at(0.6), (0.0, 0.0), no_costmap).outcome is Outcome.RUNNING
+
+
+def test_a_sensor_stale_beyond_the_grace_aborts_and_says_how_long_it_waited():
+    f = with_grace(1.5)
+    fresh(f, 1.0)
+    for now_s in (1.6, 2.5, 3.0):
+        f.watchdog.saw("odom", now_s)
+        assert f.tick(now_s, at(0.5), (0.0, 0.0), no_costmap).outcome is Outcome.RUNNING
+    f.watchdog.saw("odom", 3.1)
+    ended = f.tick(3.1, at(0.5), (0.0, 0.0), no_costmap)  # 1.5 s after it went stale at 1.6
+    assert ended.outcome is Outcome.ABORTED and ended.stops
+    assert ended.reason.startswith("stale scan") and ended.reason.endswith("(stopped 1.5 s waiting for it)")
+
+
+def test_a_negative_grace_is_refused():
+    with pytest.raises(ConfigError, match="sensor_grace_s"):
+        with_grace(-1.0)
+
+
 def test_sensor_never_seen_aborts_after_grace():
     f = following()
     d = f.tick(0.6, at(0.5), (0.0, 0.0), no_costmap)

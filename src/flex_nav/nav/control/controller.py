@@ -5,7 +5,9 @@ the goal goes on, succeeded or must be aborted. Every decision other than RUNNIN
 and so does every failure:
 
 - stale sensors (no message for ``sensor_timeout`` [s], see :class:`~flex_nav.nav.control.safety.SensorWatchdog`)
-  -> ABORTED with the sensor named;
+  -> a zero command at once; ABORTED with the sensor named unless it is fresh again within ``sensor_grace_s``
+  [s] more (0, the default, aborts at once), so a scan that arrives late on a loaded computer stops the robot
+  for a moment instead of ending the goal;
 - the robot pose cannot be had (``pose()`` raises a FlexNavError, e.g. NotReadyError) -> ABORTED with its
   message;
 - pure pursuit reports INVALID_INPUT -> ABORTED; GOAL_REACHED -> SUCCEEDED;
@@ -93,14 +95,18 @@ class SafeFollower:
         blocked_distance_m: float = 0.0,
         blocked_timeout_s: float = 0.5,
         yielding: Optional[YieldRule] = None,
+        sensor_grace_s: float = 0.0,
     ) -> None:
-        for name, value in (("collision_timeout_s", collision_timeout_s), ("nominal_period_s", nominal_period_s)):
+        for name, value in (("collision_timeout_s", collision_timeout_s), ("nominal_period_s", nominal_period_s),
+                            ("sensor_grace_s", sensor_grace_s)):
             if not math.isfinite(value) or value < 0.0:
                 raise ConfigError(f"{name} must be a finite number >= 0 [s], got {value!r}")
         if nominal_period_s <= 0.0:
             raise ConfigError(f"nominal_period_s must be > 0 [s], got {nominal_period_s!r}")
         self.pursuit = RegulatedPurePursuit(params)
         self.watchdog = SensorWatchdog(sensors, sensor_timeout_s, start_s)
+        self.sensor_grace_s = sensor_grace_s
+        self._stale_since_s: Optional[float] = None  # [s] a sensor has been stale without a break since then
         self.collision_timeout_s = collision_timeout_s
         self.nominal_period_s = nominal_period_s
         self._last_tick_s: Optional[float] = None
@@ -134,6 +140,7 @@ class SafeFollower:
         self._last_tick_s = None
         self._blocked_since_s = None
         self._yielding_since_s = None
+        self._stale_since_s = None
         self._path = None
         self.blocked.reset()
         if self.yielding is not None:
@@ -178,6 +185,21 @@ class SafeFollower:
             return decision
         return replace(decision, v=decision.v * scale, w=decision.w * scale)
 
+    def _stale_sensor(self, now_s: float) -> Optional[Decision]:
+        """A stopping decision while a sensor is stale: RUNNING within ``sensor_grace_s`` of the moment it went
+        stale, ABORTED after; None while every sensor is fresh."""
+        problem = self.watchdog.problem(now_s)
+        if problem is None:
+            self._stale_since_s = None
+            return None
+        if self._stale_since_s is None:
+            self._stale_since_s = now_s
+        if now_s - self._stale_since_s < self.sensor_grace_s:
+            self._last_tick_s = None  # the next moving tick measures its interval afresh
+            return _stop(Outcome.RUNNING, f"{problem}: stopped, waiting up to {self.sensor_grace_s:g} s for it")
+        waited = f" (stopped {self.sensor_grace_s:g} s waiting for it)" if self.sensor_grace_s > 0.0 else ""
+        return _stop(Outcome.ABORTED, problem + waited)
+
     def _tick(  # noqa: PLR0911 - one return per way a tick can end, read top to bottom
         self,
         now_s: float,
@@ -186,9 +208,9 @@ class SafeFollower:
         local_costmap: Callable[[], LocalCostmap],
         tracks: Callable[[], Sequence[Track]],
     ) -> Decision:
-        problem = self.watchdog.problem(now_s)
-        if problem is not None:
-            return _stop(Outcome.ABORTED, problem)
+        stale = self._stale_sensor(now_s)
+        if stale is not None:
+            return stale
         robot = pose()
         dt = self.nominal_period_s if self._last_tick_s is None else now_s - self._last_tick_s
         if dt <= 0.0:
