@@ -241,7 +241,7 @@ class DemoMonitor:
                     run.reached += 1
                     heading = ""
                     if run.pose is not None:
-                        heading = f", heading off by {math.degrees(wrap_angle(run.pose[2] - goal[2])):+.0f} deg"
+                        heading = f", heading off by {heading_error_deg(run.pose, goal):+.0f} deg"
                     self._say(run, f"goal {run.completed}/{len(run.goals)} ({name} at {goal[0]:.1f}, {goal[1]:.1f}) "
                                    f"reached after {self.sim_s() - run.goal_started_sim_s:.1f} s{heading}; "
                                    f"distance so far {run.distance_m:.1f} m")
@@ -379,6 +379,11 @@ def start_recorder(stack: contextlib.ExitStack, bag: Path, robots: Sequence[str]
                            "/clock", "/tf", "/tf_static", "/map", "/sim_events", *topics], env=env, log_path=log_path)
     stack.callback(proc.stop, 10.0)  # stopped first (LIFO): SIGINT lets rosbag close the bag file
     return proc
+
+
+def heading_error_deg(pose: Sequence[float], goal: Sequence[float]) -> float:
+    """[deg] The robot's heading (``pose``: x, y, yaw [rad]) minus the goal's, wrapped to (-180, 180]."""
+    return math.degrees(wrap_angle(pose[2] - goal[2]))
 
 
 def start_console(stack: contextlib.ExitStack, port: int, env: Mapping[str, str], log_path: Path) -> ManagedProcess:

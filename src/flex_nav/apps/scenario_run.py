@@ -32,13 +32,13 @@ from flex_nav.apps.nav_demo import (
     DemoMonitor,
     RobotRun,
     add_localization_argument,
+    heading_error_deg,
     start_system,
     wait_until_ready,
     world_map,
     write_picture,
 )
 from flex_nav.exceptions import FlexNavError
-from flex_nav.nav.angles import wrap_angle
 from flex_nav.testing.process import ManagedProcess
 
 PROFILE = "turtlebot4"
@@ -169,7 +169,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
             result.success = run.reached == 1
             result.time_s = (end_sim_s - goal_sim_s) if result.success else math.nan
             if result.success and run.pose is not None:
-                result.heading_error_deg = math.degrees(wrap_angle(run.pose[2] - goal[2]))
+                result.heading_error_deg = heading_error_deg(run.pose, goal)
             result.path_m = run.distance_m
             result.pushes_tried = monitor.pushes_tried
             result.pushes_succeeded = monitor.pushes_succeeded

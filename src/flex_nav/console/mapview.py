@@ -22,11 +22,10 @@ from __future__ import annotations
 import base64
 import dataclasses
 import math
-import struct
 import time
-import zlib
 from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 
+import cv2
 import numpy as np
 
 from flex_nav.console.errors import CommandRefused, MapViewError
@@ -38,7 +37,7 @@ MIN_PERIOD_S = {"pose": 0.1, "global_plan": 0.2, "local_plan": 0.2, "scan": 0.2,
                 "people": 0.2}  # [s]
 MAX_FOOTPRINT_POINTS = 64
 MAX_MAP_CELLS = 25_000_000  # a 5000 x 5000 grid; a larger one is not shown
-PNG_LEVEL = 6  # zlib level of the map's PNG (a 2000 x 2000 map: ~60 ms here)
+PNG_LEVEL = 6  # zlib level of the map's PNG (0-9)
 # map_server's picture of a grid: free white, occupied black, unknown grey; costs in between shade linearly
 FREE, OCCUPIED, UNKNOWN = 254, 0, 205
 
@@ -75,33 +74,24 @@ def grid_image(data: Sequence[int] | np.ndarray, width: int, height: int) -> np.
     return np.ascontiguousarray(shade)
 
 
-def png_bytes(gray: np.ndarray, level: int = PNG_LEVEL) -> bytes:
-    """A grayscale 8-bit PNG of ``gray`` (rows x columns, uint8): one IHDR, one IDAT (filter 0), IEND."""
-    rows, columns = gray.shape
-    raw = np.zeros((rows, columns + 1), dtype=np.uint8)  # each row prefixed with filter type 0
-    raw[:, 1:] = gray
-
-    def chunk(kind: bytes, body: bytes) -> bytes:
-        return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body) & 0xFFFFFFFF)
-
-    header = struct.pack(">IIBBBBB", columns, rows, 8, 0, 0, 0, 0)
-    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(raw.tobytes(), level))
-            + chunk(b"IEND", b""))
-
-
 def _png64(gray: np.ndarray) -> str:
-    return base64.b64encode(png_bytes(gray)).decode("ascii")
+    """Base64 of a grayscale 8-bit PNG of ``gray`` (rows x columns, uint8), encoded by OpenCV."""
+    ok, encoded = cv2.imencode(".png", gray, [cv2.IMWRITE_PNG_COMPRESSION, PNG_LEVEL])
+    if not ok:
+        raise MapViewError(f"OpenCV could not encode a {gray.shape[1]} x {gray.shape[0]} map as PNG")
+    return base64.b64encode(encoded.tobytes()).decode("ascii")
 
 
 class MapPicture:
     """The map as the pages have it: :meth:`update` returns the event that brings them up to date (the whole map
-    when it is new or its geometry changed, else the rectangle that changed, or None when nothing did)."""
+    when it is new or its geometry changed, else the rectangle that changed, or None when nothing did);
+    :meth:`whole_event` the whole map for a page that connects later (encoded only when asked for)."""
 
     def __init__(self) -> None:
         self.geometry: Optional[GridGeometry] = None
         self.image: Optional[np.ndarray] = None
         self.version = 0
-        self.event: Optional[Dict[str, Any]] = None  # the latest whole-map event (a page that connects later)
+        self._whole: Optional[Dict[str, Any]] = None  # the latest whole-map event made (of version _whole_version)
 
     def update(self, geometry: GridGeometry, data: Sequence[int] | np.ndarray) -> Optional[Dict[str, Any]]:
         if geometry.width < 1 or geometry.height < 1 or geometry.width * geometry.height > MAX_MAP_CELLS:
@@ -110,26 +100,31 @@ class MapPicture:
         if not (math.isfinite(geometry.resolution) and geometry.resolution > 0):
             raise MapViewError(f"map resolution {geometry.resolution!r} is not a positive number")
         image = grid_image(data, geometry.width, geometry.height)
+        old = self.image
+        if geometry == self.geometry and old is not None:
+            changed = np.nonzero(old != image)
+            if changed[0].size == 0:
+                return None
+            self.version += 1
+            self.image = image
+            top, bottom = int(changed[0].min()), int(changed[0].max()) + 1
+            left, right = int(changed[1].min()), int(changed[1].max()) + 1
+            return {"type": "map_patch", "version": self.version, "x": left, "y": top, "width": right - left,
+                    "height": bottom - top, "png": _png64(image[top:bottom, left:right])}
         self.version += 1
-        old, self.image = self.image, image
-        if geometry != self.geometry or old is None:
-            self.geometry = geometry
-            self.event = {"type": "map", "frame": geometry.frame, "resolution": geometry.resolution,
-                          "width": geometry.width, "height": geometry.height,
-                          "origin": [round(v, 6) for v in geometry.origin], "png": _png64(image),
-                          "version": self.version}
-            return self.event
-        changed = np.nonzero(old != image)
-        if changed[0].size == 0:
-            self.version -= 1
-            self.image = old
+        self.geometry, self.image = geometry, image
+        return self.whole_event()
+
+    def whole_event(self) -> Optional[Dict[str, Any]]:
+        """The whole map at its current version (None before the first map)."""
+        if self.image is None or self.geometry is None:
             return None
-        top, bottom = int(changed[0].min()), int(changed[0].max()) + 1
-        left, right = int(changed[1].min()), int(changed[1].max()) + 1
-        assert self.event is not None
-        self.event = {**self.event, "png": _png64(image), "version": self.version}  # kept whole for new pages
-        return {"type": "map_patch", "version": self.version, "x": left, "y": top, "width": right - left,
-                "height": bottom - top, "png": _png64(image[top:bottom, left:right])}
+        if self._whole is None or self._whole["version"] != self.version:
+            g = self.geometry
+            self._whole = {"type": "map", "frame": g.frame, "resolution": g.resolution, "width": g.width,
+                           "height": g.height, "origin": [round(v, 6) for v in g.origin],
+                           "png": _png64(self.image), "version": self.version}
+        return self._whole
 
 
 def _points(values: np.ndarray, budget: int) -> List[List[float]]:

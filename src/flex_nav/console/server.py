@@ -162,7 +162,6 @@ class Console:
         self.send_goal: GoalSender = send_goal or _no_goals
         self.render = render
         self.map = MapPicture()  # updated in the caller's thread (PNG work stays off the event loop)
-        self.map_event: Optional[Dict[str, Any]] = None  # the whole map as the pages last got it
         self._map_lock = threading.Lock()
         self.robots: Dict[str, RobotView] = {}
         self.tracker = CommandTracker()
@@ -203,9 +202,8 @@ class Console:
         MapViewError for a map that is not shown."""
         with self._map_lock:
             event = self.map.update(geometry, data)
-            whole = self.map.event
         if event is not None:
-            self._call(self._on_map, event, whole)
+            self._call(self.broadcast, event)
 
     def submit_overlay(self, event: Dict[str, Any]) -> None:
         """A robot's overlay event (:mod:`flex_nav.console.mapview`)."""
@@ -230,10 +228,6 @@ class Console:
         for robot in robots:
             self.robots.setdefault(robot, RobotView())
         self.broadcast(robots_event(list(self.robots)))
-
-    def _on_map(self, event: Dict[str, Any], whole: Optional[Dict[str, Any]]) -> None:
-        self.map_event = whole
-        self.broadcast(event)
 
     def _on_overlay(self, event: Dict[str, Any]) -> None:
         view = self.robots.get(event["robot"])
@@ -294,8 +288,10 @@ class Console:
     def snapshot(self) -> List[Dict[str, Any]]:
         """Everything a page needs when it connects (or falls behind): robots, then each one's state."""
         events: List[Dict[str, Any]] = [robots_event(list(self.robots))]
-        if self.map_event is not None:
-            events.append(self.map_event)
+        with self._map_lock:
+            whole_map = self.map.whole_event()  # encoded here only if patches came since it was last sent whole
+        if whole_map is not None:
+            events.append(whole_map)
         for view in self.robots.values():
             events.extend(e for e in (view.structure_event, view.status, view.activity) if e is not None)
             events.extend(view.overlays.values())

@@ -77,6 +77,7 @@ from flex_nav.msg import (
     BehaviorStatus,
     BehaviorTransition,
 )
+from flex_nav.nav.planar import transform_poses
 from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.ros.master_probe import MASTER_CALL_TIMEOUT_S, _TimeoutTransport
 from flex_nav.ros.node import init_node
@@ -180,16 +181,7 @@ class MapLink:
         if frame in ("", self.view.frame):
             return rows
         pose = self._to_map(frame)
-        if pose is None:
-            return None
-        x, y, yaw = pose
-        c, s = np.cos(yaw), np.sin(yaw)
-        out = rows.copy()
-        out[:, 0] = x + c * rows[:, 0] - s * rows[:, 1]
-        out[:, 1] = y + s * rows[:, 0] + c * rows[:, 1]
-        if out.shape[1] > 2:
-            out[:, 2] = rows[:, 2] + yaw
-        return out
+        return None if pose is None else transform_poses(rows, *pose)
 
     def _on_plan(self, msg: Path, kind: str) -> None:
         if not self._due(kind):

@@ -90,6 +90,7 @@ KOBUKI_CODES = {"left": BumperEvent.LEFT, "center": BumperEvent.CENTER, "right":
 PACE_SLACK_S = 0.002  # [s] sleep only when this far ahead of the real-time schedule
 MAX_LAG_S = 0.25  # [s] further behind than this: re-anchor the schedule instead of bursting to catch up
 STATS_PERIOD_S = 30.0  # [s] wall time between log lines with the achieved real-time factor
+CAMERA_CHECK_PERIOD_S = 0.25  # [s] wall time between looks at whether anyone subscribes to a camera
 # odometry covariance, diagonal [m^2, m^2, m^2, rad^2, rad^2, rad^2] (x, y, z, roll, pitch, yaw). The base is
 # planar: z, roll and pitch are known to be 0, so their variances are small (not 0: an EKF needs them positive;
 # not huge, as 1e6 once was: RViz's Odometry display draws the covariance to scale, over the whole view)
@@ -380,9 +381,12 @@ class SimBridge:
         wall_start = anchor_wall = time.monotonic()
         anchor_sim = 0.0
         next_stats = wall_start + STATS_PERIOD_S
+        next_camera_check = wall_start
         while not rospy.is_shutdown():
             self._apply_commands()
-            self._render_cameras_watched()
+            if time.monotonic() >= next_camera_check:  # not every physics step: subscribers come and go slowly
+                self._render_cameras_watched()
+                next_camera_check = time.monotonic() + CAMERA_CHECK_PERIOD_S
             readings = sim.step()
             t = sim.time
             start = time.perf_counter()

@@ -63,7 +63,8 @@ def test_a_changed_map_sends_only_the_changed_rectangle_and_nothing_when_unchang
     assert patch is not None and patch["type"] == "map_patch" and patch["version"] == 2
     assert (patch["x"], patch["y"], patch["width"], patch["height"]) == (1, 1, 2, 1)
     assert decoded(patch["png"]).tolist() == [[OCCUPIED, UNKNOWN]]
-    assert picture.event is not None and decoded(picture.event["png"])[1, 1] == OCCUPIED  # a later page: whole
+    whole = picture.whole_event()  # a later page: whole
+    assert whole is not None and decoded(whole["png"])[1, 1] == OCCUPIED
     moved = GridGeometry("map", 0.05, 4, 3, (0.0, 0.0, 0.0))
     again = picture.update(moved, data)
     assert again is not None and again["type"] == "map"  # new geometry: the whole map again
