@@ -1,0 +1,366 @@
+"""The lidar's view of the object blocking the way: box-like (straight faces, corners) or person-like (two leg
+arcs, a round body), with a confidence and the features it was decided from.
+
+The camera decides what an object is from its colour and texture, from one viewpoint; a planar lidar sees the
+object's outline in its plane whatever its colour: a box shows one straight face or two faces meeting at a
+right angle, a person two small leg arcs (a leg scanner's height) or one round body (a torso or a capsule).
+
+The scan's end points are cut into clusters as the moving-obstacle tracker cuts them
+(:func:`flex_nav.perception.scan_segments.split_points`: neighbours closer than ``gap_m + gap_per_m * range``
+[m] belong together, a beam without a return separates), but no cluster is dropped for being wide. The
+*object* is the cluster with the hit nearest to ``target`` (a point on the robot's path where it was blocked),
+if that hit lies within ``search_radius_m`` [m]. Its outline is fitted three ways, each residual given as an
+RMS with the degrees of freedom of its fit taken off (so a model with more parameters does not win on noise):
+
+- one straight line (total least squares);
+- a corner: two lines meeting at one of the hits (the best split; each side at least 3 hits);
+- a circle (algebraic fit): its radius, and whether it bulges toward the sensor (a body) or away (a hollow).
+
+The range noise expected at the object's mean range is ``noise_m + noise_per_m * range`` [m] (one sigma).
+The label, first rule that applies:
+
+1. ``none``: no hit within ``search_radius_m`` of the target;
+2. ``person``: the object moves (``speed_mps`` from a track, at least ``moving_speed_mps``): boxes stand still;
+3. ``person``: the object is leg-sized (at most ``leg_max_width_m`` across) and another leg-sized cluster lies
+   within ``leg_pair_max_gap_m`` of it with the background seen between them (at least one beam between the
+   two that has no return or ends farther: two pieces of one box's outline are neighbouring beams); one
+   leg-sized arc alone is a person only when it is curved (at least 3 hits, bulging toward the sensor, a
+   circle of at most leg size fitting ``curvature_ratio`` times better than a line, the line above the noise),
+   else ``unsure``;
+4. fewer than ``min_points`` hits: ``unsure`` (too few to tell a corner from a curve);
+5. ``person``: a round body: the circle bulges toward the sensor, its radius is in
+   [``body_min_radius_m``, ``body_max_radius_m``], the single line does not fit within the noise, and the
+   circle's residual is at most ``curvature_ratio`` times that of the best box outline (the line, or the
+   corner if its angle is within 20 degrees of a right angle: a curve cut in two makes a blunter one);
+6. a box outline (the line, or a right-angled corner, fits within ``straight_sigmas`` noise sigmas):
+   ``box`` if it is ``box_min_size_m`` to ``box_max_size_m`` [m] across (larger: a wall or furniture, smaller:
+   too little to tell, both ``unsure``); a right corner (0.9) or a face of at least 12 hits (0.85) gives more
+   confidence than a short straight outline (0.7);
+7. otherwise ``unsure``.
+
+Pure numpy, no ROS, no clock: the caller passes points in one planar frame (e.g. the laser's), the sensor's
+position in it, and the track speed if the object is tracked.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import List, Optional, Sequence, Tuple
+
+import numpy as np
+
+from flex_nav import validation
+from flex_nav.exceptions import ConfigError
+from flex_nav.perception.moving_obstacles import Track
+from flex_nav.perception.scan_segments import SegmentParams, split_points
+
+BOX = "box"
+PERSON = "person"
+UNSURE = "unsure"
+NONE = "none"
+LIDAR_LABELS: Tuple[str, ...] = (BOX, PERSON, UNSURE, NONE)
+
+MIN_SIDE_POINTS = 3  # hits on each side of a corner fit
+RIGHT_ANGLE_TOLERANCE_DEG = 20.0  # [deg] a corner this close to 90 degrees is a box's corner
+LONG_FACE_POINTS = 12  # a straight face of this many hits is clearly straight
+
+
+@dataclass(frozen=True)
+class ShapeParams:
+    """Parameters of :func:`classify_shape`; units in comments."""
+
+    gap_m: float = 0.12  # [m] neighbouring hits closer than this belong to one cluster (at short range)
+    gap_per_m: float = 0.04  # [m per m of range] added to gap_m
+    search_radius_m: float = 0.6  # [m] the object is the cluster with a hit this close to the target
+    min_points: int = 8  # fewer hits (not a leg): unsure (too little to tell a corner from a curve)
+    noise_m: float = 0.002  # [m] range noise (one sigma) at 0 m
+    noise_per_m: float = 0.005  # [m per m of range] noise growing with range (TurtleBot 4's RPLidar A1: 0.5 %)
+    straight_sigmas: float = 1.8  # a straight outline fits within this many noise sigmas
+    curvature_ratio: float = 0.6  # a circle this much better than the straight outline is a round body
+    leg_max_width_m: float = 0.2  # [m] a leg is at most this wide
+    leg_pair_max_gap_m: float = 0.5  # [m] two legs' centres at most this far apart
+    body_min_radius_m: float = 0.1  # [m] round body (torso, capsule) radius range
+    body_max_radius_m: float = 0.4  # [m]
+    box_min_size_m: float = 0.2  # [m] a straight object smaller than this: unsure
+    box_max_size_m: float = 1.6  # [m] a straight object larger than this: a wall or furniture (unsure)
+    moving_speed_mps: float = 0.2  # [m/s] a tracked object at least this fast moves
+
+    def __post_init__(self) -> None:
+        owner = "lidar shape"
+        for name in ("gap_m", "search_radius_m", "noise_m", "straight_sigmas", "leg_max_width_m",
+                     "leg_pair_max_gap_m", "body_min_radius_m", "body_max_radius_m", "box_min_size_m",
+                     "box_max_size_m", "moving_speed_mps"):
+            validation.number(owner, name, getattr(self, name), positive=True)
+        validation.number(owner, "gap_per_m", self.gap_per_m, minimum=0.0)
+        validation.number(owner, "noise_per_m", self.noise_per_m, minimum=0.0)
+        validation.number(owner, "curvature_ratio", self.curvature_ratio, positive=True, maximum=1.0)
+        validation.integer(owner, "min_points", self.min_points, minimum=MIN_SIDE_POINTS)
+        validation.number(owner, "body_max_radius_m", self.body_max_radius_m, minimum=self.body_min_radius_m)
+        validation.number(owner, "box_max_size_m", self.box_max_size_m, minimum=self.box_min_size_m)
+
+    def noise_at(self, range_m: float) -> float:
+        """Expected range noise (one sigma) [m] at ``range_m`` [m]."""
+        return self.noise_m + self.noise_per_m * range_m
+
+
+@dataclass(frozen=True)
+class ShapeFeatures:
+    """What the outline of the object looks like (NaN where a fit was impossible)."""
+
+    points: int  # hits on the object
+    range_m: float  # [m] nearest hit from the sensor
+    size_m: float  # [m] largest extent of the hits
+    line_rms_m: float  # [m] residual of one straight line
+    corner_rms_m: float  # [m] residual of the best corner (two lines), NaN with too few hits
+    corner_angle_deg: float  # [deg] angle between the corner's two lines in [0, 90], NaN without a corner
+    circle_rms_m: float  # [m] residual of the circle fit
+    circle_radius_m: float  # [m] its radius (inf for collinear hits)
+    bulges: bool  # the circle's centre lies behind the hits (seen from the sensor): a body, not a hollow
+    noise_m: float  # [m] expected range noise (one sigma) at the object's mean range
+    legs: int  # leg-sized clusters making up the object (0, 1 or 2)
+    speed_mps: Optional[float]  # [m/s] tracked speed, None if not tracked
+    centre: Tuple[float, float]  # [m] mean of the hits (the frame of the points)
+
+    def summary(self) -> str:
+        """One line of the features, e.g. ``12 hits at 0.55 m, 0.41 m across, line rms 4 mm, ...``."""
+        speed = "untracked" if self.speed_mps is None else f"speed {self.speed_mps:.2f} m/s"
+        return (f"{self.points} hits at {self.range_m:.2f} m, {self.size_m:.2f} m across, line rms "
+                f"{1000 * self.line_rms_m:.0f} mm, corner rms {1000 * self.corner_rms_m:.0f} mm at "
+                f"{self.corner_angle_deg:.0f} deg, circle r {self.circle_radius_m:.2f} m rms "
+                f"{1000 * self.circle_rms_m:.0f} mm{' (bulging)' if self.bulges else ''}, noise "
+                f"{1000 * self.noise_m:.0f} mm, legs {self.legs}, {speed}")
+
+
+@dataclass(frozen=True)
+class ShapeCue:
+    """The lidar's cue: a label of :data:`LIDAR_LABELS`, a confidence [0..1], why, and the features."""
+
+    label: str
+    confidence: float
+    reason: str
+    features: Optional[ShapeFeatures] = None
+
+    def describe(self) -> str:
+        """``box 0.90 (corner of 88 deg within the noise): 25 hits at ...``."""
+        head = f"{self.label} {self.confidence:.2f} ({self.reason})"
+        return head if self.features is None else f"{head}: {self.features.summary()}"
+
+
+# ---------------------------------------------------------------------------------------------- fits
+def _line_ssr(xs: np.ndarray, ys: np.ndarray) -> Tuple[float, float]:
+    """(sum of squared perpendicular residuals [m^2], direction [rad]) of the total-least-squares line."""
+    ssr, angle = _prefix_line_fits(xs, ys)
+    return float(ssr[-1]), float(angle[-1])
+
+
+def _prefix_line_fits(xs: np.ndarray, ys: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
+    """For every prefix xs[:k + 1]: the TLS line's sum of squared residuals and direction [rad] (from running
+    sums; a prefix of one point has residual 0)."""
+    count = np.arange(1, len(xs) + 1, dtype=np.float64)
+    mx, my = np.cumsum(xs) / count, np.cumsum(ys) / count
+    sxx = np.cumsum(xs * xs) / count - mx * mx
+    syy = np.cumsum(ys * ys) / count - my * my
+    sxy = np.cumsum(xs * ys) / count - mx * my
+    half_trace = 0.5 * (sxx + syy)
+    spread = np.sqrt(np.maximum(0.0, 0.25 * (sxx - syy) ** 2 + sxy * sxy))
+    smallest = np.maximum(0.0, half_trace - spread)
+    return count * smallest, 0.5 * np.arctan2(2.0 * sxy, sxx - syy)
+
+
+def _corner_fit(xs: np.ndarray, ys: np.ndarray) -> Tuple[float, float]:
+    """(RMS [m], angle between the lines [deg] in [0, 90]) of the best two-line fit sharing one hit; NaN if the
+    hits are too few for both sides."""
+    count = len(xs)
+    if count < 2 * MIN_SIDE_POINTS - 1:
+        return math.nan, math.nan
+    head_ssr, head_angle = _prefix_line_fits(xs, ys)
+    tail_ssr_rev, tail_angle_rev = _prefix_line_fits(xs[::-1], ys[::-1])
+    splits = np.arange(MIN_SIDE_POINTS - 1, count - MIN_SIDE_POINTS + 1)  # the shared hit's index
+    total = head_ssr[splits] + tail_ssr_rev[count - 1 - splits]
+    best = int(np.argmin(total))
+    split = int(splits[best])
+    dof = max(1, count + 1 - 4)
+    rms = math.sqrt(float(total[best]) / dof)
+    diff = abs(float(head_angle[split]) - float(tail_angle_rev[count - 1 - split])) % math.pi
+    angle = math.degrees(min(diff, math.pi - diff))
+    return rms, angle
+
+
+def _circle_fit(xs: np.ndarray, ys: np.ndarray) -> Tuple[float, float, float, float]:
+    """(centre x, centre y, radius, RMS) [m] of the algebraic circle fit; radius inf for collinear hits."""
+    design = np.column_stack((xs, ys, np.ones_like(xs)))
+    rhs = -(xs * xs + ys * ys)
+    solution, _res, rank, _sv = np.linalg.lstsq(design, rhs, rcond=None)
+    if rank < 3:
+        return math.nan, math.nan, math.inf, math.inf
+    cx, cy = -0.5 * float(solution[0]), -0.5 * float(solution[1])
+    radius_sq = cx * cx + cy * cy - float(solution[2])
+    if not math.isfinite(radius_sq) or radius_sq <= 0.0:
+        return math.nan, math.nan, math.inf, math.inf
+    radius = math.sqrt(radius_sq)
+    residual = np.hypot(xs - cx, ys - cy) - radius
+    dof = max(1, len(xs) - 3)
+    return cx, cy, radius, math.sqrt(float(np.sum(residual * residual)) / dof)
+
+
+# ---------------------------------------------------------------------------------------------- clusters
+def clusters(xs: np.ndarray, ys: np.ndarray, sensor: Tuple[float, float], params: ShapeParams) -> List[np.ndarray]:
+    """Index arrays (into ``xs``) of the clusters of a scan's end points in beam order (NaN: no return, which
+    always separates); no cluster is dropped for its width."""
+    xs = np.asarray(xs, dtype=np.float64)
+    ys = np.asarray(ys, dtype=np.float64)
+    if xs.shape != ys.shape or xs.ndim != 1:
+        raise ConfigError(f"scan points need two 1-D arrays of one length, got shapes {xs.shape} and {ys.shape}")
+    finite = np.isfinite(xs) & np.isfinite(ys)
+    bounds = np.flatnonzero(np.diff(np.concatenate(([0], finite.astype(np.int8), [0]))))
+    seg_params = SegmentParams(gap_m=params.gap_m, gap_per_m=params.gap_per_m)
+    out: List[np.ndarray] = []
+    for start, stop in zip(bounds[::2], bounds[1::2]):
+        px, py = xs[start:stop], ys[start:stop]
+        ranges = np.hypot(px - sensor[0], py - sensor[1])
+        out.extend(run + start for run in split_points(px, py, ranges, seg_params, False))
+    return out
+
+
+def object_speed(tracks: Sequence[Track], centre: Tuple[float, float], max_distance_m: float) -> Optional[float]:
+    """Speed [m/s] of the track nearest to ``centre`` (x, y) [m] if one lies within ``max_distance_m`` [m]."""
+    best: Optional[Tuple[float, float]] = None
+    for track in tracks:
+        distance = math.hypot(track.x - centre[0], track.y - centre[1])
+        if distance <= max_distance_m and (best is None or distance < best[0]):
+            best = (distance, track.speed)
+    return None if best is None else best[1]
+
+
+# ---------------------------------------------------------------------------------------------- classifier
+def _size(px: np.ndarray, py: np.ndarray) -> float:
+    points = np.column_stack((px, py))
+    if len(points) > 64:  # the extent from a subsample's pairs: a few hits less never change it by a beam
+        points = points[np.linspace(0, len(points) - 1, 64).astype(np.int64)]
+    diff = points[:, None, :] - points[None, :, :]
+    return float(np.sqrt((diff * diff).sum(axis=2).max()))
+
+
+def features_of(px: np.ndarray, py: np.ndarray, sensor: Tuple[float, float], params: ShapeParams, *,
+                legs: int = 0, speed_mps: Optional[float] = None) -> ShapeFeatures:
+    """The outline features of one object's hits (``px``, ``py`` [m], beam order) seen from ``sensor``."""
+    px = np.asarray(px, dtype=np.float64)
+    py = np.asarray(py, dtype=np.float64)
+    count = len(px)
+    ranges = np.hypot(px - sensor[0], py - sensor[1])
+    mx, my = float(px.mean()), float(py.mean())
+    line_ssr, _ = _line_ssr(px - mx, py - my)
+    line_rms = math.sqrt(line_ssr / max(1, count - 2))
+    corner_rms, corner_angle = _corner_fit(px - mx, py - my)
+    cx, cy, radius, circle_rms = _circle_fit(px - mx, py - my) if count >= 3 else (
+        math.nan, math.nan, math.inf, math.inf)
+    bulges = bool(math.isfinite(radius) and math.hypot(cx + mx - sensor[0], cy + my - sensor[1])
+                  > math.hypot(mx - sensor[0], my - sensor[1]))
+    return ShapeFeatures(count, float(ranges.min()), _size(px, py), line_rms, corner_rms, corner_angle, circle_rms,
+                         radius, bulges, params.noise_at(float(ranges.mean())), legs, speed_mps, (mx, my))
+
+
+def _leg_sized(px: np.ndarray, py: np.ndarray, params: ShapeParams) -> bool:
+    return _size(px, py) <= params.leg_max_width_m
+
+
+def _seen_between(xs: np.ndarray, ys: np.ndarray, sensor: Tuple[float, float], first: np.ndarray,
+                  second: np.ndarray) -> bool:
+    """True if the beams between two clusters (beam order) look past them: at least one beam, each without a
+    return or ending farther than the nearer cluster. Two legs show the background between them; two pieces
+    of one box's outline (cut where a face is seen at a grazing angle) are neighbouring beams."""
+    lo, hi = (first, second) if first.max() < second.min() else (second, first)
+    between = np.arange(int(lo.max()) + 1, int(hi.min()))
+    if len(between) == 0:
+        return False
+    nearer = min(float(np.hypot(xs[c] - sensor[0], ys[c] - sensor[1]).mean()) for c in (first, second))
+    ranges = np.hypot(xs[between] - sensor[0], ys[between] - sensor[1])
+    return bool(np.all(~np.isfinite(ranges) | (ranges > nearer)))
+
+
+def classify_shape(xs: np.ndarray, ys: np.ndarray, sensor: Tuple[float, float], target: Tuple[float, float],
+                   params: Optional[ShapeParams] = None, *, speed_mps: Optional[float] = None) -> ShapeCue:
+    """The lidar cue of the object nearest to ``target`` (x, y) [m] in a scan's end points (``xs``, ``ys`` [m],
+    beam order, NaN: no return) seen from ``sensor`` (x, y) [m]; ``speed_mps`` [m/s]: the object's tracked
+    speed, None if it is not tracked. See the module docstring for the rules."""
+    params = params if params is not None else ShapeParams()
+    xs = np.asarray(xs, dtype=np.float64)
+    ys = np.asarray(ys, dtype=np.float64)
+    found = clusters(xs, ys, sensor, params)
+    best: Optional[Tuple[float, int]] = None
+    for index, run in enumerate(found):
+        distance = float(np.hypot(xs[run] - target[0], ys[run] - target[1]).min())
+        if distance <= params.search_radius_m and (best is None or distance < best[0]):
+            best = (distance, index)
+    if best is None:
+        return ShapeCue(NONE, 1.0, f"no hit within {params.search_radius_m:.2f} m of the target")
+    run = found[best[1]]
+    px, py = xs[run], ys[run]
+    legs = 0
+    if _leg_sized(px, py, params):
+        legs = 1
+        centre = np.array([px.mean(), py.mean()])
+        for other_index, other in enumerate(found):
+            if other_index == best[1] or not _leg_sized(xs[other], ys[other], params):
+                continue
+            other_centre = np.array([xs[other].mean(), ys[other].mean()])
+            if float(np.hypot(*(other_centre - centre))) <= params.leg_pair_max_gap_m \
+                    and _seen_between(xs, ys, sensor, run, other):
+                legs = 2
+                px, py = np.concatenate((px, xs[other])), np.concatenate((py, ys[other]))
+                break
+    feats = features_of(px, py, sensor, params, legs=legs, speed_mps=speed_mps)
+    return _decide(feats, params)
+
+
+def _decide(feats: ShapeFeatures, params: ShapeParams) -> ShapeCue:
+    """The rules 2-7 of the module docstring on the features."""
+    cue = _motion_or_legs(feats, params)
+    return cue if cue is not None else _outline(feats, params)
+
+
+def _motion_or_legs(feats: ShapeFeatures, params: ShapeParams) -> Optional[ShapeCue]:
+    """Rules 2 and 3: a moving object, two legs, one leg (None: not leg-sized, the outline decides)."""
+    if feats.speed_mps is not None and feats.speed_mps >= params.moving_speed_mps:
+        return ShapeCue(PERSON, 0.9, f"moves at {feats.speed_mps:.2f} m/s", feats)
+    if feats.legs == 2:
+        return ShapeCue(PERSON, 0.85, "two leg-sized arcs side by side", feats)
+    if feats.legs == 1:
+        curved = feats.circle_rms_m < params.curvature_ratio * feats.line_rms_m and feats.bulges
+        if feats.points >= MIN_SIDE_POINTS and curved and feats.line_rms_m > feats.noise_m \
+                and feats.circle_radius_m <= params.leg_max_width_m:
+            return ShapeCue(PERSON, 0.6, "one curved leg-sized arc", feats)
+        return ShapeCue(UNSURE, 0.5, f"a small piece of {feats.size_m:.2f} m, not clearly curved", feats)
+    return None
+
+
+def _outline(feats: ShapeFeatures, params: ShapeParams) -> ShapeCue:
+    """Rules 4-7: too few hits, a round body, a box outline, neither."""
+    if feats.points < params.min_points:
+        return ShapeCue(UNSURE, 0.5, f"{feats.points} hits (fewer than {params.min_points})", feats)
+    tolerance = params.straight_sigmas * feats.noise_m
+    square = math.isfinite(feats.corner_rms_m) and abs(feats.corner_angle_deg - 90.0) <= RIGHT_ANGLE_TOLERANCE_DEG
+    right_corner = square and feats.corner_rms_m <= tolerance
+    straight = min(feats.line_rms_m, feats.corner_rms_m) if square else feats.line_rms_m  # a box's outline
+    if (feats.bulges and params.body_min_radius_m <= feats.circle_radius_m <= params.body_max_radius_m
+            and feats.circle_rms_m <= params.curvature_ratio * straight and feats.line_rms_m > tolerance):
+        ratio = feats.circle_rms_m / straight
+        confidence = min(0.95, 0.6 + 0.4 * (1.0 - ratio / params.curvature_ratio))
+        return ShapeCue(PERSON, confidence, f"round body of radius {feats.circle_radius_m:.2f} m", feats)
+    if feats.line_rms_m <= tolerance or right_corner:
+        return _box(feats, params, right_corner and feats.line_rms_m > tolerance)
+    return ShapeCue(UNSURE, 0.5, "neither straight nor a body's curve", feats)
+
+
+def _box(feats: ShapeFeatures, params: ShapeParams, corner: bool) -> ShapeCue:
+    """Rule 6: a box outline of a box's size (``corner``: two faces at a right angle)."""
+    if feats.size_m > params.box_max_size_m:
+        return ShapeCue(UNSURE, 0.6, f"straight but {feats.size_m:.2f} m across: a wall or furniture", feats)
+    if feats.size_m < params.box_min_size_m:
+        return ShapeCue(UNSURE, 0.5, f"straight but only {feats.size_m:.2f} m across", feats)
+    if corner:
+        return ShapeCue(BOX, 0.9, f"corner of {feats.corner_angle_deg:.0f} deg within the noise", feats)
+    if feats.points >= LONG_FACE_POINTS:
+        return ShapeCue(BOX, 0.85, "straight face within the noise", feats)
+    return ShapeCue(BOX, 0.7, f"straight outline of {feats.points} hits within the noise", feats)

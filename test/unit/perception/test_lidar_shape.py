@@ -1,0 +1,200 @@
+"""The lidar-shape classifier on synthetic noisy scans: boxes of 0.3-1.0 m at several yaws and ranges, one or two
+legs, round bodies, partial views, moving objects, walls (no ROS)."""
+
+from __future__ import annotations
+
+import math
+from collections import Counter
+from typing import List, Tuple
+
+import numpy as np
+import pytest
+from unit.perception.shape_synth import box_corners, noisy_scan
+
+from flex_nav.exceptions import ConfigError
+from flex_nav.perception.lidar_shape import (
+    BOX,
+    NONE,
+    PERSON,
+    UNSURE,
+    ShapeParams,
+    classify_shape,
+    object_speed,
+)
+from flex_nav.perception.moving_obstacles import Track
+
+SENSOR = (0.0, 0.0)
+SIZES_M = (0.3, 0.4, 0.6, 1.0)
+NEAR_RANGES_M = (0.4, 0.55, 1.0)  # where the robot stops and classifies (0.55 m in push_or_avoid)
+FAR_RANGES_M = (2.0, 3.0)
+YAWS_DEG = (0, 15, 30, 45, 60, 80)
+
+
+def box_in_front(size_m: float, face_range_m: float, yaw_deg: float) -> np.ndarray:
+    """A square box on the +x axis whose nearest point is about ``face_range_m`` from the sensor."""
+    yaw = math.radians(yaw_deg)
+    centre = face_range_m + size_m / 2.0 * (abs(math.cos(yaw)) + abs(math.sin(yaw)))
+    return box_corners(centre, 0.0, size_m, size_m, yaw)
+
+
+def box_labels(ranges_m: Tuple[float, ...], seed: int) -> Tuple[Counter, List[str]]:
+    rng = np.random.default_rng(seed)
+    labels: Counter = Counter()
+    wrong = []
+    for size in SIZES_M:
+        for face in ranges_m:
+            for yaw in YAWS_DEG:
+                for _ in range(3):
+                    xs, ys = noisy_scan(SENSOR, [box_in_front(size, face, yaw)], rng=rng,
+                                        phase_deg=rng.uniform(0.0, 1.0))
+                    cue = classify_shape(xs, ys, SENSOR, (face, 0.0))
+                    labels[cue.label] += 1
+                    if cue.label != BOX:
+                        wrong.append(f"{size} m box at {face} m, yaw {yaw}: {cue.describe()}")
+    return labels, wrong
+
+
+def test_boxes_near_the_stop_distance_are_all_box_like() -> None:
+    labels, wrong = box_labels(NEAR_RANGES_M, seed=1)
+    assert labels[BOX] == sum(labels.values()), "\n".join(wrong)
+
+
+def test_far_boxes_are_box_like_or_unsure_and_almost_never_a_person() -> None:
+    # at 2-3 m a 0.3 m box gives 5-9 hits with 1-1.5 cm of noise: "unsure" is an honest answer there
+    labels, wrong = box_labels(FAR_RANGES_M, seed=2)
+    total = sum(labels.values())
+    assert labels[BOX] >= 0.85 * total, "\n".join(wrong)
+    assert labels[PERSON] <= 0.02 * total, "\n".join(wrong)
+
+
+def test_a_box_face_gives_its_size_and_a_corner_its_angle() -> None:
+    xs, ys = noisy_scan(SENSOR, [box_in_front(0.6, 0.55, 45.0)], rng=np.random.default_rng(3))
+    cue = classify_shape(xs, ys, SENSOR, (0.55, 0.0))
+    assert cue.label == BOX and cue.confidence >= 0.85
+    assert cue.features is not None
+    assert abs(cue.features.corner_angle_deg - 90.0) < 10.0
+    assert 0.75 < cue.features.size_m < 0.9  # the diagonal of a 0.6 m square, less a beam at each end
+    assert "corner" in cue.reason
+
+
+def round_bodies(ranges_m: Tuple[float, ...], seed: int) -> Counter:
+    rng = np.random.default_rng(seed)
+    labels: Counter = Counter()
+    for face in ranges_m:
+        for _ in range(20):
+            radius = rng.uniform(0.12, 0.3)
+            xs, ys = noisy_scan(SENSOR, circles=[(face + radius, rng.uniform(-0.1, 0.1), radius)], rng=rng,
+                                phase_deg=rng.uniform(0.0, 1.0))
+            labels[classify_shape(xs, ys, SENSOR, (face, 0.0)).label] += 1
+    return labels
+
+
+def test_a_round_body_near_is_a_person() -> None:
+    labels = round_bodies(NEAR_RANGES_M, seed=4)
+    assert labels[PERSON] == sum(labels.values()), labels
+
+
+def test_a_round_body_far_is_a_person_or_unsure_and_almost_never_a_box() -> None:
+    labels = round_bodies(FAR_RANGES_M, seed=5)
+    total = sum(labels.values())
+    assert labels[PERSON] >= 0.6 * total, labels
+    assert labels[BOX] <= 0.05 * total, labels
+
+
+@pytest.mark.parametrize("face_m", [0.4, 0.55, 1.0, 2.0, 3.0])
+def test_two_legs_are_a_person(face_m: float) -> None:
+    rng = np.random.default_rng(6)
+    for _ in range(10):
+        gap = rng.uniform(0.2, 0.35)
+        legs = [(face_m + 0.06, -gap / 2.0, 0.06), (face_m + 0.06 + rng.uniform(-0.1, 0.1), gap / 2.0, 0.06)]
+        xs, ys = noisy_scan(SENSOR, circles=legs, rng=rng, phase_deg=rng.uniform(0.0, 1.0))
+        cue = classify_shape(xs, ys, SENSOR, (face_m, 0.0))
+        assert cue.label == PERSON and cue.features is not None and cue.features.legs == 2, cue.describe()
+
+
+def test_one_leg_near_is_a_person_far_never_a_box() -> None:
+    rng = np.random.default_rng(7)
+    near: Counter = Counter()
+    for face in (0.4, 0.55, 1.0, 2.0, 3.0):
+        for _ in range(20):
+            xs, ys = noisy_scan(SENSOR, circles=[(face + 0.06, 0.0, 0.06)], rng=rng, phase_deg=rng.uniform(0.0, 1.0))
+            cue = classify_shape(xs, ys, SENSOR, (face, 0.0))
+            assert cue.label in (PERSON, UNSURE), cue.describe()
+            if face <= 0.55:
+                near[cue.label] += 1
+    assert near[PERSON] == sum(near.values()), near
+
+
+def test_partial_views_of_a_box_are_never_a_person() -> None:
+    rng = np.random.default_rng(8)
+    for size in SIZES_M:
+        for yaw in YAWS_DEG:
+            xs, ys = noisy_scan(SENSOR, [box_in_front(size, 0.55, yaw)], rng=rng)
+            hit = np.flatnonzero(np.isfinite(xs))
+            for keep in (slice(0, len(hit) // 2), slice(len(hit) // 3, None)):  # one side occluded
+                cut_x, cut_y = np.full_like(xs, np.nan), np.full_like(ys, np.nan)
+                cut_x[hit[keep]], cut_y[hit[keep]] = xs[hit[keep]], ys[hit[keep]]
+                target = (float(np.nanmean(cut_x)), float(np.nanmean(cut_y)))
+                cue = classify_shape(cut_x, cut_y, SENSOR, target)
+                assert cue.label in (BOX, UNSURE), f"{size} m box, yaw {yaw}: {cue.describe()}"
+
+
+def test_half_a_round_body_is_still_round_or_unsure() -> None:
+    rng = np.random.default_rng(9)
+    xs, ys = noisy_scan(SENSOR, circles=[(0.8, 0.0, 0.25)], rng=rng)
+    keep = np.isfinite(xs) & (ys > -0.05)  # the right half hidden
+    cue = classify_shape(np.where(keep, xs, np.nan), np.where(keep, ys, np.nan), SENSOR, (0.6, 0.1))
+    assert cue.label in (PERSON, UNSURE), cue.describe()
+
+
+def test_a_moving_box_shaped_object_is_a_person_and_a_still_one_a_box() -> None:
+    xs, ys = noisy_scan(SENSOR, [box_in_front(0.4, 0.55, 0.0)], rng=np.random.default_rng(10))
+    assert classify_shape(xs, ys, SENSOR, (0.55, 0.0), speed_mps=0.5).label == PERSON
+    assert classify_shape(xs, ys, SENSOR, (0.55, 0.0), speed_mps=0.05).label == BOX
+
+
+def test_a_wall_is_not_a_box_and_nothing_near_the_target_is_none() -> None:
+    wall = np.array([[1.0, -3.0], [1.2, -3.0], [1.2, 3.0], [1.0, 3.0]])
+    xs, ys = noisy_scan(SENSOR, [wall], rng=np.random.default_rng(11))
+    cue = classify_shape(xs, ys, SENSOR, (1.0, 0.0))
+    assert cue.label == UNSURE and "wall" in cue.reason
+    far = classify_shape(xs, ys, SENSOR, (-2.0, 0.0))
+    assert far.label == NONE and far.features is None
+
+
+def test_the_target_picks_the_nearest_object() -> None:
+    box = box_in_front(0.5, 1.0, 0.0)
+    xs, ys = noisy_scan(SENSOR, [box], circles=[(0.0, 1.2, 0.2)], rng=np.random.default_rng(12))
+    assert classify_shape(xs, ys, SENSOR, (1.0, 0.0)).label == BOX
+    assert classify_shape(xs, ys, SENSOR, (0.0, 1.0)).label == PERSON
+
+
+def test_object_speed_takes_the_nearest_track_within_reach() -> None:
+    tracks = [Track(1, 1.0, 0.0, 0.5, 0.0, 0.2, 0.0, 5), Track(2, 1.3, 0.0, 0.0, 0.0, 0.2, 0.0, 5)]
+    assert object_speed(tracks, (1.25, 0.0), 0.5) == 0.0
+    assert object_speed(tracks, (0.9, 0.0), 0.5) == pytest.approx(0.5)
+    assert object_speed(tracks, (5.0, 0.0), 0.5) is None
+
+
+def test_the_summary_names_every_feature() -> None:
+    xs, ys = noisy_scan(SENSOR, [box_in_front(0.4, 0.55, 30.0)], rng=np.random.default_rng(13))
+    text = classify_shape(xs, ys, SENSOR, (0.55, 0.0), speed_mps=0.0).describe()
+    for word in ("hits at", "across", "line rms", "corner rms", "circle r", "noise", "legs", "speed 0.00"):
+        assert word in text
+
+
+@pytest.mark.parametrize(("field", "value", "match"), [
+    ("noise_m", 0.0, "noise_m"),
+    ("min_points", 2, "min_points"),
+    ("curvature_ratio", 1.5, "curvature_ratio"),
+    ("box_max_size_m", 0.1, "box_max_size_m"),
+    ("body_max_radius_m", 0.05, "body_max_radius_m"),
+])
+def test_parameters_are_validated(field: str, value: float, match: str) -> None:
+    with pytest.raises(ConfigError, match=match):
+        ShapeParams(**{field: value})  # type: ignore[arg-type]
+
+
+def test_mismatched_point_arrays_are_refused() -> None:
+    with pytest.raises(ConfigError, match="1-D arrays"):
+        classify_shape(np.zeros(3), np.zeros(4), SENSOR, (0.0, 0.0))
