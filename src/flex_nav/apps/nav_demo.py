@@ -99,6 +99,7 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     parser.add_argument("--timeout", type=float, default=900.0, help="[s] wall-time bound of the whole run")
     parser.add_argument("--seed", type=int, default=0)
     add_localization_argument(parser)
+    add_separate_processes_argument(parser)
     parser.add_argument("--gui", action="store_true", help="pybullet window (needs a display)")
     parser.add_argument("--out", type=Path, default=None, help="output directory (default out/demo-<time>)")
     parser.add_argument("--console", type=int, default=0, metavar="PORT",
@@ -128,6 +129,12 @@ def add_localization_argument(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--localization", choices=LOCALIZATION_SOURCES, default="localizer",
                         help="who publishes map -> odom: flex_nav's localizer on the scan (default) or the "
                              "simulator's ground truth (oracle, the figures before the localizer existed)")
+
+
+def add_separate_processes_argument(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--separate-processes", action="store_true",
+                        help="run each navigation server and controller in a process of its own (default: all of "
+                             "one robot's in one `navigation` process)")
 
 
 def plan_robots(world: Any, profiles: Sequence[str], laps: int, lap: Sequence[str] = LAP) -> List[RobotRun]:
@@ -351,7 +358,8 @@ def start_system(stack: contextlib.ExitStack, args: argparse.Namespace, runs: Li
         processes.append(ManagedProcess(
             ["roslaunch", "flex_nav", "flex_nav_robot.launch", f"robot:={run.name}", f"profile:={run.profile}",
              "twist_relay:=true", f"autonomy:={args.autonomy}", f"behavior:={args.behavior}",
-             f"localizer:={'false' if oracle else 'true'}"],
+             f"localizer:={'false' if oracle else 'true'}",
+             f"combined_navigation:={'false' if getattr(args, 'separate_processes', False) else 'true'}"],
             env=env, log_path=logs / f"{run.name}.log"))
     for proc in processes:
         stack.callback(proc.stop)

@@ -32,6 +32,7 @@ from flex_nav.apps.nav_demo import (
     DemoMonitor,
     RobotRun,
     add_localization_argument,
+    add_separate_processes_argument,
     heading_error_deg,
     start_system,
     wait_until_ready,
@@ -60,6 +61,7 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     parser.add_argument("--timeout", type=float, default=600.0, help="[s] wall-time bound of the whole run")
     parser.add_argument("--out", type=Path, required=True, help="output directory")
     parser.add_argument("--bag", action="store_true", help="record run.bag (commands, odometry, plans, ...)")
+    add_separate_processes_argument(parser)
     add_localization_argument(parser)
     return parser.parse_args(argv)
 
@@ -109,7 +111,8 @@ def start(stack: contextlib.ExitStack, args: argparse.Namespace, run: RobotRun) 
                     "pure_pursuit_topic/local_costmap"):
         params[f"/{ROBOT}/{costmap}/bumper_memory"] = BUMPER_MEMORY_S
     system = argparse.Namespace(world=args.world, rtf=args.rtf, seed=args.seed, gui=False, autonomy="full",
-                                behavior=args.behavior, localization=args.localization, map=None)
+                                behavior=args.behavior, localization=args.localization, map=None,
+                                separate_processes=args.separate_processes)
     processes, env = start_system(stack, system, [run], args.out, camera=True, params=params, bag=args.bag)
     classifier = ManagedProcess(["rosrun", "flex_nav", "obstacle_classifier", f"__ns:={ROBOT}", "_max_rate:=5.0"],
                                 env=env, log_path=args.out / "logs" / "classifier.log")

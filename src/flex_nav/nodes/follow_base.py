@@ -28,6 +28,7 @@ from flex_nav.nav.planar import Pose2D
 from flex_nav.ros.conversions import pose_of_xy_yaw
 from flex_nav.ros.goal_server import GoalOutcome, GoalServer, GoalTicket
 from flex_nav.ros.params import param_float, reject_unknown
+from flex_nav.ros.private_ns import private_namespace
 from flex_nav.ros.ros_clock import RosClock
 from flex_nav.ros.topic_path import TopicPath, TopicPaths, fresh_from
 
@@ -77,7 +78,7 @@ class FollowNode(abc.ABC):
             valid = ", ".join(str(member) for member in GoalSource)  # type: ignore[unreachable]
             raise ConfigError(f"{type(self).__name__} source {source!r} is not valid (valid: {valid})")
         self.source = source
-        self.name = rospy.get_name()
+        self.name = private_namespace()
         reject_unknown("~", parameters)
         self._wake = threading.Condition()  # new Paths and cancels (and what else the subclass adds) wake its loop
 

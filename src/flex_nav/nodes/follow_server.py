@@ -48,10 +48,11 @@ from flex_nav.nodes.follow_base import FollowNode, GoalPath, GoalSource, Pose2D,
 from flex_nav.nodes.get_path_server import warm_up
 from flex_nav.ros.conversions import path_msg
 from flex_nav.ros.costmap_ros import CostmapROS
-from flex_nav.ros.frames import path_in_frame
+from flex_nav.ros.frames import TfSource, path_in_frame
 from flex_nav.ros.goal_server import GoalOutcome, GoalTicket
 from flex_nav.ros.nav_params import planner_params
 from flex_nav.ros.params import param_float
+from flex_nav.ros.private_ns import private_name
 from flex_nav.ros.ros_clock import RosClock
 from flex_nav.ros.topic_path import TopicPath, TopicPaths
 
@@ -66,7 +67,8 @@ CLOCK_POLL_S = 0.01  # [s] wall: on simulated time, how often the replanning loo
 class FollowServer(FollowNode):
     """One follow server node, serving FollowPath or FollowTopic as ``source`` says."""
 
-    def __init__(self, source: GoalSource) -> None:
+    def __init__(self, source: GoalSource, tf_buffer: Optional[tf2_ros.Buffer] = None) -> None:
+        """``tf_buffer``: one shared with other components of the process (None: a buffer of its own)."""
         super().__init__(source, PARAMETERS)
         self.lookahead_distance = param_float("~lookahead_distance", 1.5, 0.05, 1000.0)
         self.period_s = 1.0 / param_float("~planner_frequency", 2.0, 0.05, 100.0)
@@ -78,14 +80,14 @@ class FollowServer(FollowNode):
         self.planner = GridPlanner(planner_params())
         warm_up(self.planner)
         PathProgress([[0.0, 0.0], [1.0, 0.0]], 0.5, 0.1).update(0.2, 0.1)  # load its compiled kernel now
-        self.tf_buffer = tf2_ros.Buffer()
-        self.tf_listener = tf2_ros.TransformListener(self.tf_buffer)
+        self.tf = TfSource(tf_buffer)
+        self.tf_buffer = self.tf.buffer
         self.costmap = CostmapROS("local_costmap", self.tf_buffer, rolling_default=True, static_default=True)
         self.global_frame = self.costmap.global_frame
         self.clock = RosClock(poll_s=CLOCK_POLL_S)
         self._topics = TopicPaths(self._wake, self.clock)
         # not latched: a stale local plan must not steer the controller of a new goal
-        self.plan_publisher = rospy.Publisher("~plan", Path, queue_size=1)
+        self.plan_publisher = rospy.Publisher(private_name("~plan"), Path, queue_size=1)
         self.costmap.serve_clear_costmap(self.name + "/clear_costmap")
         spec = self._serve()
         rospy.loginfo(f"{self.name}: {spec.name}, lookahead {self.lookahead_distance:.2f} m, "

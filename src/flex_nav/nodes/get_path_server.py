@@ -20,6 +20,7 @@ costs, so goal and cancel callbacks never wait for it.
 from __future__ import annotations
 
 import time
+from typing import Optional
 
 import numpy as np
 import rospy
@@ -33,10 +34,11 @@ from flex_nav.nav.costmap.costmap_grid import CostmapGeometry
 from flex_nav.nav.planning.planner import GridPlanner, PlanResult, PlanStatus
 from flex_nav.ros.conversions import path_msg, pose_of_xy_yaw
 from flex_nav.ros.costmap_ros import CostmapROS
-from flex_nav.ros.frames import goal_in_frame
+from flex_nav.ros.frames import TfSource, goal_in_frame
 from flex_nav.ros.goal_server import GoalOutcome, GoalServer, GoalTicket
 from flex_nav.ros.nav_params import planner_params
 from flex_nav.ros.params import param_float, reject_unknown
+from flex_nav.ros.private_ns import private_name, private_namespace
 
 PARAMETERS = ("global_frame", "robot_base_frame", "map_timeout", "transform_timeout", "global_costmap", "planner")
 
@@ -60,18 +62,19 @@ def warm_up(planner: GridPlanner) -> None:
 
 
 class GetPathServer:
-    def __init__(self) -> None:
-        self.name = rospy.get_name()
+    def __init__(self, tf_buffer: Optional[tf2_ros.Buffer] = None) -> None:
+        """``tf_buffer``: one shared with other components of the process (None: a buffer of its own)."""
+        self.name = private_namespace()
         reject_unknown("~", PARAMETERS)
         self.map_timeout_s = param_float("~map_timeout", 1.0, 0.0, 60.0)
         self.transform_timeout_s = param_float("~transform_timeout", 0.2, 0.0, 10.0)
         self.planner = GridPlanner(planner_params())
         warm_up(self.planner)
-        self.tf_buffer = tf2_ros.Buffer()
-        self.tf_listener = tf2_ros.TransformListener(self.tf_buffer)
+        self.tf = TfSource(tf_buffer)
+        self.tf_buffer = self.tf.buffer
         self.costmap = CostmapROS("global_costmap", self.tf_buffer)
         self.global_frame = self.costmap.global_frame
-        self.plan_publisher = rospy.Publisher("~plan", Path, queue_size=1, latch=True)
+        self.plan_publisher = rospy.Publisher(private_name("~plan"), Path, queue_size=1, latch=True)
         self.costmap.serve_clear_costmap(self.name + "/clear_costmap")
         self.server = GoalServer(self.name, action_type("GetPath"), self._run)
         self.server.start()

@@ -66,11 +66,12 @@ from flex_nav.nav.planar import transform_poses
 from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.nodes.follow_base import FollowNode, GoalPath, GoalSource, Pose2D, bad_path
 from flex_nav.ros.costmap_ros import CostmapROS
-from flex_nav.ros.frames import frame_pose, path_in_frame
+from flex_nav.ros.frames import TfSource, frame_pose, path_in_frame
 from flex_nav.ros.goal_server import GoalOutcome, GoalTicket
 from flex_nav.ros.heartbeat import HeartbeatListener
 from flex_nav.ros.moving_obstacles_ros import MovingObstaclesROS, yield_rule
 from flex_nav.ros.params import param_bool, param_float, param_str
+from flex_nav.ros.private_ns import private_name
 from flex_nav.ros.proxies import SHUTDOWN_DRAIN_S, drain_publisher
 from flex_nav.ros.ros_clock import RosClock
 from flex_nav.ros.topic_path import TopicPath, TopicPaths
@@ -106,7 +107,7 @@ def pursuit_params(raw: dict, costmap: CostmapROS) -> PurePursuitParams:
     """PurePursuitParams from ``~pure_pursuit``; ``inscribed_radius`` and ``inflation_cost_scaling_factor``
     come from the local costmap (they must describe its inflation), and a different value given for
     either is a ConfigError rather than a silently wrong obstacle regulation."""
-    name = rospy.resolve_name("~pure_pursuit")
+    name = rospy.resolve_name(private_name("~pure_pursuit"))
     values = dict(raw)
     for key, own in (("inscribed_radius", costmap.inflation.inscribed_radius),
                      ("inflation_cost_scaling_factor", costmap.inflation.cost_scaling_factor)):
@@ -123,7 +124,8 @@ def pursuit_params(raw: dict, costmap: CostmapROS) -> PurePursuitParams:
 class PurePursuitController(FollowNode):
     """One controller node, serving FollowPath or FollowTopic as ``source`` says."""
 
-    def __init__(self, source: GoalSource) -> None:
+    def __init__(self, source: GoalSource, tf_buffer: Optional[tf2_ros.Buffer] = None) -> None:
+        """``tf_buffer``: one shared with other components of the process (None: a buffer of its own)."""
         super().__init__(source, PARAMETERS)
         self.global_frame = param_str("~global_frame", "map")
         self.robot_base_frame = param_str("~robot_base_frame", "base_footprint")
@@ -133,11 +135,12 @@ class PurePursuitController(FollowNode):
         self.localization_timeout_s = param_float("~localization_timeout", 1.0, 0.0, 600.0)
         self.topic_timeout_s = param_float("~topic_timeout", 2.0, 0.0, 600.0)
         self.feedback_period_s = 1.0 / param_float("~feedback_frequency", 5.0, 0.1, 1000.0)
-        raw = rospy.get_param("~pure_pursuit", {})
+        raw = rospy.get_param(private_name("~pure_pursuit"), {})
         if not isinstance(raw, dict):
-            raise ConfigError(f"parameter {rospy.resolve_name('~pure_pursuit')} must be a dictionary, got {raw!r}")
-        self.tf_buffer = tf2_ros.Buffer()
-        self.tf_listener = tf2_ros.TransformListener(self.tf_buffer)
+            raise ConfigError(
+                f"parameter {rospy.resolve_name(private_name('~pure_pursuit'))} must be a dictionary, got {raw!r}")
+        self.tf = TfSource(tf_buffer)
+        self.tf_buffer = self.tf.buffer
         self.costmap = CostmapROS("local_costmap", self.tf_buffer, rolling_default=True)
         params = pursuit_params(raw, self.costmap)
         warm_up(params)

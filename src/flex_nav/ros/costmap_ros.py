@@ -47,6 +47,7 @@ from flex_nav.nav.costmap.obstacle_layer import LaserScan, ObstacleLayerParams
 from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.ros.conversions import grid_map_of, occupancy_grid_msg
 from flex_nav.ros.params import param_bool, param_float, param_str, reject_unknown
+from flex_nav.ros.private_ns import private_name
 from flex_nav.ros.robot_pose import RobotPoseSource
 
 MAP_WAIT_S = 30.0  # [s] default bound on waiting for the first map
@@ -107,7 +108,8 @@ class CostmapROS:
             tf_buffer, self.global_frame, self.robot_base_frame, param_float(ns + "transform_tolerance", 0.5, 0.0, 10.0)
         )
         if not self.use_static_map and not self.rolling_window:
-            raise ConfigError(f"{rospy.resolve_name(ns)}: a costmap needs static_map: true or rolling_window: true")
+            raise ConfigError(
+                f"{rospy.resolve_name(private_name(ns))}: a costmap needs static_map: true or rolling_window: true")
 
         self.costmap: Optional[Costmap] = None
         self.last_scan_time: Optional[rospy.Time] = None  # header stamp of the newest scan used
@@ -118,7 +120,7 @@ class CostmapROS:
                 self.width_m, self.height_m, self.resolution, obstacles=self.obstacles, inflation=self.inflation,
                 track_unknown_space=self.track_unknown_space, bumper_memory_s=self.bumper_memory_s,
             )
-        self.publisher = rospy.Publisher(f"~{name}/costmap", OccupancyGrid, queue_size=1, latch=True)
+        self.publisher = rospy.Publisher(private_name(f"~{name}/costmap"), OccupancyGrid, queue_size=1, latch=True)
         self._subscribers = []
         if self.use_static_map:
             self._subscribers.append(rospy.Subscriber(self.map_topic, OccupancyGrid, self._on_map, queue_size=1))

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Optional
+
 import numpy as np
 import rospy
 import tf2_ros
@@ -11,6 +13,16 @@ from nav_msgs.msg import Path
 from flex_nav.exceptions import ConfigError, NotReadyError
 from flex_nav.nav.planar import heading_along, transform_poses
 from flex_nav.nav.pose_checks import pose_problem, yaw_of_quaternion
+
+
+class TfSource:
+    """A tf buffer with the listener that fills it: the one given (shared by the components of one process), or
+    a buffer and listener of the caller's own when none is given."""
+
+    def __init__(self, shared: Optional[tf2_ros.Buffer] = None) -> None:
+        self.buffer: tf2_ros.Buffer = shared if shared is not None else tf2_ros.Buffer()
+        self.listener: Optional[tf2_ros.TransformListener] = (
+            None if shared is not None else tf2_ros.TransformListener(self.buffer))
 
 
 def frame_pose(

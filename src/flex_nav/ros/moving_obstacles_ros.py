@@ -39,6 +39,7 @@ from flex_nav.perception.moving_obstacles import MovingObstacleTracker, Track, T
 from flex_nav.perception.static_mask import StaticMask
 from flex_nav.ros.conversions import grid_map_of
 from flex_nav.ros.params import param_float, param_str, reject_unknown
+from flex_nav.ros.private_ns import private_name, private_namespace
 
 TRACKER_NS = "~people_tracker/"
 YIELD_NS = "~yielding"
@@ -56,14 +57,15 @@ def _carried(pose: Tuple[float, float, float], xs: np.ndarray, ys: np.ndarray) -
 
 def yield_rule(robot_radius_m: float, speed_mps: float) -> YieldRule:
     """The YieldRule from ``~yielding/`` (defaults for the robot's radius and speed as given)."""
-    raw = rospy.get_param(YIELD_NS, {})
+    raw = rospy.get_param(private_name(YIELD_NS), {})
     if not isinstance(raw, dict):
-        raise ConfigError(f"parameter {rospy.resolve_name(YIELD_NS)} must be a dictionary, got {raw!r}")
+        raise ConfigError(
+            f"parameter {rospy.resolve_name(private_name(YIELD_NS))} must be a dictionary, got {raw!r}")
     values = {"robot_radius_m": robot_radius_m, "speed_mps": speed_mps, **raw}
     try:
         return YieldRule(YieldParams.from_mapping(values))
     except (ConfigError, TypeError) as err:
-        raise ConfigError(f"{rospy.resolve_name(YIELD_NS)}: {err}") from err
+        raise ConfigError(f"{rospy.resolve_name(private_name(YIELD_NS))}: {err}") from err
 
 
 def people_message(tracks: List[Track], frame: str, stamp: rospy.Time) -> PoseArray:
@@ -84,22 +86,23 @@ class MovingObstaclesROS:
 
     def __init__(self, tf_buffer: tf2_ros.Buffer, global_frame: str) -> None:
         reject_unknown(TRACKER_NS, TRACKER_PARAMETERS)
+        self.name = private_namespace()  # the owning controller's name, for its log lines
         self.tf_buffer = tf_buffer
         self.global_frame = global_frame
         self.tracking_frame = param_str(TRACKER_NS + "tracking_frame", "").lstrip("/") or global_frame.lstrip("/")
         self.static_mask: Optional[StaticMask] = None  # in the global frame
         self.static_tolerance_m = param_float(TRACKER_NS + "static_tolerance", 0.15, 0.0, 5.0)
-        raw = {name: rospy.get_param(TRACKER_NS + name) for name in TRACKER_FIELDS
-               if rospy.has_param(TRACKER_NS + name)}
+        raw = {name: rospy.get_param(private_name(TRACKER_NS + name)) for name in TRACKER_FIELDS
+               if rospy.has_param(private_name(TRACKER_NS + name))}
         try:
             params = TrackerParams(**raw)
         except (ConfigError, TypeError) as err:
-            raise ConfigError(f"{rospy.resolve_name(TRACKER_NS)}: {err}") from err
+            raise ConfigError(f"{rospy.resolve_name(private_name(TRACKER_NS))}: {err}") from err
         self.lock = threading.Lock()
         self.tracker = MovingObstacleTracker(params)
         self._last_kind: Optional[Tuple[YieldMode, Optional[int]]] = None  # (mode, track) last logged
-        self.yielding_publisher = rospy.Publisher("~yielding", Bool, queue_size=1)
-        self.people_publisher = rospy.Publisher("~people", PoseArray, queue_size=1)
+        self.yielding_publisher = rospy.Publisher(private_name("~yielding"), Bool, queue_size=1)
+        self.people_publisher = rospy.Publisher(private_name("~people"), PoseArray, queue_size=1)
         scan_topic = param_str(TRACKER_NS + "scan_topic", "scan")
         map_topic = param_str(TRACKER_NS + "map_topic", "map")
         self._subscribers = [rospy.Subscriber(scan_topic, LaserScanMsg, self._on_scan, queue_size=1)]
@@ -165,9 +168,9 @@ class MovingObstaclesROS:
             self.yielding_publisher.publish(Bool(data=yielded is not None))
         if kind != self._last_kind:
             if yielded is not None:
-                rospy.loginfo(f"{rospy.get_name()}: {yielded.reason}")
+                rospy.loginfo(f"{self.name}: {yielded.reason}")
             else:
-                rospy.loginfo(f"{rospy.get_name()}: yielding ended")
+                rospy.loginfo(f"{self.name}: yielding ended")
             self._last_kind = kind
 
     def tracks(self) -> List[Track]:

@@ -15,12 +15,13 @@ import rospy
 
 from flex_nav import validation
 from flex_nav.exceptions import ConfigError, choices_message
+from flex_nav.ros.private_ns import private_name
 
 _MISSING = object()
 
 
 def _resolved(name: str) -> str:
-    return rospy.resolve_name(name) if name.startswith("~") else name
+    return rospy.resolve_name(private_name(name)) if name.startswith("~") else name
 
 
 def param_float(
@@ -64,7 +65,7 @@ def param_str(name: str, default: str | None = None, choices: Sequence[str] | No
 
 
 def _get(name: str, default: Any) -> Any:
-    value = rospy.get_param(name, _MISSING if default is None else default)
+    value = rospy.get_param(private_name(name), _MISSING if default is None else default)
     if value is _MISSING:
         raise ConfigError(f"required parameter {_resolved(name)} is not set")
     return value
@@ -77,7 +78,7 @@ def reject_unknown(namespace: str, known: Iterable[str]) -> None:
     valid names when the node starts.
     """
     key = namespace.rstrip("/") or namespace
-    values = rospy.get_param(key, {})
+    values = rospy.get_param(private_name(key), {})
     if not isinstance(values, dict):
         raise ConfigError(f"parameter {_resolved(key)} must be a dictionary, got {values!r}")
     valid = sorted(set(known))
