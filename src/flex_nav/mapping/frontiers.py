@@ -51,8 +51,6 @@ from flex_nav.nav.planning import astar
 _OWNER = "frontiers"  # in the messages of FrontierParams' checks
 VIEW_RADIUS_CELLS = 3  # [cells] a goal faces the unknown cells this close (at least; robot_radius_m if larger)
 _EIGHT = np.ones((3, 3), dtype=np.uint8)  # the 8-neighbourhood (and the cell itself) as a morphology kernel
-_HEAP_ROWS = 1 << 14  # first size of the wavefront's queue (doubled when a search fills it)
-_STACK_SIZE = 1 << 10
 _NO_GOAL = -1  # a flat index no cell has: the search never stops early, it reaches every cell it can
 
 
@@ -191,19 +189,11 @@ def wavefront(passable: np.ndarray, start: Tuple[int, int]) -> np.ndarray:
     g = np.empty(height * width, dtype=np.float64)
     parent = np.empty(height * width, dtype=np.int32)
     state = np.zeros(height * width, dtype=np.uint32)
-    heap = np.empty((_HEAP_ROWS, 3), dtype=np.float64)
-    stack = np.empty(_STACK_SIZE, dtype=np.int64)
-    generation = 2  # open cells are marked 2, closed ones 3 (0: never seen)
-    while True:
-        _, expanded = astar.astar(costs, width, weights, math.sqrt(2.0), 0.0, start[0] * width + start[1], _NO_GOAL,
-                                  g, parent, state, generation, heap, stack)
-        if expanded == -1:
-            heap = np.empty((2 * len(heap), 3), dtype=np.float64)
-        elif expanded == -2:
-            stack = np.empty(2 * len(stack), dtype=np.int64)
-        else:
-            break
-        generation += 2  # the next try ignores what this one marked
+    # open cells are marked 2, closed ones 3 (0: never seen); a search that grows its queue takes 2 more
+    _, _, generation = astar.search(
+        costs, width, weights, math.sqrt(2.0), 0.0, start[0] * width + start[1], _NO_GOAL,
+        g, parent, state, 2, astar.QueueStorage(),
+    )  # fmt: skip
     distance = np.full(height * width, np.inf)
     closed = state == generation + 1
     distance[closed] = g[closed]

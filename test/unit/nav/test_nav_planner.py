@@ -9,7 +9,7 @@ import pytest
 
 from flex_nav.exceptions import ConfigError
 from flex_nav.nav.costmap.costmap_grid import INSCRIBED, LETHAL, NO_INFORMATION, CostmapGeometry
-from flex_nav.nav.planning.astar import line_cost
+from flex_nav.nav.planning.astar import QueueStorage, line_cost
 from flex_nav.nav.planning.planner import GridPlanner, PlannerParams, PlanStatus
 
 RES = 0.1
@@ -296,13 +296,13 @@ def test_full_queue_storage_is_grown_and_the_search_repeated():
     rng = np.random.default_rng(8)
     costs = random_costs(rng, (60, 60), lethal=0.1)
     planner = GridPlanner()
-    planner._heap = np.empty((2, 3))
-    planner._stack = np.empty(1, dtype=np.int64)
+    planner._queue = QueueStorage(pool_rows=1, heap_rows=1, stack_size=1)
     free = np.argwhere(np.isfinite(planner.weights[costs]))
     s, g = cell(free[0]), cell(free[-1])
     cost, _, expanded = planner.plan_cells(costs, s, g)
     assert cost == GridPlanner().plan_cells(costs, s, g)[0] and expanded > 0
-    assert len(planner._heap) > 2 and len(planner._stack) > 1
+    queue = planner._queue
+    assert len(queue.pool) > 1 and len(queue.heap) > 1 and len(queue.stack) > 1
 
 
 def test_start_escape_leaves_an_inscribed_start_but_nothing_else_changes():

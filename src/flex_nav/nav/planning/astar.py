@@ -20,11 +20,18 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from flex_nav.exceptions import ConfigError
+
 NO_PARENT = -1
 
 # neighbour order: 4 straight moves, then 4 diagonal moves
 _D_ROW = np.array([-1, 1, 0, 0, -1, -1, 1, 1], dtype=np.int64)
 _D_COL = np.array([0, 0, -1, 1, -1, 1, -1, 1], dtype=np.int64)
+BUCKETS = 4096  # ring of f buckets (a power of two)
+# what astar returns as the expanded count when one of the queue's arrays is full
+FULL_HEAP = -1
+FULL_STACK = -2
+FULL_POOL = -3
 
 
 @njit(cache=True, nogil=True)
@@ -94,17 +101,19 @@ def astar(  # noqa: PLR0917, PLR0912, PLR0915 - one compiled kernel
     parent: np.ndarray,
     state: np.ndarray,
     generation: int,
+    pool: np.ndarray,
     heap: np.ndarray,
     stack: np.ndarray,
 ) -> tuple[float, int]:  # pragma: no cover - compiled
     """Search from flat cell ``start`` to ``goal`` on ``costs`` (uint8, H·W flat, row-major).
 
     Returns (cost of the optimal path or inf, number of expanded cells). ``parent`` then links the path
-    back from ``goal``. ``heap`` (float64 (R, 3): rows [f, -g, cell]) and ``stack`` (int64) are the queue's
-    storage; when one of them is full the search stops and returns (inf, -1) (heap) or (inf, -2) (stack),
-    and the caller searches again with a bigger one (growing an array inside this kernel makes numba's
-    compile time explode). ``g`` (float64), ``parent`` (int32) and ``state`` (uint32) are H·W work arrays
-    reused across calls: ``state == generation`` marks an open cell (its ``g`` is valid) and
+    back from ``goal``. ``pool`` (float64 (P, 4): rows [f, -g, cell, next]: the buckets' entries), ``heap``
+    (float64 (R, 3): rows [f, -g, cell]: the current bucket) and ``stack`` (int64) are the queue's storage;
+    when one of them is full the search stops and returns (inf, FULL_POOL / FULL_STACK / FULL_HEAP), and the
+    caller searches again with a bigger one (growing an array inside this kernel makes numba's compile time
+    explode): :func:`search` does that. ``g`` (float64), ``parent`` (int32) and ``state`` (uint32) are H·W
+    work arrays reused across calls: ``state == generation`` marks an open cell (its ``g`` is valid) and
     ``state == generation + 1`` a closed one, so ``generation`` must grow by 2 per call.
     """
     height = costs.shape[0] // width
@@ -115,21 +124,60 @@ def astar(  # noqa: PLR0917, PLR0912, PLR0915 - one compiled kernel
     offsets = np.empty(8, dtype=np.int64)
     for k in range(8):
         offsets[k] = _D_ROW[k] * width + _D_COL[k]
+    # buckets: f in [k·bucket, (k+1)·bucket) goes to ring slot k mod BUCKETS; one step raises f by at most
+    # ``span`` (the move's cost plus the heuristic's change), so the ring never wraps onto a live bucket
+    longest = max(1.0, diagonal_factor)
+    span = 0.0
+    for i in range(256):
+        if weights[i] != np.inf and weights[i] > span:
+            span = weights[i]
+    span = 2.0 * longest * (span + heuristic_scale)
+    per_f = (BUCKETS - 4) / span if span > 0.0 else 1.0  # buckets per unit of f
+    head = np.full(BUCKETS, -1, dtype=np.int64)
+    used = 0  # pool rows handed out so far
+    free = -1  # first row of the pool's free list
+    in_buckets = 0
+    d_row = abs(start // width - goal_row)
+    d_col = abs(start % width - goal_col)
+    f_min = heuristic_scale * (max(d_row, d_col) + diag_extra * min(d_row, d_col))  # the start's f
+    current = np.int64(f_min * per_f)  # absolute index of the bucket in the heap
 
     g[start] = 0.0
     parent[start] = NO_PARENT
     state[start] = generation
     size = 0
-    _push(heap, size, 0.0, 0.0, start)
+    _push(heap, size, f_min, 0.0, start)
     size += 1
     top = 0
-    f_min = 0.0
     expanded = 0
-    while size > 0 or top > 0:
+    while True:
         if top > 0:
             top -= 1
             node = stack[top]
         else:
+            if size == 0:
+                if in_buckets == 0:
+                    break
+                # the next bucket goes into the heap, without the entries a cheaper one has overtaken
+                current += 1
+                while head[current & (BUCKETS - 1)] == -1:
+                    current += 1
+                entry = head[current & (BUCKETS - 1)]
+                head[current & (BUCKETS - 1)] = -1
+                while entry != -1:
+                    following = int(pool[entry, 3])
+                    cell = int(pool[entry, 2])
+                    if state[cell] == generation and -pool[entry, 1] == g[cell]:
+                        if size == heap.shape[0]:
+                            return np.inf, FULL_HEAP
+                        _push(heap, size, pool[entry, 0], pool[entry, 1], cell)
+                        size += 1
+                    pool[entry, 3] = free
+                    free = entry
+                    in_buckets -= 1
+                    entry = following
+                if size == 0:
+                    continue
             f_min = heap[0, 0]
             node = _pop(heap, size)
             size -= 1
@@ -174,15 +222,83 @@ def astar(  # noqa: PLR0917, PLR0912, PLR0915 - one compiled kernel
             if f <= f_min:
                 # f is the queue's minimum: it would be popped next anyway (order among equal f is free)
                 if top == stack.shape[0]:
-                    return np.inf, -2  # stack full: the caller grows it and searches again
+                    return np.inf, FULL_STACK
                 stack[top] = nb
                 top += 1
                 continue
-            if size == heap.shape[0]:
-                return np.inf, -1  # heap full: the caller grows it and searches again
-            _push(heap, size, f, -cand, nb)
-            size += 1
+            bucket = np.int64(f * per_f)
+            if bucket <= current:
+                if size == heap.shape[0]:
+                    return np.inf, FULL_HEAP
+                _push(heap, size, f, -cand, nb)
+                size += 1
+                continue
+            if free != -1:
+                entry = free
+                free = int(pool[entry, 3])
+            elif used < pool.shape[0]:
+                entry = used
+                used += 1
+            else:
+                return np.inf, FULL_POOL
+            slot = bucket & (BUCKETS - 1)
+            pool[entry, 0] = f
+            pool[entry, 1] = -cand
+            pool[entry, 2] = nb
+            pool[entry, 3] = head[slot]
+            head[slot] = entry
+            in_buckets += 1
     return np.inf, expanded
+
+
+class QueueStorage:
+    """The arrays of :func:`astar`'s queue, kept between searches and doubled when a search fills one."""
+
+    def __init__(self, pool_rows: int = 1 << 14, heap_rows: int = 1 << 12, stack_size: int = 1 << 12) -> None:
+        self.pool = np.empty((pool_rows, 4), dtype=np.float64)
+        self.heap = np.empty((heap_rows, 3), dtype=np.float64)
+        self.stack = np.empty(stack_size, dtype=np.int64)
+
+    def grow(self, full: int) -> None:
+        """Doubles the array that ``astar`` reported full (FULL_POOL, FULL_HEAP or FULL_STACK)."""
+        if full == FULL_POOL:
+            self.pool = np.empty((2 * len(self.pool), 4), dtype=np.float64)
+        elif full == FULL_HEAP:
+            self.heap = np.empty((2 * len(self.heap), 3), dtype=np.float64)
+        elif full == FULL_STACK:
+            self.stack = np.empty(2 * len(self.stack), dtype=np.int64)
+        else:
+            raise ConfigError(f"grow: {full} names no queue array (FULL_POOL, FULL_HEAP or FULL_STACK)")
+
+
+def search(  # noqa: PLR0917 - the kernel's arguments
+    costs: np.ndarray,
+    width: int,
+    weights: np.ndarray,
+    diagonal_factor: float,
+    heuristic_scale: float,
+    start: int,
+    goal: int,
+    g: np.ndarray,
+    parent: np.ndarray,
+    state: np.ndarray,
+    generation: int,
+    storage: QueueStorage,
+) -> tuple[float, int, int]:
+    """:func:`astar` with ``storage``'s arrays, grown and searched again (2 generations later) until they suffice.
+
+    Returns (cost or inf, expanded cells, the generation of the search that finished: the caller's next
+    search must use a larger one, by 2 at least).
+    """
+    while True:
+        cost, expanded = astar(
+            costs, width, weights, diagonal_factor, heuristic_scale, start, goal,
+            g, parent, state, generation, storage.pool, storage.heap, storage.stack,
+        )  # fmt: skip
+        if expanded >= 0:
+            return float(cost), int(expanded), generation
+        storage.grow(int(expanded))
+        generation += 2
 
 
 @njit(cache=True, nogil=True)

@@ -123,9 +123,7 @@ class GridPlanner:
         self._parent = np.empty(0, dtype=np.int32)
         self._state = np.empty(0, dtype=np.uint32)
         self._generation = 0
-        # queue storage, kept between queries and doubled when a search fills it
-        self._heap = np.empty((1 << 16, 3), dtype=np.float64)
-        self._stack = np.empty(1 << 12, dtype=np.int64)
+        self._queue = astar.QueueStorage()  # kept between queries, doubled when a search fills it
 
     def passable(self, cost: int) -> bool:
         """True if a cell of this cost can be entered."""
@@ -212,29 +210,21 @@ class GridPlanner:
         height, width = costs.shape
         flat = costs.reshape(-1)
         with self._lock:
-            while True:
-                self._ensure_work(height, width)
-                cost, expanded = astar.astar(
-                    flat,
-                    width,
-                    self.weights,
-                    self.params.diagonal_factor,
-                    self.heuristic_scale,
-                    int(start[0]) * width + int(start[1]),
-                    int(goal[0]) * width + int(goal[1]),
-                    self._g,
-                    self._parent,
-                    self._state,
-                    self._generation,
-                    self._heap,
-                    self._stack,
-                )
-                if expanded == -1:
-                    self._heap = np.empty((2 * len(self._heap), 3), dtype=np.float64)
-                elif expanded == -2:
-                    self._stack = np.empty(2 * len(self._stack), dtype=np.int64)
-                else:
-                    break
+            self._ensure_work(height, width)
+            cost, expanded, self._generation = astar.search(
+                flat,
+                width,
+                self.weights,
+                self.params.diagonal_factor,
+                self.heuristic_scale,
+                int(start[0]) * width + int(start[1]),
+                int(goal[0]) * width + int(goal[1]),
+                self._g,
+                self._parent,
+                self._state,
+                self._generation,
+                self._queue,
+            )
             if not math.isfinite(cost):
                 return math.inf, np.empty((0, 2), dtype=np.int64), int(expanded)
             cells = astar.trace_back(self._parent, int(goal[0]) * width + int(goal[1]), width)
@@ -260,9 +250,10 @@ class GridPlanner:
             self._state = np.zeros(size, dtype=np.uint32)
             self._shape = (height, width)
             self._generation = 0
-        # each query owns two fresh stamps (open, closed); 0 is never used
+        # each query owns two fresh stamps (open, closed); 0 is never used; a search that grows its queue
+        # takes 2 more per try (a few at most: the arrays double)
         self._generation += 2
-        if self._generation >= 2**32 - 2:
+        if self._generation >= 2**32 - 256:
             self._state.fill(0)
             self._generation = 2
 
