@@ -205,9 +205,11 @@ def _circle_fit(xs: np.ndarray, ys: np.ndarray) -> Tuple[float, float, float, fl
 
 
 # ---------------------------------------------------------------------------------------------- clusters
-def clusters(xs: np.ndarray, ys: np.ndarray, sensor: Tuple[float, float], params: ShapeParams) -> List[np.ndarray]:
-    """Index arrays (into ``xs``) of the clusters of a scan's end points in beam order (NaN: no return, which
-    always separates); no cluster is dropped for its width."""
+def clusters(xs: np.ndarray, ys: np.ndarray, sensor: Tuple[float, float], params: ShapeParams, *,
+             wrap: bool = True) -> List[np.ndarray]:
+    """Index arrays (into ``xs``, in beam order) of the clusters of a scan's end points (NaN: no return, which
+    always separates); no cluster is dropped for its width. ``wrap``: the scan covers 360 degrees, so a cluster
+    across its seam (last beam next to the first) is one cluster, its indices running on from the last to 0."""
     xs = np.asarray(xs, dtype=np.float64)
     ys = np.asarray(ys, dtype=np.float64)
     if xs.shape != ys.shape or xs.ndim != 1:
@@ -220,6 +222,12 @@ def clusters(xs: np.ndarray, ys: np.ndarray, sensor: Tuple[float, float], params
         px, py = xs[start:stop], ys[start:stop]
         ranges = np.hypot(px - sensor[0], py - sensor[1])
         out.extend(run + start for run in split_points(px, py, ranges, seg_params, False))
+    count = len(xs)
+    if wrap and len(out) > 1 and out[0][0] == 0 and out[-1][-1] == count - 1:
+        reach = max(math.hypot(xs[0] - sensor[0], ys[0] - sensor[1]), math.hypot(xs[-1] - sensor[0],
+                                                                                  ys[-1] - sensor[1]))
+        if math.hypot(xs[0] - xs[-1], ys[0] - ys[-1]) <= params.gap_m + params.gap_per_m * reach:
+            out = [np.concatenate((out[-1], out[0])), *out[1:-1]]
     return out
 
 
@@ -267,11 +275,16 @@ def _leg_sized(px: np.ndarray, py: np.ndarray, params: ShapeParams) -> bool:
 
 def _seen_between(xs: np.ndarray, ys: np.ndarray, sensor: Tuple[float, float], first: np.ndarray,
                   second: np.ndarray) -> bool:
-    """True if the beams between two clusters (beam order) look past them: at least one beam, each without a
-    return or ending farther than the nearer cluster. Two legs show the background between them; two pieces
-    of one box's outline (cut where a face is seen at a grazing angle) are neighbouring beams."""
-    lo, hi = (first, second) if first.max() < second.min() else (second, first)
-    between = np.arange(int(lo.max()) + 1, int(hi.min()))
+    """True if the beams between two clusters (beam order, the shorter way round) look past them: at least one
+    beam, each without a return or ending farther than the nearer cluster. Two legs show the background between
+    them; two pieces of one box's outline (cut where a face is seen at a grazing angle) are neighbouring beams."""
+    count = len(xs)
+    after_first = (int(second[0]) - int(first[-1]) - 1) % count  # beams from the end of first to second
+    after_second = (int(first[0]) - int(second[-1]) - 1) % count
+    if after_first <= after_second:
+        between = (int(first[-1]) + 1 + np.arange(after_first)) % count
+    else:
+        between = (int(second[-1]) + 1 + np.arange(after_second)) % count
     if len(between) == 0:
         return False
     nearer = min(float(np.hypot(xs[c] - sensor[0], ys[c] - sensor[1]).mean()) for c in (first, second))
@@ -280,14 +293,16 @@ def _seen_between(xs: np.ndarray, ys: np.ndarray, sensor: Tuple[float, float], f
 
 
 def classify_shape(xs: np.ndarray, ys: np.ndarray, sensor: Tuple[float, float], target: Tuple[float, float],
-                   params: Optional[ShapeParams] = None, *, speed_mps: Optional[float] = None) -> ShapeCue:
+                   params: Optional[ShapeParams] = None, *, speed_mps: Optional[float] = None,
+                   wrap: bool = True) -> ShapeCue:
     """The lidar cue of the object nearest to ``target`` (x, y) [m] in a scan's end points (``xs``, ``ys`` [m],
     beam order, NaN: no return) seen from ``sensor`` (x, y) [m]; ``speed_mps`` [m/s]: the object's tracked
-    speed, None if it is not tracked. See the module docstring for the rules."""
+    speed, None if it is not tracked; ``wrap``: the scan covers 360 degrees (its last beam next to its first).
+    See the module docstring for the rules."""
     params = params if params is not None else ShapeParams()
     xs = np.asarray(xs, dtype=np.float64)
     ys = np.asarray(ys, dtype=np.float64)
-    found = clusters(xs, ys, sensor, params)
+    found = clusters(xs, ys, sensor, params, wrap=wrap)
     best: Optional[Tuple[float, int]] = None
     for index, run in enumerate(found):
         distance = float(np.hypot(xs[run] - target[0], ys[run] - target[1]).min())

@@ -53,6 +53,8 @@ def noisy_scan(sensor: Tuple[float, float], polygons: Sequence[np.ndarray] = (),
     if rng is not None:
         finite = np.isfinite(ranges)
         ranges[finite] += rng.normal(0.0, 1.0, int(finite.sum())) * noise_fraction * ranges[finite]
-    xs = np.where(np.isfinite(ranges), sensor[0] + ranges * np.cos(angles), np.nan)
-    ys = np.where(np.isfinite(ranges), sensor[1] + ranges * np.sin(angles), np.nan)
+    seen = np.isfinite(ranges)
+    ranges = np.where(seen, ranges, 0.0)  # inf * sin(pi) is NaN with a warning
+    xs = np.where(seen, sensor[0] + ranges * np.cos(angles), np.nan)
+    ys = np.where(seen, sensor[1] + ranges * np.sin(angles), np.nan)
     return xs, ys

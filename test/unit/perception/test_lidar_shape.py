@@ -169,6 +169,17 @@ def test_the_target_picks_the_nearest_object() -> None:
     assert classify_shape(xs, ys, SENSOR, (0.0, 1.0)).label == PERSON
 
 
+def test_an_object_across_the_scans_seam_is_one_object() -> None:
+    # the synthetic scan's first and last beams point to -x: a body there is cut by the seam unless wrapped
+    xs, ys = noisy_scan(SENSOR, circles=[(-0.75, 0.0, 0.2)], rng=np.random.default_rng(14))
+    assert np.isfinite(xs[0]) and np.isfinite(xs[-1])
+    cue = classify_shape(xs, ys, SENSOR, (-0.55, 0.0))
+    assert cue.label == PERSON and cue.features is not None and cue.features.legs == 0, cue.describe()
+    box = classify_shape(*noisy_scan(SENSOR, [box_corners(-0.75, 0.0, 0.4, 0.4, 0.5)], rng=np.random.default_rng(15)),
+                         SENSOR, (-0.55, 0.0))
+    assert box.label == BOX, box.describe()
+
+
 def test_object_speed_takes_the_nearest_track_within_reach() -> None:
     tracks = [Track(1, 1.0, 0.0, 0.5, 0.0, 0.2, 0.0, 5), Track(2, 1.3, 0.0, 0.0, 0.0, 0.2, 0.0, 5)]
     assert object_speed(tracks, (1.25, 0.0), 0.5) == 0.0
