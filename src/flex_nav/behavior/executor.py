@@ -44,7 +44,8 @@ from flex_nav.behavior.context import CURRENT_CONTEXT, HOLD_PAUSE, BehaviorConte
 from flex_nav.behavior.events import BehaviorStatus, CommandEvent, LogLevel, StatusEvent
 from flex_nav.behavior.proxies import Proxies
 from flex_nav.behavior.state import Pending, PendingReason, State, StateRuntime
-from flex_nav.behavior.userdata import UserDataView
+from flex_nav.behavior.userdata import UserDataView, view_parts
+from flex_nav.behavior.userdata_summary import MISSING, StateUserdata
 from flex_nav.exceptions import (
     BehaviorCommandError,
     BehaviorError,
@@ -205,6 +206,33 @@ class BehaviorExecutor:
                     waits = pending.announced.value
                     requests.append(OutcomeRequest(path, pending.outcome, Autonomy(pending.required), waits))
             return requests
+
+    def active_userdata(self, timeout_s: float = 0.05) -> Optional[Tuple[StateUserdata, ...]]:
+        """Each active state (the deepest ones and the containers above them) with its declared input and output
+        keys and the values its container holds for them now: the objects themselves, read under the behavior's
+        lock (never copied, so reading is cheap; a value a state changes in place later changes under the caller).
+        () when the behavior is not running; None when the executor's thread held the behavior for more than
+        ``timeout_s`` [s] (a long tick)."""
+        if not self._lock.acquire(timeout=timeout_s):
+            return None
+        try:
+            if self._terminal or self._status is BehaviorStatus.READY:
+                return ()
+            found: Dict[str, StateUserdata] = {}
+            for path in self._rt.active_paths():
+                node: Optional[StateRuntime] = self._nodes.get(path)
+                while node is not None and node.path not in found:
+                    if node.ud is not None:
+                        store, read, write = view_parts(node.ud)
+                        found[node.path] = StateUserdata(
+                            node.path,
+                            tuple((key, store.get(store_key, MISSING)) for key, (store_key, _) in read.items()),
+                            tuple((key, store.get(store_key, MISSING)) for key, store_key in write.items()),
+                        )
+                    node = node.parent
+            return tuple(found.values())
+        finally:
+            self._lock.release()
 
     def wait(self, timeout_s: float) -> bool:
         """Wait (bounded) until the behavior ended; True if it did."""

@@ -32,3 +32,7 @@ class GraphvizError(NotReadyError):
 
 class MapViewError(ConfigError):
     """A map the console does not show (its size or resolution), or an overlay of an unknown kind."""
+
+
+class UserdataError(ConfigError):
+    """A runner's ``~userdata`` JSON that does not follow the schema of :mod:`flex_nav.behavior.userdata_summary`."""

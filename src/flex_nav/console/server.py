@@ -17,7 +17,8 @@ snapshot instead of the backlog; incoming messages are limited to ``max_message_
 The websocket's JSON messages. From the page: ``{"type": "command", "id", "robot", "command", ...its fields}``
 (:mod:`flex_nav.console.commands`) and ``{"type": "fold", "robot", "folded": [container paths]}``. To the page:
 ``hello`` (``client``: the page's number; its command references are ``"<client>:<id>"``), ``snapshot`` (the
-console's whole state follows, history included), the events of :mod:`flex_nav.console.events`,
+console's whole state follows, history included), the events of :mod:`flex_nav.console.events`, ``userdata``
+(:mod:`flex_nav.console.userdata`: the active states' userdata, each value as a line of text),
 ``snapshot_done``; ``sent`` / ``refused`` (``ref``, ``robot``, the runner's ``command`` and ``args`` / the
 ``reason`` and the ``field``) answering a command; ``svg`` (a fold's drawing); ``error`` (``message``).
 
@@ -44,11 +45,12 @@ from typing import Any, Awaitable, Callable, Deque, Dict, List, Mapping, Optiona
 from aiohttp import WSMsgType, web
 
 from flex_nav.console.commands import RunnerCommand, refuse_choice, validate_command
-from flex_nav.console.errors import CommandRefused, StructureError
+from flex_nav.console.errors import CommandRefused, StructureError, UserdataError
 from flex_nav.console.events import CommandTracker, known_ref, robots_event, structure_event
 from flex_nav.console.graph import render_svg, to_dot
 from flex_nav.console.mapview import GoalRequest, GridGeometry, MapPicture, check_goal
 from flex_nav.console.model import BehaviorStructure
+from flex_nav.console.userdata import userdata_event
 from flex_nav.exceptions import ConfigError, FlexNavError, NotReadyError
 
 WEB_DIR = Path(__file__).resolve().parent / "web"
@@ -128,6 +130,7 @@ class RobotView:
     activity: Optional[Dict[str, Any]] = None
     history: Deque[Dict[str, Any]] = dataclasses.field(default_factory=lambda: collections.deque(maxlen=HISTORY))
     overlays: Dict[str, Dict[str, Any]] = dataclasses.field(default_factory=dict)  # kind -> latest overlay event
+    userdata: Optional[Dict[str, Any]] = None  # the latest userdata event (flex_nav.console.userdata)
 
     def active(self) -> Optional[List[str]]:
         """The active paths last reported for the loaded behavior (None: not known)."""
@@ -193,6 +196,14 @@ class Console:
         """A runner's ``~structure`` JSON text."""
         self._call(self._on_structure, robot, text)
 
+    def submit_userdata(self, robot: str, text: str) -> None:
+        """A runner's ``~userdata`` JSON text (read here, in the caller's thread)."""
+        try:
+            event = userdata_event(robot, text)
+        except UserdataError as err:
+            event = {"type": "error", "robot": robot, "message": f"unreadable userdata: {err}"}
+        self._call(self._on_userdata, robot, event)
+
     def submit_robots(self, robots: Sequence[str]) -> None:
         """The runners found on the master now."""
         self._call(self._on_robots, list(robots))
@@ -234,6 +245,14 @@ class Console:
         if view is None:
             return
         view.overlays[event["kind"]] = event
+        self.broadcast(event)
+
+    def _on_userdata(self, robot: str, event: Dict[str, Any]) -> None:
+        view = self.robots.get(robot)
+        if view is None:
+            return
+        if event["type"] == "userdata":
+            view.userdata = event
         self.broadcast(event)
 
     def _on_event(self, robot: str, event: Dict[str, Any]) -> None:
@@ -293,7 +312,8 @@ class Console:
         if whole_map is not None:
             events.append(whole_map)
         for view in self.robots.values():
-            events.extend(e for e in (view.structure_event, view.status, view.activity) if e is not None)
+            events.extend(e for e in (view.structure_event, view.status, view.activity, view.userdata)
+                          if e is not None)
             events.extend(view.overlays.values())
             events.extend(view.history)
         return events

@@ -18,7 +18,10 @@
 
 Commands arrive on ``~command`` (BehaviorCommand); every command is answered on ``~command_feedback``.
 What the behavior does is published by :class:`~flex_nav.ros.operator_interface.OperatorPublisher`, and
-what it is on the latched ``~structure`` (JSON, :mod:`flex_nav.behavior.structure`; no behavior: no states).
+what it is on the latched ``~structure`` (JSON, :mod:`flex_nav.behavior.structure`; no behavior: no states), and
+the active states' userdata on the latched ``~userdata`` (JSON, :mod:`flex_nav.behavior.userdata_summary`: each
+value summarized and bounded, at most ``userdata_rate_hz`` messages a second, only when it changed;
+:mod:`flex_nav.ros.userdata_publisher`).
 Each run gets its own :class:`~flex_nav.ros.proxies.RosProxies`, shut down (goals cancelled, topics
 unregistered) when it ends, so runs never share connections. The runner installs flex_nav's
 ``smach`` / ``flexbe_core`` aliases (unless the real packages exist), so state libraries written for them load.
@@ -67,6 +70,7 @@ from flex_nav.resources import behaviors_dir
 from flex_nav.ros.operator_interface import OperatorPublisher
 from flex_nav.ros.proxies import RosProxies
 from flex_nav.ros.ros_clock import RosClock
+from flex_nav.ros.userdata_publisher import DEFAULT_RATE_HZ, UserdataPublisher, no_userdata, userdata_topic
 
 PACKAGE_BEHAVIORS = behaviors_dir()
 PYTHON_PREFIX = "py:"  # ~behavior given as a FlexBE behavior class: py:package.module:ClassName
@@ -151,13 +155,14 @@ class BehaviorRunner:
 
     def __init__(self, search_path: Sequence[Path], supervised: bool = True, loader: Loader = load_behavior_file,
                  on_done: Optional[Callable[[BehaviorResult], None]] = None, robot_profile: str = "", *,
-                 load_timeout_s: float = LOAD_TIMEOUT_S) -> None:
+                 load_timeout_s: float = LOAD_TIMEOUT_S, userdata_rate_hz: float = DEFAULT_RATE_HZ) -> None:
         self.search_path = list(search_path)
         self.robot_profile = robot_profile
         self.supervised = supervised
         self.loader = loader
         self.on_done = on_done
         self.load_timeout_s = load_timeout_s
+        self.userdata_rate_hz = userdata_rate_hz
         install_aliases()  # smach / flexbe_core state libraries in YAML behaviors import flex_nav's
         self.operator = OperatorPublisher()
         self._lock = threading.Lock()
@@ -165,9 +170,12 @@ class BehaviorRunner:
         self._thread: Optional[threading.Thread] = None
         self._loading: Optional[BackgroundLoad[_Built]] = None
         self._name = ""
+        self._userdata: Optional[UserdataPublisher] = None
+        self._publish_userdata = userdata_topic()
         self._command_sub = rospy.Subscriber("~command", BehaviorCommand, self._on_command, queue_size=10)
         self.operator.publish_idle("", "no behavior started", int(Autonomy.FULL))
         self.operator.publish_structure(structure_json(None, self.search_path))
+        no_userdata(self._publish_userdata)
 
     # --- lifecycle -----------------------------------------------------------------------------------
     def start_local(self, source: str, autonomy: object = Autonomy.FULL,
@@ -262,6 +270,10 @@ class BehaviorRunner:
             self.operator.publish_structure(built.structure)
             self.operator.attach(executor.context.hooks, behavior.name, int(built.level))
             self._executor, self._name = executor, behavior.name
+            if self._userdata is not None:
+                self._userdata.stop()
+            self._userdata = UserdataPublisher(executor, behavior.name, self._publish_userdata,
+                                               rate_hz=self.userdata_rate_hz).start()
             self._thread = threading.Thread(
                 target=self._run, args=(executor, built.proxies), name=f"behavior {behavior.name}", daemon=True
             )
@@ -312,6 +324,8 @@ class BehaviorRunner:
             self.stop()
         except BehaviorError as err:
             rospy.logerr(str(err))
+        if self._userdata is not None:
+            self._userdata.stop()
         self.operator.close()
 
     # --- commands ------------------------------------------------------------------------------------

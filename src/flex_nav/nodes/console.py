@@ -3,8 +3,8 @@
 Serves one page and a websocket (:mod:`flex_nav.console.server`, aiohttp) and connects them to every behavior
 runner on the master: every ``discovery_period_s`` it asks the master for the topics of type
 flex_nav/BehaviorStatus, so namespaced robots (``/robot1/behavior_runner``) are found as they come and go, and
-subscribes each runner's ``status``, ``activity``, ``structure``, ``log``, ``transitions`` and
-``command_feedback``; commands validated by the server are published on its ``command`` topic.
+subscribes each runner's ``status``, ``activity``, ``structure``, ``log``, ``transitions``,
+``command_feedback`` and ``userdata``; commands validated by the server are published on its ``command`` topic.
 
 The map view: the latched ``~map_topic`` (OccupancyGrid) and, in each runner's namespace (``/robot1`` for
 ``/robot1/behavior_runner``), ``get_path_server/plan`` and ``follow_path_server/plan`` (nav_msgs/Path),
@@ -120,6 +120,7 @@ class RunnerLink:
             ("log", BehaviorLog, event(log_event), 200),
             ("command_feedback", BehaviorCommandFeedback, event(feedback_event), 50),
             ("structure", String, lambda msg: console.submit_structure(name, msg.data), 2),
+            ("userdata", String, lambda msg: console.submit_userdata(name, msg.data), 2),
         )
         self.subscribers = [rospy.Subscriber(f"{name}/{topic}", kind, callback, queue_size=size)
                             for topic, kind, callback, size in topics]

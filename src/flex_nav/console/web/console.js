@@ -23,7 +23,7 @@
   function robotState(name) {
     if (!robots.has(name)) {
       robots.set(name, { structure: null, svg: "", svgError: "", status: null, activity: null, lines: [],
-        events: [], folded: new Set(), lastEdge: "", lastEdgeAt: 0, overlays: {} });
+        events: [], folded: new Set(), lastEdge: "", lastEdgeAt: 0, overlays: {}, userdata: null });
     }
     return robots.get(name);
   }
@@ -103,6 +103,7 @@
       case "status": robotState(data.robot).status = data; if (data.robot === current) soon("status"); break;
       case "activity": robotState(data.robot).activity = data; if (data.robot === current) soon("activity"); break;
       case "transition": onTransition(data); break;
+      case "userdata": robotState(data.robot).userdata = data; if (data.robot === current) soon("userdata"); break;
       case "log": addLine(data.robot, "lines", data); if (data.robot === current) soon("log"); break;
       case "feedback": onFeedback(data); break;
       case "sent": onSent(data); break;
@@ -121,7 +122,7 @@
   const dirty = new Set();
   let frame = 0;
   const RENDER = [["status", () => showStatus()], ["activity", () => showActivity()], ["log", () => showLog()],
-    ["transitions", () => showTransitions()], ["fired", () => markFired()]];
+    ["transitions", () => showTransitions()], ["fired", () => markFired()], ["userdata", () => showUserdata()]];
 
   function soon(what) {
     dirty.add(what);
@@ -401,6 +402,7 @@
     const box = $("selected");
     box.replaceChildren();
     $("selected-controls").hidden = !info;
+    showUserdata();
     if (!info) { box.appendChild(el("p", "click a state in the graph", "none")); return; }
     const node = document.getElementById(info.id);
     if (node) node.classList.add("selected");
@@ -424,6 +426,36 @@
       button.addEventListener("click", () => send({ command: "force", path: info.path, outcome }, feedback));
       buttons.appendChild(button);
     }
+  }
+
+  // the userdata the runner reports (each value already one line of text): the selected state's, or every active
+  // state's when none is selected
+  function showUserdata() {
+    const state = robots.get(current);
+    const box = $("userdata");
+    box.replaceChildren();
+    const data = state && state.userdata;
+    const structure = state && state.structure;
+    const reported = data && structure && data.behavior === structure.behavior ? Object.keys(data.states) : [];
+    if (!reported.length) { box.appendChild(el("p", "no active state reports userdata", "none")); return; }
+    const paths = selectedPath ? reported.filter((p) => p === selectedPath) : reported;
+    if (!paths.length) { box.appendChild(el("p", `${selectedPath} is not active: no userdata`, "none")); return; }
+    for (const path of paths) {
+      box.appendChild(el("h3", path));
+      const keys = data.states[path];
+      if (!keys.length) { box.appendChild(el("p", "no userdata keys", "none")); continue; }
+      const list = el("dl");
+      for (const entry of keys) {
+        const term = el("dt", entry.key);
+        if (entry.role) term.appendChild(el("span", ` ${entry.role}`, "role"));
+        const value = el("dd", entry.text, entry.set ? "" : "none");
+        value.dataset.key = entry.key;
+        list.appendChild(term);
+        list.appendChild(value);
+      }
+      box.appendChild(list);
+    }
+    if (data.states_omitted) box.appendChild(el("p", `${data.states_omitted} more active states not shown`, "none"));
   }
 
   // --- the start form ---------------------------------------------------------------------------------------
