@@ -2,10 +2,11 @@
 
 One stack for the whole module (module-scoped fixture: a private master, the simulator, one TurtleBot 2 running
 flex_planner at autonomy Low, and the console node bound to 0.0.0.0 with a token). The tests run in file order and
-follow one behavior's life: a wrong token is refused; the graph shows and the active state changes; a lock holds
-a state; an outcome is forced; the approve button sends the plan on and the robot moves (ground-truth odometry);
-preempt stops it; starts with bad parameters show the console's and the runner's errors; a goal placed by clicking
-the map is reached. Every wait is bounded; the robot's motion is read from ROS, not from the page.
+follow one behavior's life: a wrong token is refused; the graph shows and the active state changes; a lock holds a
+state, whose userdata (the goal it wrote) the panel beside the graph shows, until the unlock; an outcome is forced;
+the approve button sends the plan on and the robot moves (ground-truth odometry); preempt stops it; starts with bad
+parameters show the console's and the runner's errors; a goal placed by clicking the map is reached. Every wait is
+bounded; the robot's motion is read from ROS, not from the page.
 """
 
 from __future__ import annotations
@@ -144,7 +145,7 @@ def test_the_graph_shows_and_the_active_state_changes(stack: Stack) -> None:
     assert stack.text("status").startswith("RUNNING")
 
 
-def test_a_lock_holds_the_state_until_unlocked(stack: Stack) -> None:
+def test_a_lock_holds_the_state(stack: Stack) -> None:
     stack.click("#st-ReceiveGoal")
     stack.wait(lambda: "/ReceiveGoal" in stack.text("selected"), "ReceiveGoal selected")
     stack.click('[data-command="lock"]')
@@ -152,6 +153,25 @@ def test_a_lock_holds_the_state_until_unlocked(stack: Stack) -> None:
     stack.monitor.send_due_goals()  # the goal arrives: ReceiveGoal would leave with 'received', but it is locked
     stack.wait(lambda: "waits for an unlock" in stack.text("requests"), "the locked outcome shown waiting")
     assert stack.active() == ["st-ReceiveGoal"]
+
+
+def test_the_userdata_of_the_held_state_shows_the_goal_it_wrote(stack: Stack) -> None:
+    # ReceiveGoal (selected, held by the lock) wrote its output key goal: the runner's ~userdata carries it and the
+    # panel beside the graph shows it, summarized (the goal the monitor sent: g1 of the lab world)
+    goal = stack.monitor.runs[0].goals[0][1]
+    shown = stack.wait(lambda: stack.browser.script(
+        "const box = document.getElementById('userdata'); const h = box.querySelector('h3');"
+        "const v = box.querySelector('dd[data-key=\"goal\"]');"
+        "return h && v ? [h.textContent, v.previousElementSibling.textContent, v.textContent] : null;"),
+        "ReceiveGoal's goal in the userdata panel")
+    assert shown[0] == "/ReceiveGoal" and shown[1] == "goal out", shown
+    assert shown[2].startswith('geometry_msgs/PoseStamped frame="map" x='), shown
+    fields = dict(part.split("=", 1) for part in shown[2].split()[1:])
+    assert math.dist((float(fields["x"]), float(fields["y"])), goal[:2]) < 0.01, (shown, goal)
+    assert float(fields["yaw_deg"]) == pytest.approx(math.degrees(goal[2]), abs=0.5), (shown, goal)
+
+
+def test_the_unlock_lets_the_state_go(stack: Stack) -> None:
     stack.click('[data-command="unlock"]')
     stack.wait(lambda: stack.active() == ["st-ApprovePlan"], "ApprovePlan active after the unlock", 30.0)
 
