@@ -3,19 +3,18 @@ classifier and the obstacle memory tests (no ROS)."""
 
 from __future__ import annotations
 
-import math
 from typing import Optional, Sequence, Tuple
 
 import numpy as np
+
+from flex_nav.nav.costmap.memory_layer import box_footprint
 
 Circle = Tuple[float, float, float]  # x, y, radius [m]
 
 
 def box_corners(x: float, y: float, length_m: float, width_m: float, yaw: float) -> np.ndarray:
     """(4, 2) corners [m], counter-clockwise, of a ``length_m`` x ``width_m`` box centred on (x, y) turned by yaw."""
-    half = np.array([[1.0, 1.0], [-1.0, 1.0], [-1.0, -1.0], [1.0, -1.0]]) * [length_m / 2.0, width_m / 2.0]
-    c, s = math.cos(yaw), math.sin(yaw)
-    return np.column_stack((x + c * half[:, 0] - s * half[:, 1], y + s * half[:, 0] + c * half[:, 1]))
+    return box_footprint(x, y, length_m, width_m, yaw)
 
 
 def ranges_of(sensor: Tuple[float, float], angles: np.ndarray, polygons: Sequence[np.ndarray] = (),

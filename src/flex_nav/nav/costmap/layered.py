@@ -5,7 +5,9 @@ The master costs are rebuilt from the layers, in costmap_2d's order:
 1. reset to the default (NO_INFORMATION when ``track_unknown_space``, else FREE),
 2. static layer: overwrites (a rolling window takes the maximum instead, as costmap_2d does),
 3. obstacle layer: maximum, NO_INFORMATION layer cells skipped,
-4. inflation of every LETHAL cell (:mod:`flex_nav.nav.costmap.inflation`).
+4. bumper contacts and, with ``memory``, the remembered heavy obstacles (:mod:`~flex_nav.nav.costmap.memory_layer`):
+   LETHAL,
+5. inflation of every LETHAL cell (:mod:`flex_nav.nav.costmap.inflation`).
 
 Updates are bounded like costmap_2d's: observations grow a "dirty" box, and :meth:`Costmap.update` rebuilds
 only that box grown by the inflation radius (reading lethal cells one more radius out), so a scan on a
@@ -18,7 +20,7 @@ One instance per costmap; not thread-safe (a node calls it from one thread or un
 from __future__ import annotations
 
 import math
-from typing import Optional, Tuple
+from typing import List, Optional, Tuple
 
 import numpy as np
 
@@ -27,6 +29,7 @@ from flex_nav.nav.costmap.bumper_layer import DEFAULT_MEMORY_S, BumperLayer
 from flex_nav.nav.costmap.costmap_grid import FREE, NO_INFORMATION, CostmapGeometry, costs_to_occupancy
 from flex_nav.nav.costmap.grid_map import GridMap
 from flex_nav.nav.costmap.inflation import InflationParams, Inflator
+from flex_nav.nav.costmap.memory_layer import MemoryParams, ObstacleMemoryLayer, RememberedObstacle
 from flex_nav.nav.costmap.obstacle_layer import LaserScan, ObstacleLayer, ObstacleLayerParams
 from flex_nav.nav.costmap.static_layer import StaticLayer, StaticLayerParams
 
@@ -47,9 +50,11 @@ class Costmap:
         rolling_window: bool = False,
         track_unknown_space: bool = False,
         bumper_memory_s: float = DEFAULT_MEMORY_S,
+        memory: Optional[MemoryParams] = None,
     ) -> None:
         self.geometry = geometry
         self.bumper_layer = BumperLayer(bumper_memory_s)
+        self.memory_layer = ObstacleMemoryLayer(memory) if memory is not None else None
         self.rolling_window = rolling_window
         self.default_value = NO_INFORMATION if track_unknown_space else FREE
         self.static_layer = StaticLayer(static_map, static_params) if static_map is not None else None
@@ -69,8 +74,10 @@ class Costmap:
         obstacles: Optional[ObstacleLayerParams] = None,
         inflation: Optional[InflationParams] = None,
         track_unknown_space: bool = True,
+        memory: Optional[MemoryParams] = None,
     ) -> Costmap:
-        """A global costmap covering ``grid`` exactly (same cells), static layer from it."""
+        """A global costmap covering ``grid`` exactly (same cells), static layer from it; ``memory``: with an
+        obstacle memory layer."""
         if grid.origin[2] != 0.0:
             raise ConfigError(
                 f"a costmap from a map needs map origin yaw 0 (costmaps are axis-aligned), got {grid.origin[2]!r}"
@@ -83,6 +90,7 @@ class Costmap:
             obstacles=obstacles,
             inflation=inflation,
             track_unknown_space=track_unknown_space,
+            memory=memory,
         )
 
     @classmethod
@@ -124,6 +132,8 @@ class Costmap:
         """Clear and mark one laser scan (pose in this costmap's frame); call :meth:`update` afterwards."""
         layer = self._obstacles("add_scan")
         self._grow_dirty(layer.add_scan(scan))
+        if self.memory_layer is not None:  # a remembered obstacle the scan sees through is gone: forget it at once
+            self._forgotten(self.memory_layer.observe_scan(scan))
 
     def mark_obstacles(self, xs: np.ndarray, ys: np.ndarray) -> None:
         """Mark LETHAL obstacle points (x [m], y [m]) in the obstacle layer: later scans may clear them."""
@@ -144,6 +154,22 @@ class Costmap:
         gone = self.bumper_layer.expire(now_s)
         self._grow_dirty(self.bumper_layer.box(self.geometry, gone))
         return len(gone)
+
+    def remember_obstacle(self, footprint: np.ndarray, now_s: float, what: str = "heavy") -> RememberedObstacle:
+        """Remember an obstacle (convex ``footprint`` (N, 2) [m] in this costmap's frame) found at ``now_s`` [s]:
+        LETHAL until it expires, a scan sees it gone, or :meth:`clear_memory`; survives :meth:`reset`."""
+        layer = self._memory("remember_obstacle")
+        entry = layer.remember(footprint, now_s, what)
+        self._grow_dirty(layer.box(self.geometry, [entry]))
+        return entry
+
+    def expire_memory(self, now_s: float) -> List[RememberedObstacle]:
+        """Forget remembered obstacles older than the memory's ``memory_s`` at ``now_s`` [s]; returns them."""
+        return self._forgotten(self._memory("expire_memory").expire(now_s))
+
+    def clear_memory(self, obstacle_id: Optional[int] = None) -> List[RememberedObstacle]:
+        """The operator's clear: forget remembered obstacle ``obstacle_id`` (None: all); returns them."""
+        return self._forgotten(self._memory("clear_memory").clear(obstacle_id))
 
     def set_static_map(self, grid: GridMap) -> None:
         """Replace the static map (a new ``map`` message); the whole costmap is rebuilt on the next update."""
@@ -173,7 +199,8 @@ class Costmap:
     def reset(self, forget_contacts: bool = False) -> None:
         """Full clear (ClearCostmap): forget every sensor observation and rebuild from the static map.
 
-        Bumper contacts are kept (they are what a bumper recovery must avoid next) unless ``forget_contacts``.
+        Bumper contacts are kept (they are what a bumper recovery must avoid next) unless ``forget_contacts``;
+        remembered obstacles are kept (:meth:`clear_memory` forgets them).
         """
         if self.obstacle_layer is not None:
             self.obstacle_layer.reset()
@@ -208,6 +235,8 @@ class Costmap:
             take = (layer != NO_INFORMATION) & ((work == NO_INFORMATION) | (work < layer))
             work[take] = layer[take]
         self.bumper_layer.stamp(work, geo, outer[0], outer[2])
+        if self.memory_layer is not None:
+            self.memory_layer.stamp(work, geo, outer[0], outer[2])
         if self.inflator is not None:
             self.inflator.apply(work)
         r_off, c_off = inner[0] - outer[0], inner[2] - outer[2]
@@ -236,6 +265,16 @@ class Costmap:
             math.floor((x - geo.width * res / 2.0) / res) * res,
             math.floor((y - geo.height * res / 2.0) / res) * res,
         )
+
+    def _memory(self, what: str) -> ObstacleMemoryLayer:
+        if self.memory_layer is None:
+            raise ConfigError(f"{what}: this costmap has no obstacle memory (construct it with memory=...)")
+        return self.memory_layer
+
+    def _forgotten(self, gone: List[RememberedObstacle]) -> List[RememberedObstacle]:
+        if gone and self.memory_layer is not None:
+            self._grow_dirty(self.memory_layer.box(self.geometry, gone))
+        return gone
 
     def _obstacles(self, what: str) -> ObstacleLayer:
         if self.obstacle_layer is None:
