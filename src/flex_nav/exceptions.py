@@ -160,3 +160,24 @@ class InvalidConstructionError(SmachError, BehaviorConstructionError):
 
 class InvalidUserCodeError(SmachError, BehaviorRuntimeError):
     """SMACH: user code (a state's execute, a callback) raised, or read/wrote undeclared userdata."""
+
+
+# --- FlexBE compatibility (flex_nav.compat.flexbe_core.core.exceptions re-exports these under FlexBE's names) ---
+
+
+class FlexBEError(BehaviorError):
+    """Base of FlexBE's three exception types (FlexBE derives them from Exception; here they join the family)."""
+
+
+class FlexBEStateError(FlexBEError):
+    """FlexBE's ``StateError``: a state returned an outcome without a transition, or was renamed or re-parented."""
+
+
+class FlexBEStateMachineError(FlexBEError):
+    """FlexBE's ``StateMachineError``: a container is built wrong (a transition to an unknown target, a duplicate
+    label, nothing opened) or asked for a state while none is active."""
+
+
+class FlexBEUserDataError(FlexBEError, UserDataError):
+    """FlexBE's ``UserDataError``: a state read a key it does not declare as input, wrote one it does not declare
+    as output, read a key that has no value, or modified an input-only value."""

@@ -6,9 +6,11 @@
   flex_nav state that runs a SMACH state (its blocking ``execute`` in one worker thread per activation).
 - :mod:`flex_nav.compat.flexbe_core` -- flexbe_core 1.x's API (``EventState``, ``Behavior``,
   ``OperatableStateMachine``, proxies, ``Logger``...) mapped onto flex_nav's engine, so FlexBE state
-  libraries and generated behaviors run unmodified in :class:`~flex_nav.behavior.BehaviorExecutor`.
+  libraries and generated behaviors run unmodified in :class:`~flex_nav.behavior.BehaviorExecutor`, and
+  FlexBE code that drives them itself (direct ``execute()``) gets FlexBE's semantics.
+- :mod:`flex_nav.compat.flexbe_testing` -- FlexBE's Tester with its YAML test cases, on that ``flexbe_core``.
 
-:func:`install_aliases` makes ``import smach`` / ``import flexbe_core`` resolve to these packages when
+:func:`install_aliases` makes ``import smach`` / ``flexbe_core`` / ``flexbe_testing`` resolve to these packages when
 the real ones are not installed (a runner calls it once, before importing state libraries).
 """
 
@@ -27,6 +29,7 @@ from flex_nav.exceptions import ConfigError, choices_message
 ALIASES: Dict[str, str] = {
     "smach": "flex_nav.compat.smach",
     "flexbe_core": "flex_nav.compat.flexbe_core",
+    "flexbe_testing": "flex_nav.compat.flexbe_testing",
 }
 
 

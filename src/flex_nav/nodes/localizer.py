@@ -65,11 +65,14 @@ from flex_nav.localization import Estimate, FilterParams, Localizer, LocalizerSt
 from flex_nav.nav.planar import Pose2D, compose_poses, inverse_pose
 from flex_nav.nav.pose_checks import pose_problem, yaw_of_quaternion
 from flex_nav.ros.conversions import grid_map_of, pose_of_xy_yaw
+from flex_nav.ros.frames import TfSource
 from flex_nav.ros.node import run_node
 from flex_nav.ros.params import param_bool, param_float, param_int, param_str, reject_unknown
+from flex_nav.ros.private_ns import private_name
 from flex_nav.ros.scan_input import Complaints, ScanInput, invalid_beams, transform_msg
 
 NODE_NAME = "localizer"
+TF_CACHE_S = 30.0  # [s] of transforms kept: scans are matched to odometry at their own stamps
 FILTER_PARAMS = tuple(f.name for f in dataclasses.fields(FilterParams))
 NODE_PARAMS = (
     "global_frame_id", "odom_frame_id", "base_frame_id", "transform_tolerance", "tf_broadcast",
@@ -88,17 +91,20 @@ def planar_covariance(flat: Sequence[float]) -> np.ndarray:
 class LocalizerNode:
     """Messages and transforms around one :class:`Localizer`; see the module docstring."""
 
-    def __init__(self) -> None:
+    def __init__(self, tf_buffer: Optional[tf2_ros.Buffer] = None) -> None:
+        """``tf_buffer``: one shared with other components of the process, caching at least
+        :data:`TF_CACHE_S` (None: a buffer of its own)."""
         reject_unknown("~", FILTER_PARAMS + NODE_PARAMS)
-        given = {name: rospy.get_param("~" + name) for name in FILTER_PARAMS if rospy.has_param("~" + name)}
-        self.params = FilterParams.from_mapping(given, owner=f"parameter {rospy.resolve_name('~')}")
+        given = {name: rospy.get_param(private_name("~" + name)) for name in FILTER_PARAMS
+                 if rospy.has_param(private_name("~" + name))}
+        self.params = FilterParams.from_mapping(given, owner=f"parameter {rospy.resolve_name(private_name('~'))}")
         self.global_frame = param_str("~global_frame_id", "map").lstrip("/")
         self.odom_frame = param_str("~odom_frame_id", "odom").lstrip("/")
         self.base_frame = param_str("~base_frame_id", "base_footprint").lstrip("/")
         for name, frame in (("global_frame_id", self.global_frame), ("odom_frame_id", self.odom_frame),
                             ("base_frame_id", self.base_frame)):
             if not frame:
-                raise ConfigError(f"parameter {rospy.resolve_name('~' + name)} must not be empty")
+                raise ConfigError(f"parameter {rospy.resolve_name(private_name('~' + name))} must not be empty")
         self.tolerance = rospy.Duration.from_sec(param_float("~transform_tolerance", 0.1, 0.0, 10.0))
         self.tf_broadcast = param_bool("~tf_broadcast", True)
         self.laser_min_range = param_float("~laser_min_range", -1.0, -1.0, 1e4)
@@ -120,14 +126,14 @@ class LocalizerNode:
         self._rivals_reported = 0  # rival poses last reported while relocalizing
         self._complain = Complaints(NODE_NAME)
 
-        self.tf_buffer = tf2_ros.Buffer(cache_time=rospy.Duration(30.0))
-        self.tf_listener = tf2_ros.TransformListener(self.tf_buffer)
+        self.tf = TfSource(tf_buffer, cache_s=TF_CACHE_S)
+        self.tf_buffer = self.tf.buffer
         self.scan_input = ScanInput(self.tf_buffer, self.odom_frame, self.base_frame, self.transform_timeout,
                                     self._complain, laser_range=(self.laser_min_range, self.laser_max_range))
         self.tf_broadcaster = tf2_ros.TransformBroadcaster()
         self.pub_pose = rospy.Publisher("amcl_pose", PoseWithCovarianceStamped, queue_size=2)
         self.pub_cloud = rospy.Publisher("particlecloud", PoseArray, queue_size=2)
-        self.pub_status = rospy.Publisher("~status", String, queue_size=2, latch=True)
+        self.pub_status = rospy.Publisher(private_name("~status"), String, queue_size=2, latch=True)
         self._set_status("uninitialized: waiting for the map")
         self.services = [
             rospy.Service("global_localization", Empty, self._on_global_localization),
@@ -141,7 +147,7 @@ class LocalizerNode:
     # -- inputs -----------------------------------------------------------------------------------------------
     def _initial_pose_parameters(self) -> Optional[Tuple[Pose2D, np.ndarray]]:
         names = ("~initial_pose_x", "~initial_pose_y", "~initial_pose_a")
-        if not any(rospy.has_param(n) for n in names):
+        if not any(rospy.has_param(private_name(n)) for n in names):
             return None
         pose = (param_float(names[0], 0.0), param_float(names[1], 0.0), param_float(names[2], 0.0))
         cov = np.diag([param_float("~initial_cov_xx", 0.25, 0.0), param_float("~initial_cov_yy", 0.25, 0.0),

@@ -9,7 +9,11 @@ that subscribed), one Python interpreter and its imported libraries and compiled
 Parameters:
 
 - ``~components`` (list of str; default: get_path_server, follow_path_server, follow_topic_server,
-  pure_pursuit_path, pure_pursuit_topic): which to host, from :data:`COMPONENTS`; each at most once.
+  pure_pursuit_path, pure_pursuit_topic): which to host, from :data:`COMPONENTS` (those and twist_relay,
+  bumper_relay, localizer); each at most once.
+
+The shared tf buffer keeps 30 s of transforms, the localizer's need. Components run their callbacks on rospy's
+threads of the one process; the compiled kernels of the planner and the localizer release the GIL.
 
 A component's bad parameter stops the node with its reason (exit status 2), as it would stop that node alone.
 """
@@ -26,6 +30,7 @@ from flex_nav.ros.frames import TfSource
 from flex_nav.ros.params import reject_unknown
 from flex_nav.ros.private_ns import hosted_as, private_name
 
+TF_CACHE_S = 30.0  # [s] the shared buffer's: the localizer's (flex_nav.nodes.localizer.TF_CACHE_S)
 ComponentFactory = Callable[[tf2_ros.Buffer], object]
 
 
@@ -67,6 +72,12 @@ def _bumper_relay(_tf_buffer: tf2_ros.Buffer) -> object:
     return BumperRelay()
 
 
+def _localizer(tf_buffer: tf2_ros.Buffer) -> object:
+    from flex_nav.nodes.localizer import LocalizerNode  # noqa: PLC0415 - only the hosted components
+
+    return LocalizerNode(tf_buffer)
+
+
 # Component name (its namespace, as the node of that name has) -> how to build it; modules are imported only for
 # the components asked for.
 COMPONENTS: Dict[str, ComponentFactory] = {
@@ -77,6 +88,7 @@ COMPONENTS: Dict[str, ComponentFactory] = {
     "pure_pursuit_topic": _controller(path=False),
     "twist_relay": _twist_relay,
     "bumper_relay": _bumper_relay,
+    "localizer": _localizer,
 }
 DEFAULT_COMPONENTS = (
     "get_path_server", "follow_path_server", "follow_topic_server", "pure_pursuit_path", "pure_pursuit_topic",
@@ -106,7 +118,7 @@ class NavigationHost:
         reject_unknown("~", ("components",))
         names = component_names(components if components is not None
                                  else rospy.get_param(private_name("~components"), list(DEFAULT_COMPONENTS)))
-        self.tf = TfSource()
+        self.tf = TfSource(cache_s=TF_CACHE_S)
         self.components: Dict[str, object] = {}
         for name in names:
             with hosted_as(name):

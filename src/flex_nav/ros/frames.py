@@ -19,8 +19,10 @@ class TfSource:
     """A tf buffer with the listener that fills it: the one given (shared by the components of one process), or
     a buffer and listener of the caller's own when none is given."""
 
-    def __init__(self, shared: Optional[tf2_ros.Buffer] = None) -> None:
-        self.buffer: tf2_ros.Buffer = shared if shared is not None else tf2_ros.Buffer()
+    def __init__(self, shared: Optional[tf2_ros.Buffer] = None, cache_s: float = 10.0) -> None:
+        """``cache_s`` [s]: how long a buffer of its own keeps transforms (tf2's default 10 s)."""
+        self.buffer: tf2_ros.Buffer = (shared if shared is not None
+                                       else tf2_ros.Buffer(cache_time=rospy.Duration(cache_s)))
         self.listener: Optional[tf2_ros.TransformListener] = (
             None if shared is not None else tf2_ros.TransformListener(self.buffer))
 

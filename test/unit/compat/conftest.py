@@ -6,11 +6,12 @@ import importlib.util
 import sys
 
 import pytest
-from unit.compat.compat_testlib import DATA_DIR
+from unit.compat.compat_testlib import DATA_DIR, FakeHub
 
 from flex_nav.compat import install_aliases, remove_aliases
+from flex_nav.compat.flexbe_core.proxy.hub import reset_process_proxies, use_process_proxies
 
-ALIASED = ("smach", "flexbe_core")
+ALIASED = ("smach", "flexbe_core", "flexbe_testing")
 LIBRARY = "example_flexbe_states"  # the FlexBE-idiom state library in test/data/compat
 
 
@@ -40,3 +41,14 @@ def aliases():
         for key in [k for k in sys.modules if k.split(".")[0] in roots]:
             del sys.modules[key]
         sys.modules.update(saved)
+
+
+@pytest.fixture(autouse=True)
+def process_hub():
+    """The FlexBE proxies' process-wide connections (as in FlexBE), a FakeHub for the test, forgotten after it."""
+    hub = FakeHub()
+    use_process_proxies(hub)
+    try:
+        yield hub
+    finally:
+        reset_process_proxies()

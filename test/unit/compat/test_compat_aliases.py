@@ -23,7 +23,7 @@ if importlib.util.find_spec("smach") is not None:
     sys.modules["smach"] = None
 from flex_nav.compat import install_aliases
 report = install_aliases()
-assert report == {"smach": "flex_nav", "flexbe_core": "flex_nav"}, report
+assert report == {"smach": "flex_nav", "flexbe_core": "flex_nav", "flexbe_testing": "flex_nav"}, report
 assert "rospy" not in sys.modules
 runpy.run_path(sys.argv[1], run_name="__main__")
 assert "rospy" not in sys.modules, "the SMACH layer must not import rospy"
@@ -48,7 +48,7 @@ def test_smach_tutorial_script_runs_unchanged_through_the_alias():
 
 def test_aliases_give_the_same_module_objects_for_package_and_submodules(aliases):
     report, _hidden = aliases
-    assert report == {"smach": "flex_nav", "flexbe_core": "flex_nav"}
+    assert report == {"smach": "flex_nav", "flexbe_core": "flex_nav", "flexbe_testing": "flex_nav"}
     import flexbe_core  # noqa: PLC0415
     import flexbe_core.proxy  # noqa: PLC0415
     import smach  # noqa: PLC0415
@@ -63,7 +63,11 @@ def test_aliases_give_the_same_module_objects_for_package_and_submodules(aliases
     assert flexbe_core is flex_nav.compat.flexbe_core
     assert EventState is flexbe_core.EventState
     assert ProxyActionClient is flexbe_core.proxy.ProxyActionClient
-    assert install_aliases() == {"smach": "flex_nav", "flexbe_core": "flex_nav"}  # idempotent
+    assert install_aliases() == {
+        "smach": "flex_nav",
+        "flexbe_core": "flex_nav",
+        "flexbe_testing": "flex_nav",
+    }  # idempotent
 
 
 def test_a_real_package_is_left_alone(monkeypatch):
@@ -77,7 +81,7 @@ def test_a_real_package_is_left_alone(monkeypatch):
 
 def test_unknown_alias_name_names_the_valid_ones():
     with pytest.raises(
-        ConfigError, match=r"compatibility alias 'smach_ros' is not valid \(valid: smach, flexbe_core\)"
+        ConfigError, match=r"compatibility alias 'smach_ros' is not valid \(valid: smach, flexbe_core, flexbe_testing\)"
     ):
         install_aliases(["smach_ros"])
 

@@ -11,12 +11,12 @@ import logging
 from typing import List
 
 import pytest
-from unit.compat.compat_testlib import FakeHub
 
 from flex_nav.behavior import Autonomy, BehaviorContext, BehaviorExecutor, BehaviorStatus, ManualClock, using_context
 from flex_nav.behavior import PriorityContainer as EnginePriority
 from flex_nav.behavior import StateMachine as EngineStateMachine
 from flex_nav.behavior.events import LogEvent
+from flex_nav.compat.flexbe_core.proxy.hub import process_proxies
 from flex_nav.exceptions import (
     BehaviorConstructionError,
     ConfigError,
@@ -27,7 +27,9 @@ from flex_nav.exceptions import (
 
 
 def context(name="test", autonomy=Autonomy.FULL, hub=None):
-    ctx = BehaviorContext(name, clock=ManualClock(), proxies=hub if hub is not None else FakeHub(), autonomy=autonomy)
+    ctx = BehaviorContext(
+        name, clock=ManualClock(), proxies=hub if hub is not None else process_proxies(), autonomy=autonomy
+    )
     logs: List[LogEvent] = []
     ctx.hooks.log.append(logs.append)
     return ctx, logs

@@ -130,5 +130,18 @@ class Logger:
     def localinfo(text: Any, *args: Any) -> None:
         Logger.local(_format(text, args), Logger.REPORT_INFO)
 
+    @staticmethod
+    def localwarn(text: Any, *args: Any) -> None:
+        Logger.local(_format(text, args), Logger.REPORT_WARN)
+
+    @staticmethod
+    def localerr(text: Any, *args: Any) -> None:
+        Logger.local(_format(text, args), Logger.REPORT_ERROR)
+
+    # FlexBE code also calls these (rospy-style names)
+    warning = logwarn
+    error = logerr
+    info = loginfo
+
 
 __all__ = ["Logger"]

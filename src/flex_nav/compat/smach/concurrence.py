@@ -122,8 +122,10 @@ class Concurrence(Container):
         """All children always start; only ``userdata`` is merged (as in SMACH, which ignores the labels with a
         warning: they may name children added later)."""
         if initial_states and set(initial_states) != set(self._states):
-            HOOKS.warn(f"Concurrence starts all its children (now: {listed(list(self._states))}); "
-                       f"initial states {list(initial_states)} ignored")
+            HOOKS.warn(
+                f"Concurrence starts all its children (now: {listed(list(self._states))}); "
+                f"initial states {list(initial_states)} ignored"
+            )
         if userdata is not None:
             self.userdata.update(userdata)
 

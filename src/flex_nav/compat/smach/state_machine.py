@@ -165,8 +165,10 @@ class StateMachine(Container):
         if userdata is not None:
             self.userdata.update(userdata)
         if self._initial_state_label is not None and self._initial_state_label not in self._states:
-            HOOKS.warn(f"initial state {self._initial_state_label!r} is not a state of the machine yet "
-                       f"(states: {listed(list(self._states))}); it must be added before the machine runs")
+            HOOKS.warn(
+                f"initial state {self._initial_state_label!r} is not a state of the machine yet "
+                f"(states: {listed(list(self._states))}); it must be added before the machine runs"
+            )
         elif not self._is_running:
             self.call_start_cbs()  # introspection tools learn about the new initial state
 

@@ -70,9 +70,7 @@ class UserData:
         try:
             return self._data[key]
         except KeyError:
-            raise UserDataKeyError(
-                f"SMACH userdata has no key {key!r} (keys: {_listed(self._data)})"
-            ) from None
+            raise UserDataKeyError(f"SMACH userdata has no key {key!r} (keys: {_listed(self._data)})") from None
 
     def __setitem__(self, key: str, value: Any) -> None:
         self._data[key] = value

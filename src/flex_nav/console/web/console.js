@@ -719,6 +719,9 @@
       }
     }
     canvas.dataset.drawn = JSON.stringify(drawn);
+    // the tracked people drawn (every robot's), [x, y] in map metres: where to look for them on the canvas
+    canvas.dataset.people = JSON.stringify([...robots.values()].flatMap((state) =>
+      state.overlays.people ? state.overlays.people.points.map(([x, y]) => [x, y]) : []));
     if (map.drag) {
       const [ax, ay] = toCanvas(v, map.drag.x, map.drag.y);
       ctx.strokeStyle = map.drag.kind === "goal" ? "#1565c0" : "#2e7d32";

@@ -35,33 +35,30 @@ FULL_POOL = -3
 
 
 @njit(cache=True, nogil=True)
-def _push(heap: np.ndarray, size: int, key: float, tie: float, item: int) -> None:  # pragma: no cover - compiled
-    # 4-ary min-heap on (key, tie) with rows [key, tie, item]; the caller has made room for one more
+def _push(heap: np.ndarray, size: int, key: float, item: int) -> None:  # pragma: no cover - compiled
+    # 4-ary min-heap on key with rows [key, item]; the caller has made room for one more
     pos = size
     while pos > 0:
         parent = (pos - 1) >> 2
-        pk = heap[parent, 0]
-        if pk < key or (pk == key and heap[parent, 1] <= tie):
+        parent_key = heap[parent, 0]
+        if parent_key <= key:
             break
-        heap[pos, 0] = pk
+        heap[pos, 0] = parent_key
         heap[pos, 1] = heap[parent, 1]
-        heap[pos, 2] = heap[parent, 2]
         pos = parent
     heap[pos, 0] = key
-    heap[pos, 1] = tie
-    heap[pos, 2] = item
+    heap[pos, 1] = item
 
 
 @njit(cache=True, nogil=True)
 def _pop(heap: np.ndarray, size: int) -> int:  # pragma: no cover - compiled
     # removes the root of a heap of ``size`` rows and returns its item
-    top = int(heap[0, 2])
+    top = int(heap[0, 1])
     size -= 1
     if size == 0:
         return top
     key = heap[size, 0]
-    tie = heap[size, 1]
-    item = heap[size, 2]
+    item = heap[size, 1]
     pos = 0
     while True:
         first = 4 * pos + 1
@@ -69,22 +66,17 @@ def _pop(heap: np.ndarray, size: int) -> int:  # pragma: no cover - compiled
             break
         best = first
         best_key = heap[first, 0]
-        best_tie = heap[first, 1]
         for child in range(first + 1, min(first + 4, size)):
-            child_key = heap[child, 0]
-            if child_key < best_key or (child_key == best_key and heap[child, 1] < best_tie):
+            if heap[child, 0] < best_key:
                 best = child
-                best_key = child_key
-                best_tie = heap[child, 1]
-        if key < best_key or (key == best_key and tie <= best_tie):
+                best_key = heap[child, 0]
+        if key <= best_key:
             break
         heap[pos, 0] = best_key
-        heap[pos, 1] = best_tie
-        heap[pos, 2] = heap[best, 2]
+        heap[pos, 1] = heap[best, 1]
         pos = best
     heap[pos, 0] = key
-    heap[pos, 1] = tie
-    heap[pos, 2] = item
+    heap[pos, 1] = item
     return top
 
 
@@ -131,9 +123,9 @@ def astar(  # noqa: PLR0917, PLR0912, PLR0915 - one compiled kernel
     for i in range(256):
         if weights[i] != np.inf and weights[i] > span:
             span = weights[i]
-    span = 2.0 * longest * (span + heuristic_scale)
+    span = longest * (span + heuristic_scale)
     per_f = (BUCKETS - 4) / span if span > 0.0 else 1.0  # buckets per unit of f
-    head = np.full(BUCKETS, -1, dtype=np.int64)
+    head = np.full(BUCKETS, -1, dtype=np.int32)
     used = 0  # pool rows handed out so far
     free = -1  # first row of the pool's free list
     in_buckets = 0
@@ -146,7 +138,7 @@ def astar(  # noqa: PLR0917, PLR0912, PLR0915 - one compiled kernel
     parent[start] = NO_PARENT
     state[start] = generation
     size = 0
-    _push(heap, size, f_min, 0.0, start)
+    _push(heap, size, f_min, start)
     size += 1
     top = 0
     expanded = 0
@@ -167,10 +159,10 @@ def astar(  # noqa: PLR0917, PLR0912, PLR0915 - one compiled kernel
                 while entry != -1:
                     following = int(pool[entry, 3])
                     cell = int(pool[entry, 2])
-                    if state[cell] == generation and -pool[entry, 1] == g[cell]:
+                    if state[cell] == generation and pool[entry, 1] == g[cell]:
                         if size == heap.shape[0]:
                             return np.inf, FULL_HEAP
-                        _push(heap, size, pool[entry, 0], pool[entry, 1], cell)
+                        _push(heap, size, pool[entry, 0], cell)
                         size += 1
                     pool[entry, 3] = free
                     free = entry
@@ -230,7 +222,7 @@ def astar(  # noqa: PLR0917, PLR0912, PLR0915 - one compiled kernel
             if bucket <= current:
                 if size == heap.shape[0]:
                     return np.inf, FULL_HEAP
-                _push(heap, size, f, -cand, nb)
+                _push(heap, size, f, nb)
                 size += 1
                 continue
             if free != -1:
@@ -243,7 +235,7 @@ def astar(  # noqa: PLR0917, PLR0912, PLR0915 - one compiled kernel
                 return np.inf, FULL_POOL
             slot = bucket & (BUCKETS - 1)
             pool[entry, 0] = f
-            pool[entry, 1] = -cand
+            pool[entry, 1] = cand
             pool[entry, 2] = nb
             pool[entry, 3] = head[slot]
             head[slot] = entry
@@ -256,7 +248,7 @@ class QueueStorage:
 
     def __init__(self, pool_rows: int = 1 << 14, heap_rows: int = 1 << 12, stack_size: int = 1 << 12) -> None:
         self.pool = np.empty((pool_rows, 4), dtype=np.float64)
-        self.heap = np.empty((heap_rows, 3), dtype=np.float64)
+        self.heap = np.empty((heap_rows, 2), dtype=np.float64)
         self.stack = np.empty(stack_size, dtype=np.int64)
 
     def grow(self, full: int) -> None:
@@ -264,7 +256,7 @@ class QueueStorage:
         if full == FULL_POOL:
             self.pool = np.empty((2 * len(self.pool), 4), dtype=np.float64)
         elif full == FULL_HEAP:
-            self.heap = np.empty((2 * len(self.heap), 3), dtype=np.float64)
+            self.heap = np.empty((2 * len(self.heap), 2), dtype=np.float64)
         elif full == FULL_STACK:
             self.stack = np.empty(2 * len(self.stack), dtype=np.int64)
         else:

@@ -1,31 +1,28 @@
-"""FlexBE's OperatableStateMachine: flex_nav's StateMachine with FlexBE's construction idiom.
+"""FlexBE's OperatableStateMachine: flex_nav's StateMachine with FlexBE's construction idiom and direct execution.
 
-Autonomy levels (``autonomy={'done': Autonomy.High}``), operator requests, locks, pause and preempt
-are the engine's (:mod:`flex_nav.behavior.state_machine`); see :mod:`.container_support` for
-``with sm:``, ``OperatableStateMachine.add(...)`` and ``sm.userdata``.
+Run by flex_nav's executor, autonomy levels (``autonomy={'done': Autonomy.High}``), operator requests, locks, pause
+and preempt are the engine's, per behavior (:mod:`flex_nav.behavior.state_machine`). Executed directly by FlexBE
+code (``sm.execute(userdata)``), it follows FlexBE 1.x: ``OperatableStateMachine.autonomy_level`` (process-wide,
+3 = full) gates the outcomes of controlled states, and an error of a child (a state raising, an unregistered
+outcome, a bad userdata access, a nested machine with a missing transition target) is kept in
+``sm._last_exception``, logged, and the step returns None. See :mod:`.container_support` for ``with sm:``,
+``OperatableStateMachine.add(...)`` and ``sm.userdata``.
 """
 
 from __future__ import annotations
 
-from typing import Any, Sequence
+from typing import Optional
 
-from flex_nav.behavior.state_machine import StateMachine
-from flex_nav.compat.flexbe_core.core.container_support import FlexBEContainer, Wiring
+from flex_nav.compat.flexbe_core.core.preemptable_state_machine import PreemptableStateMachine
 
 
-class OperatableStateMachine(FlexBEContainer, StateMachine):
+class OperatableStateMachine(PreemptableStateMachine):
     """A state machine of a FlexBE behavior."""
 
-    def __init__(
-        self, outcomes: Sequence[str], input_keys: Sequence[str] = (), output_keys: Sequence[str] = ()
-    ) -> None:
-        StateMachine.__init__(self, outcomes, input_keys, output_keys)
-        self._init_flexbe()
+    autonomy_level = 3  # FlexBE's process-wide level for directly executed machines (255: no control)
 
-    def _flexbe_add(self, label: str, state: Any, wiring: Wiring) -> Any:
-        return StateMachine.add(
-            self, label, state, transitions=wiring.transitions, autonomy=wiring.autonomy, remapping=wiring.remapping
-        )
+    def _execute_current_state(self) -> Optional[str]:
+        return self._flexbe_guarded(super()._execute_current_state)
 
 
 __all__ = ["OperatableStateMachine"]

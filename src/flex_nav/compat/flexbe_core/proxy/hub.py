@@ -1,94 +1,65 @@
-"""Which behavior's connections a FlexBE proxy uses, and what it needs from them.
+"""The connections of the FlexBE proxies: ONE process-wide set, as in FlexBE.
 
-FlexBE's proxies keep their publishers, subscribers and clients in class-level dicts: one set per
-process, shared by every behavior. Here a proxy object uses the connection hub of ONE behavior: the
-``proxies`` of the behavior context current when the proxy was created (states build their proxies in
-``__init__``, which :func:`flex_nav.compat.flexbe_core.build_behavior` runs inside the behavior's
-context), or, if there was none, the context running when the proxy is first used. Within that
-behavior the hub shares connections by name (two states asking for the same topic get one
-subscriber); two behaviors never share anything.
+FlexBE keeps its proxies' publishers, subscribers and clients in class-level dicts: every ``ProxyPublisher()``,
+``ProxySubscriberCached()``, ... of a process shares them, whether it was created by a state, a behavior or a test,
+inside a running behavior or outside any. The compatibility layer keeps that on purpose, so FlexBE code runs as
+written (a proxy created in ``__init__`` works in ``execute``, a state executed directly by flexbe_testing's Tester
+reaches ROS, ``_sub._callback(msg, topic)`` injects a message for every state that reads the topic). This is the
+compat layer's FlexBE semantics only: flex_nav's own states use the connections of their behavior
+(``self.context.proxies``), one set per behavior, closed when it ends.
 
-The hub is what the ROS runner injects as ``BehaviorContext.proxies``:
-:class:`flex_nav.ros.proxies.RosProxies`. The FlexBE proxies use it through the same protocols as the
-state library, :class:`flex_nav.behavior.proxies.Proxies` and its ``*Like`` connections (pure unit tests
-inject fakes).
+The process-wide set is a :class:`flex_nav.behavior.proxies.Proxies`: a :class:`flex_nav.ros.proxies.RosProxies`
+made on first use (the process is a ROS node: ``behavior_runner``, a rostest, FlexBE's Tester), or whatever
+:func:`use_process_proxies` installed (pure tests install a fake). :func:`reset_process_proxies` forgets it and every
+proxy's cached state (FlexBE's ``shutdown``).
 """
 
 from __future__ import annotations
 
-from typing import Callable, Iterable, List, Optional, TypeVar
+import threading
+from typing import Callable, List, Optional
 
-from flex_nav.behavior.context import current_context
 from flex_nav.behavior.proxies import Proxies
-from flex_nav.exceptions import NotReadyError
 
-C = TypeVar("C")
+_LOCK = threading.Lock()
+_PROCESS: List[Optional[Proxies]] = [None]
+_RESETS: List[Callable[[], None]] = []  # each proxy class's forget-everything, registered at import
 
 
-class Binding:
-    """The hub of one FlexBE proxy object, with the setup calls made before a hub was known."""
-
-    __slots__ = ("_hub", "_owner", "_pending", "_set_up_as", "_set_up_by")
-
-    def __init__(self, owner: str, *, set_up_by: str, set_up_as: str = "set up") -> None:
-        """``owner``: the proxy's class name; ``set_up_by``: its method that sets a connection up, ``set_up_as``:
-        what that did, in the past tense (for :meth:`require`'s message)."""
-        self._owner = owner
-        self._set_up_by = set_up_by
-        self._set_up_as = set_up_as
-        self._hub: Optional[Proxies] = self._current_hub()
-        self._pending: List[Callable[[Proxies], None]] = []
-
-    @staticmethod
-    def _current_hub() -> Optional[Proxies]:
-        ctx = current_context()
-        return ctx.proxies if ctx is not None else None
-
-    @property
-    def bound(self) -> bool:
-        return self._hub is not None
-
-    def setup(self, action: Callable[[Proxies], None]) -> None:
-        """Run ``action(hub)`` now if a hub is known, else when the proxy is first used in a running behavior."""
-        hub = self._hub if self._hub is not None else self._bind()
+def process_proxies() -> Proxies:
+    """The process-wide connections (a RosProxies made on first use unless one was installed)."""
+    with _LOCK:
+        hub = _PROCESS[0]
         if hub is None:
-            self._pending.append(action)
-        else:
-            action(hub)
+            from flex_nav.ros.proxies import RosProxies  # noqa: PLC0415  (ROS only when FlexBE code reaches ROS)
 
-    def peek(self) -> Optional[Proxies]:
-        """The hub if one is known or a running behavior provides one now, else None (never raises)."""
-        return self._hub if self._hub is not None else self._bind()
-
-    def hub(self) -> Proxies:
-        """The hub, binding to the running behavior's on first use; NotReadyError outside any behavior."""
-        hub = self._hub if self._hub is not None else self._bind()
-        if hub is None:
-            raise NotReadyError(
-                f"{self._owner} is used outside a behavior that has ROS proxies: create and use it while a "
-                "flex_nav behavior runs (or is built) with proxies injected by its runner"
-            )
-        return hub
-
-    def require(self, found: Optional[C], missing: str, set_up: Iterable[str]) -> C:
-        """``found``, a connection looked up in the hub; NotReadyError when it is None, saying what is ``missing`` in
-        this behavior, the call that sets it up and the names this proxy set up (``set_up``)."""
-        if found is None:
-            raise NotReadyError(
-                f"{self._owner}: {missing} in this behavior; call {self._set_up_by}(topic, type) first "
-                f"(this proxy {self._set_up_as}: {', '.join(set_up) or 'none'})"
-            )
-        return found
-
-    def _bind(self) -> Optional[Proxies]:
-        hub = self._current_hub()
-        if hub is None:
-            return None
-        self._hub = hub
-        pending, self._pending = self._pending, []
-        for action in pending:
-            action(hub)
+            hub = _PROCESS[0] = RosProxies()
         return hub
 
 
-__all__ = ["Binding"]
+def use_process_proxies(hub: Optional[Proxies]) -> None:
+    """Install ``hub`` as the process-wide connections (None: make a RosProxies on next use); the proxies' cached
+    state is forgotten."""
+    reset_process_proxies()
+    with _LOCK:
+        _PROCESS[0] = hub
+
+
+def reset_process_proxies() -> None:
+    """Forget the process-wide connections and the proxies' caches (a RosProxies made here is shut down)."""
+    with _LOCK:
+        hub, _PROCESS[0] = _PROCESS[0], None
+    shutdown = getattr(hub, "shutdown", None)
+    if callable(shutdown):
+        shutdown()
+    for reset in list(_RESETS):
+        reset()
+
+
+def on_reset(reset: Callable[[], None]) -> Callable[[], None]:
+    """Register a proxy class's forget-everything (called by :func:`reset_process_proxies`)."""
+    _RESETS.append(reset)
+    return reset
+
+
+__all__ = ["on_reset", "process_proxies", "reset_process_proxies", "use_process_proxies"]

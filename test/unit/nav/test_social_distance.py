@@ -1,0 +1,165 @@
+"""The social-distance speed limit (slow down, stop 0.3 m from a person, never drive toward one) and whose doing a
+contact was (no ROS)."""
+
+from __future__ import annotations
+
+import math
+from typing import List, Tuple
+
+import numpy as np
+import pytest
+
+from flex_nav.exceptions import ConfigError
+from flex_nav.nav.control.social_distance import (
+    SocialDistanceRule,
+    SocialParams,
+    contact_cause,
+    footprint_distance,
+)
+from flex_nav.nav.footprint import circle_footprint
+from flex_nav.perception.moving_obstacles import Track
+
+ROUND = circle_footprint(0.171)  # TurtleBot 4
+SQUARE = np.array([[0.2, 0.2], [-0.2, 0.2], [-0.2, -0.2], [0.2, -0.2]])
+RULE = SocialDistanceRule(SocialParams())
+
+
+def person(x: float, y: float, vx: float = 0.0, vy: float = 0.0, track_id: int = 1) -> Track:
+    return Track(track_id, x, y, vx, vy, 0.2, 0.0, 5)
+
+
+def test_nobody_near_leaves_the_command_alone() -> None:
+    out = RULE.limit((0.0, 0.0, 0.0), ROUND, 0.3, 0.2, [person(10.0, 0.0)])
+    assert (out.v, out.w, out.scale, out.limited_by) == (0.3, 0.2, 1.0, None)
+    assert out.closest_m == math.inf and out.reason == "no person near"
+    far_enough = RULE.limit((0.0, 0.0, 0.0), ROUND, 0.3, 0.0, [person(0.0, 3.0)])  # beside, far
+    assert far_enough.scale == 1.0 and far_enough.closest_id == 1
+
+
+def test_the_limit_falls_as_a_person_ahead_comes_closer_and_is_zero_at_the_distance() -> None:
+    limits = []
+    for gap in (2.0, 1.5, 1.0, 0.8, 0.6, 0.45, 0.35, 0.3, 0.25):
+        centre = 0.171 + gap + 0.2  # the person's body `gap` in front of the footprint
+        limits.append(RULE.limit((0.0, 0.0, 0.0), ROUND, 0.3, 0.0, [person(centre, 0.0)]).v)
+    assert limits[0] == pytest.approx(0.3)
+    assert all(a >= b for a, b in zip(limits, limits[1:]))
+    assert limits[-2] == 0.0 and limits[-1] == 0.0  # at 0.3 m and inside: stopped
+    assert 0.0 < limits[4] < 0.3
+
+
+def test_it_never_drives_toward_a_person_inside_the_distance_but_may_leave() -> None:
+    near = [person(0.171 + 0.2 + 0.2, 0.0)]  # 0.2 m in front
+    assert RULE.limit((0.0, 0.0, 0.0), ROUND, 0.2, 0.0, near).stopped
+    assert RULE.limit((0.0, 0.0, 0.0), ROUND, 0.05, 0.3, near).v == 0.0  # an arc toward them too
+    back = RULE.limit((0.0, 0.0, 0.0), ROUND, -0.2, 0.0, near)
+    assert back.v == -0.2 and back.scale == 1.0 and back.reason.startswith("nearest person #1")
+
+
+def test_a_person_walking_toward_the_robot_stops_it_earlier() -> None:
+    centre = 0.171 + 0.8 + 0.2
+    standing = RULE.limit((0.0, 0.0, 0.0), ROUND, 0.3, 0.0, [person(centre, 0.0)])
+    walking = RULE.limit((0.0, 0.0, 0.0), ROUND, 0.3, 0.0, [person(centre, 0.0, vx=-0.6)])
+    assert walking.v < standing.v
+    assert RULE.limit((0.0, 0.0, 0.0), ROUND, 0.3, 0.0, [person(centre, 0.0, vx=-1.2)]).v == 0.0
+
+
+def test_passing_close_beside_a_person_is_slowed_not_stopped() -> None:
+    beside = [person(0.5, 0.171 + 0.2 + 0.5)]  # 0.5 m to the left, ahead: the robot drives past
+    out = RULE.limit((0.0, 0.0, 0.0), ROUND, 0.3, 0.0, beside)
+    assert 0.0 < out.v < 0.3 and "capped" in out.reason
+
+
+def test_the_footprint_polygon_counts_and_a_turn_swings_its_corners() -> None:
+    # a person 0.3 m beyond the square's front-left corner, along the diagonal
+    corner = np.array([0.2, 0.2])
+    centre = corner + (0.3 + 0.2) * np.array([1.0, 1.0]) / math.sqrt(2.0)
+    people = [person(float(centre[0]), float(centre[1]))]
+    turning = RULE.limit((0.0, 0.0, 0.0), SQUARE, 0.0, 0.5, people)  # the corner swings toward them
+    assert turning.w == 0.0 and turning.closest_m == pytest.approx(0.3)
+    assert RULE.limit((0.0, 0.0, 0.0), SQUARE, 0.0, -0.5, people).w == -0.5  # swinging away is fine
+    roomier = RULE.limit((0.0, 0.0, 0.0), ROUND, 0.0, 0.5, people)  # a round base turning takes no more room
+    assert roomier.w == 0.5
+
+
+def test_the_pose_places_the_footprint() -> None:
+    ahead = [person(5.0 + 0.171 + 0.2 + 0.25, 2.0)]
+    assert RULE.limit((5.0, 2.0, 0.0), ROUND, 0.3, 0.0, ahead).stopped
+    assert RULE.limit((5.0, 2.0, math.pi), ROUND, 0.3, 0.0, ahead).scale == 1.0  # facing away
+
+
+def drive(people: List[Tuple[float, float, float, float]], goal_x: float = 6.0, seconds: float = 30.0,
+          dt: float = 0.05) -> Tuple[float, float]:
+    """A robot driving along +x at up to 0.3 m/s (braking at most 0.5 m/s^2, one tick of latency) with the rule;
+    people [(x0, y0, vx, vy)] walk at constant velocity. Returns (closest distance while the robot moved, x)."""
+    x, speed = 0.0, 0.0
+    closest = math.inf
+    for step in range(int(seconds / dt)):
+        t = step * dt
+        tracks = [person(x0 + vx * t, y0 + vy * t, vx, vy, i) for i, (x0, y0, vx, vy) in enumerate(people)]
+        wanted = 0.3 if x < goal_x else 0.0
+        command = RULE.limit((x, 0.0, 0.0), ROUND, wanted, 0.0, tracks).v
+        speed = max(command, speed - 0.5 * dt) if command < speed else min(command, speed + 0.5 * dt)
+        x += speed * dt
+        if speed > 0.02:
+            polygon = ROUND + [x, 0.0]
+            for track in tracks:
+                distance = footprint_distance(polygon, (track.x + track.vx * dt, track.y + track.vy * dt))[0]
+                closest = min(closest, distance - track.radius)
+    return closest, x
+
+
+def test_driving_at_a_standing_person_stops_at_the_distance() -> None:
+    closest, x = drive([(3.0, 0.0, 0.0, 0.0)])
+    assert 0.3 - 0.02 <= closest <= 0.45, closest
+    assert x < 3.0 - 0.2 - 0.171 - 0.28
+
+
+def test_a_person_crossing_ahead_is_kept_at_the_distance_while_moving() -> None:
+    for y0, vy in ((-3.0, 0.5), (2.5, -0.4), (-2.0, 0.8)):
+        closest, _ = drive([(2.0, y0, 0.0, vy)])
+        assert closest >= 0.3 - 0.02, (y0, vy, closest)
+
+
+def test_a_person_walking_head_on_never_comes_closer_than_the_distance_while_the_robot_moves() -> None:
+    closest, _ = drive([(4.0, 0.0, -0.5, 0.0)])
+    assert closest >= 0.3 - 0.02
+
+
+def test_contact_with_a_stopped_robot_is_not_its_doing() -> None:
+    cause = contact_cause(0.0, 0.0, (0.17, 0.0))
+    assert not cause.robot_caused and "stopped" in cause.reason
+
+
+def test_contact_while_driving_into_the_person_is_its_doing() -> None:
+    cause = contact_cause(0.2, 0.0, (0.17, 0.0))
+    assert cause.robot_caused and cause.closing_mps == pytest.approx(0.2)
+    assert contact_cause(0.0, 1.0, (0.2, 0.2), normal=(1.0, 1.0)).robot_caused  # a square's corner swinging
+
+
+def test_contact_at_the_back_while_driving_away_is_not_its_doing() -> None:
+    cause = contact_cause(0.2, 0.0, (-0.17, 0.0))
+    assert not cause.robot_caused and "away or along" in cause.reason
+    assert not contact_cause(0.2, 0.0, (0.0, 0.17)).robot_caused  # a person's side brushed while passing
+
+
+def test_a_contact_without_direction_is_refused() -> None:
+    with pytest.raises(ConfigError, match="normal"):
+        contact_cause(0.2, 0.0, (0.0, 0.0))
+
+
+def test_footprint_distance_inside_and_outside() -> None:
+    assert footprint_distance(SQUARE, (0.0, 0.0))[0] == 0.0
+    distance, nearest = footprint_distance(SQUARE, (1.0, 0.0))
+    assert distance == pytest.approx(0.8) and np.allclose(nearest, [0.2, 0.0])
+
+
+@pytest.mark.parametrize(("kwargs", "match"), [
+    ({"min_distance_m": 0.0}, "min_distance_m"),
+    ({"slow_distance_m": 0.2}, "slow_distance_m"),
+    ({"decel_mps2": -1.0}, "decel_mps2"),
+    ({"latency_s": -0.1}, "latency_s"),
+    ({"max_range_m": 0.5}, "max_range_m"),
+])
+def test_parameters_are_validated(kwargs: dict, match: str) -> None:
+    with pytest.raises(ConfigError, match=match):
+        SocialParams(**kwargs)
