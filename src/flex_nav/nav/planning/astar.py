@@ -4,15 +4,22 @@ The graph: every cell is a node; a move to one of the 8 neighbours costs ``step 
 cell entered]`` with ``step`` 1 (straight) or ``diagonal_factor`` (diagonal); ``weight`` comes from a
 256-entry table indexed by the uint8 cell cost, ``inf`` for impassable costs. The heuristic is the octile
 distance times the smallest finite weight, which is admissible and consistent for this graph, so the
-first time the goal is taken off the queue its cost is optimal. Ties on f are broken towards larger g
-(deeper nodes), which keeps the search narrow in open space.
+first time the goal is taken off the queue its cost is optimal.
 
-The queue is a 4-ary heap of rows ``[f, -g, cell]`` (one contiguous record per entry) plus a LIFO
-stack: a successor whose f equals the current minimum f would be popped next anyway, so it skips the
-heap. In free space, where the heuristic is exact, most cells go through the stack.
+The queue pops cells in order of f = g + h, which is all optimality needs (any order among equal f will
+do). It has three parts:
+
+- a ring of f buckets (``BUCKETS`` slots, bucket k holding f in [k, k+1) / ``per_f``): a push is O(1)
+  (a row [f, g, cell, next] of ``pool`` linked into its bucket). One move raises f by at most the move's
+  cost plus the heuristic's change, so the live buckets always fit in the ring;
+- a 4-ary min-heap on f (rows [f, cell]) holding the current bucket: when the heap runs dry, the next
+  non-empty bucket is moved into it, dropping the entries of cells reached more cheaply since;
+- a LIFO stack: a successor whose f equals the current minimum f would be popped next anyway, so it skips
+  the heap. In free space, where the heuristic is exact, most cells go through the stack, which also
+  breaks ties towards deeper cells (larger g) and keeps the search narrow.
 
 To avoid clearing H·W arrays on every query, the per-cell arrays are reused across queries and a cell's
-entries count only when its ``seen`` stamp equals the query's generation number.
+entries count only when its ``state`` stamp equals the query's generation number.
 """
 
 from __future__ import annotations
@@ -100,8 +107,8 @@ def astar(  # noqa: PLR0917, PLR0912, PLR0915 - one compiled kernel
     """Search from flat cell ``start`` to ``goal`` on ``costs`` (uint8, H·W flat, row-major).
 
     Returns (cost of the optimal path or inf, number of expanded cells). ``parent`` then links the path
-    back from ``goal``. ``pool`` (float64 (P, 4): rows [f, -g, cell, next]: the buckets' entries), ``heap``
-    (float64 (R, 3): rows [f, -g, cell]: the current bucket) and ``stack`` (int64) are the queue's storage;
+    back from ``goal``. ``pool`` (float64 (P, 4): rows [f, g, cell, next]: the buckets' entries), ``heap``
+    (float64 (R, 2): rows [f, cell]: the current bucket) and ``stack`` (int64) are the queue's storage;
     when one of them is full the search stops and returns (inf, FULL_POOL / FULL_STACK / FULL_HEAP), and the
     caller searches again with a bigger one (growing an array inside this kernel makes numba's compile time
     explode): :func:`search` does that. ``g`` (float64), ``parent`` (int32) and ``state`` (uint32) are H·W
