@@ -56,11 +56,10 @@ def test_it_never_drives_toward_a_person_inside_the_distance_but_may_leave() -> 
 
 
 def test_a_person_walking_toward_the_robot_stops_it_earlier() -> None:
-    centre = 0.171 + 0.8 + 0.2
-    standing = RULE.limit((0.0, 0.0, 0.0), ROUND, 0.3, 0.0, [person(centre, 0.0)])
-    walking = RULE.limit((0.0, 0.0, 0.0), ROUND, 0.3, 0.0, [person(centre, 0.0, vx=-0.6)])
-    assert walking.v < standing.v
-    assert RULE.limit((0.0, 0.0, 0.0), ROUND, 0.3, 0.0, [person(centre, 0.0, vx=-1.2)]).v == 0.0
+    centre = 0.171 + 1.2 + 0.2  # 1.2 m ahead: outside the slowing zone
+    speeds = [RULE.limit((0.0, 0.0, 0.0), ROUND, 0.3, 0.0, [person(centre, 0.0, vx=-u)]).v for u in (0.0, 1.0, 1.5)]
+    assert speeds[0] == 0.3 and 0.0 < speeds[2] < speeds[1] < 0.3
+    assert RULE.limit((0.0, 0.0, 0.0), ROUND, 0.3, 0.0, [person(0.171 + 0.4 + 0.2, 0.0, vx=-2.0)]).stopped
 
 
 def test_passing_close_beside_a_person_is_slowed_not_stopped() -> None:
@@ -70,15 +69,13 @@ def test_passing_close_beside_a_person_is_slowed_not_stopped() -> None:
 
 
 def test_the_footprint_polygon_counts_and_a_turn_swings_its_corners() -> None:
-    # a person 0.3 m beyond the square's front-left corner, along the diagonal
-    corner = np.array([0.2, 0.2])
-    centre = corner + (0.3 + 0.2) * np.array([1.0, 1.0]) / math.sqrt(2.0)
-    people = [person(float(centre[0]), float(centre[1]))]
-    turning = RULE.limit((0.0, 0.0, 0.0), SQUARE, 0.0, 0.5, people)  # the corner swings toward them
-    assert turning.w == 0.0 and turning.closest_m == pytest.approx(0.3)
-    assert RULE.limit((0.0, 0.0, 0.0), SQUARE, 0.0, -0.5, people).w == -0.5  # swinging away is fine
-    roomier = RULE.limit((0.0, 0.0, 0.0), ROUND, 0.0, 0.5, people)  # a round base turning takes no more room
-    assert roomier.w == 0.5
+    # a person 0.3 m in front of the square's front face, near its left corner
+    people = [person(0.2 + 0.3 + 0.2, 0.15)]
+    clockwise = RULE.limit((0.0, 0.0, 0.0), SQUARE, 0.0, -0.5, people)  # the front-left part swings toward them
+    assert clockwise.w == 0.0 and clockwise.closest_m == pytest.approx(0.3)
+    assert RULE.limit((0.0, 0.0, 0.0), SQUARE, 0.0, 0.5, people).w == 0.5  # swinging away is fine
+    roomier = RULE.limit((0.0, 0.0, 0.0), ROUND, 0.0, -0.5, people)  # a round base turning takes no more room
+    assert roomier.w == -0.5
 
 
 def test_the_pose_places_the_footprint() -> None:
@@ -90,7 +87,8 @@ def test_the_pose_places_the_footprint() -> None:
 def drive(people: List[Tuple[float, float, float, float]], goal_x: float = 6.0, seconds: float = 30.0,
           dt: float = 0.05) -> Tuple[float, float]:
     """A robot driving along +x at up to 0.3 m/s (braking at most 0.5 m/s^2, one tick of latency) with the rule;
-    people [(x0, y0, vx, vy)] walk at constant velocity. Returns (closest distance while the robot moved, x)."""
+    people [(x0, y0, vx, vy)] walk at constant velocity (through the robot if it is in their way). Returns (the
+    closest distance to a person ahead of the robot while it moved, its final x)."""
     x, speed = 0.0, 0.0
     closest = math.inf
     for step in range(int(seconds / dt)):
@@ -101,8 +99,8 @@ def drive(people: List[Tuple[float, float, float, float]], goal_x: float = 6.0, 
         speed = max(command, speed - 0.5 * dt) if command < speed else min(command, speed + 0.5 * dt)
         x += speed * dt
         if speed > 0.02:
-            polygon = ROUND + [x, 0.0]
-            for track in tracks:
+            polygon = ROUND + np.array([x, 0.0])
+            for track in (t for t in tracks if t.x > x):  # behind it, a person walks into a robot driving away
                 distance = footprint_distance(polygon, (track.x + track.vx * dt, track.y + track.vy * dt))[0]
                 closest = min(closest, distance - track.radius)
     return closest, x
@@ -133,7 +131,8 @@ def test_contact_with_a_stopped_robot_is_not_its_doing() -> None:
 def test_contact_while_driving_into_the_person_is_its_doing() -> None:
     cause = contact_cause(0.2, 0.0, (0.17, 0.0))
     assert cause.robot_caused and cause.closing_mps == pytest.approx(0.2)
-    assert contact_cause(0.0, 1.0, (0.2, 0.2), normal=(1.0, 1.0)).robot_caused  # a square's corner swinging
+    assert contact_cause(0.0, -1.0, (0.2, 0.1), normal=(1.0, 0.0)).robot_caused  # a square's front swinging
+    assert not contact_cause(0.0, 1.0, (0.2, 0.2), normal=(1.0, 1.0)).robot_caused  # a corner turning along
 
 
 def test_contact_at_the_back_while_driving_away_is_not_its_doing() -> None:

@@ -6,6 +6,7 @@
 - ``progress``       progress along a path, tracked monotonically (the follow servers' lookahead)
 - ``blocked``        an obstacle sitting on the path for a while
 - ``yielding``       giving way to people walking across (moving-obstacle tracks)
+- ``social_distance`` a speed limit keeping a distance from people; whose doing a contact was
 - ``safety``         finite commands, fresh sensors, a stop after silence, the order of commands
 - ``clock_watch``    a ROS clock that stops or jumps back
 - ``operator_link``  the operator side's heartbeat

@@ -10,11 +10,11 @@ tracker's centre and radius, :class:`~flex_nav.perception.moving_obstacles.Track
 
 - the *closing speed* of the robot toward a person is the velocity of the footprint point nearest to them
   along the direction to them (a turn counts: the corners of a rectangular base swing toward people);
-- a robot closing in must be able to stop ``min_distance_m`` from the person's body, allowing ``latency_s`` [s]
-  of reaction and braking at ``decel_mps2`` [m/s^2], with the person's own closing speed taken off what it may
-  drive: gap ``g = d - min_distance_m`` allows a total closing speed ``c`` with
-  ``c * latency_s + c^2 / (2 * decel_mps2) = g``; nothing once ``g <= 0`` (it stops early and never drives
-  toward a person inside the distance);
+- a robot closing in (faster than ``stopped_speed_mps``) must be able to stop before the gap
+  ``g = d - min_distance_m`` is used up, allowing ``latency_s`` [s] (L) of reaction and braking at
+  ``decel_mps2`` [m/s^2] (a), while the person closes in at their own speed u until the robot stands: its
+  closing speed c is at most the root of ``c * L + c^2 / (2 a) + u * (L + c / a) = g``; nothing once
+  ``g <= u * L`` (it stops early and never drives toward a person inside the distance);
 - inside ``slow_distance_m`` the robot's speed (not only its closing speed) is capped at ``max_speed_mps``
   scaled linearly from 1 at ``slow_distance_m`` to 0 at ``min_distance_m``, unless it is moving away
   from the person (closing speed below ``-stopped_speed_mps``): it slows down passing people, and may always
@@ -129,13 +129,17 @@ class SocialDistanceRule:
     def __init__(self, params: SocialParams = SocialParams()) -> None:
         self.params = params
 
-    def allowed_closing(self, gap_m: float) -> float:
-        """Total closing speed [m/s] from which the robot still stops within ``gap_m`` [m] (0 for no gap)."""
+    def allowed_closing(self, gap_m: float, person_closing_mps: float = 0.0) -> float:
+        """The robot's closing speed [m/s] from which it still stops before ``gap_m`` [m] is used up while the
+        person closes in at ``person_closing_mps`` [m/s] (>= 0) until the robot stands: the largest ``c`` with
+        ``c * L + c^2 / (2 a) + u * (L + c / a) <= gap`` (L latency, a deceleration, u the person's speed)."""
         p = self.params
-        if gap_m <= 0.0:
+        lat, a, u = p.latency_s, p.decel_mps2, max(0.0, person_closing_mps)
+        room = gap_m - u * lat
+        if room <= 0.0:
             return 0.0
-        lat = p.latency_s
-        return p.decel_mps2 * (-lat + math.sqrt(lat * lat + 2.0 * gap_m / p.decel_mps2))
+        half_b = lat + u / a  # c^2 / (2 a) + c (L + u / a) - room = 0
+        return a * (-half_b + math.sqrt(half_b * half_b + 2.0 * room / a))
 
     def limit(self, pose: Pose2D, footprint: np.ndarray, v: float, w: float,
               people: Sequence[Track]) -> SocialLimit:
@@ -172,8 +176,8 @@ class SocialDistanceRule:
         if closing < -p.stopped_speed_mps:
             return 1.0, "moving away"
         scale, why = 1.0, ""
-        if closing > EPSILON_MPS:
-            allowed = max(0.0, self.allowed_closing(distance - p.min_distance_m) - person_closing)
+        if closing > p.stopped_speed_mps:
+            allowed = self.allowed_closing(distance - p.min_distance_m, person_closing)
             if allowed < closing:
                 scale = allowed / closing
                 why = (f"{distance:.2f} m away, closing {closing:.2f} m/s (person {person_closing:.2f} m/s): "
