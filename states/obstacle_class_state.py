@@ -9,7 +9,7 @@ where it is does not decide. :class:`ClassReader` is the shared reading used by 
 from __future__ import annotations
 
 import math
-from typing import Optional
+from typing import Optional, Tuple
 
 from flex_nav.behavior.state import State
 from flex_nav.behavior.userdata import UserDataView
@@ -48,6 +48,16 @@ class ClassReader:
         if stamp > 0.0 and stamp < not_before_s:
             return None
         return msg
+
+    def settled(self, state: State, not_before_s: float) -> Tuple[str, Optional[ObstacleClass]]:
+        """(label, message): person at once when the newest fresh message's vote or latest frame is a person;
+        else the vote of the newest fresh message stamped at or after ``not_before_s`` [s]; unknown (and None)
+        without one."""
+        msg = self.latest(state)
+        if msg is not None and PERSON in (msg.label, msg.frame_label):
+            return PERSON, msg
+        msg = self.latest(state, not_before_s=not_before_s)
+        return (msg.label, msg) if msg is not None else (UNKNOWN, None)
 
 
 class ObstacleClassState(State):
@@ -91,14 +101,7 @@ class ObstacleClassState(State):
         self._enter_s = self.now_s()
 
     def execute(self, userdata: UserDataView) -> Optional[str]:
-        label = UNKNOWN
-        msg = self._reader.latest(self)
-        if msg is not None and PERSON in (msg.label, msg.frame_label):
-            label = PERSON
-        else:
-            msg = self._reader.latest(self, not_before_s=self._enter_s + self._settle_s)
-            if msg is not None:
-                label = msg.label
+        label, msg = self._reader.settled(self, self._enter_s + self._settle_s)
         if label in DECIDED:
             userdata.obstacle_class = label
             confidence = f" ({msg.votes}/{msg.window} votes, confidence {msg.confidence:.2f})" if msg else ""

@@ -1,14 +1,14 @@
 #!/usr/bin/env python3
 """rostest node: a FlexBE state library (imported through `flexbe_core` = flex_nav.compat.flexbe_core) runs unmodified
-in flex_nav's executor against real action servers, topics and a real master; two behaviors in one process keep
-separate connections."""
+in flex_nav's executor against real action servers, topics and a real master; the FlexBE proxies' connections are
+process-wide, as in FlexBE; a behavior in the FlexBE App's generated layout runs under behavior_runner."""
 
 import sys
 import threading
-import time
 import unittest
 from pathlib import Path
 
+import rospy
 import rostest
 from actionlib_msgs.msg import GoalStatus
 from geometry_msgs.msg import PoseStamped
@@ -19,7 +19,9 @@ from std_srvs.srv import Trigger, TriggerRequest
 
 from flex_nav.behavior import Autonomy, BehaviorContext, BehaviorExecutor, BehaviorStatus, using_context
 from flex_nav.compat import install_aliases
+from flex_nav.compat.flexbe_core.proxy import process_proxies
 from flex_nav.exceptions import NotReadyError
+from flex_nav.msg import BehaviorStatus as BehaviorStatusMsg
 from flex_nav.msg import GetPathAction, GetPathGoal
 from flex_nav.ros.node import init_node
 from flex_nav.ros.proxies import RosProxies
@@ -52,10 +54,11 @@ def goal_pose():
 
 
 class Run:
-    """One behavior with its own RosProxies and context, optionally run in a thread."""
+    """One behavior with its context, optionally run in a thread; its FlexBE proxies use the process-wide
+    connections (``proxies``)."""
 
     def __init__(self, behavior_class, parameters=None, inputs=None, name="behavior"):
-        self.proxies = RosProxies()
+        self.proxies = process_proxies()
         self.context = BehaviorContext(name, autonomy=Autonomy.FULL, proxies=self.proxies)
         self.logs = []
         self.context.hooks.log.append(self.logs.append)
@@ -65,10 +68,7 @@ class Run:
         self._thread = None
 
     def run(self):
-        try:
-            self.result = self.executor.run(timeout_s=WAIT_S)
-        finally:
-            self.proxies.shutdown()
+        self.result = self.executor.run(timeout_s=WAIT_S)
         return self.result
 
     def start(self):
@@ -110,33 +110,33 @@ class TestFlexBECompat(unittest.TestCase):
         self.assertEqual(client.state(), GoalStatus.PREEMPTED)
         self.assertIn(("INFO", "Cancelled active action goal."), run.messages())
 
-    def test_two_behaviors_in_one_process_keep_separate_action_clients(self):
-        """Both behaviors use the same server (a SimpleActionServer: a new goal preempts the previous one). With
-        shared clients (FlexBE), the first behavior would see the second's goal as its own and, leaving, cancel it."""
+    def test_two_behaviors_in_one_process_share_the_action_client_as_in_flexbe(self):
+        """Both behaviors use the same server: with FlexBE's process-wide proxies they share one client, so the second
+        behavior's goal replaces the first's (FlexBE semantics, kept by the compat layer on purpose)."""
         first = Run(PlanAndFollowSM, parameters={"follower_topic": "slow_follow"}, inputs={"goal": goal_pose()})
         second = Run(PlanAndFollowSM, parameters={"follower_topic": "slow_follow"}, inputs={"goal": goal_pose()})
-        first_client = first.proxies.get_action_client("slow_follow")
-        second_client = second.proxies.get_action_client("slow_follow")
-        self.assertIsNot(first_client, second_client)
+        client = first.proxies.get_action_client("slow_follow")
+        self.assertIs(client, second.proxies.get_action_client("slow_follow"))
         first.start()
-        self.assertTrue(wait_for(lambda: first_client.state() == GoalStatus.ACTIVE))
-        second.start()
-        self.assertTrue(wait_for(lambda: second_client.state() == GoalStatus.ACTIVE))
-        first_result = first.join()  # its goal was preempted by the server for the second's: Follow fails
-        self.assertIs(first_result.status, BehaviorStatus.FINISHED, first_result.reason)
-        self.assertEqual(first_result.outcome, "failed")
-        self.assertEqual(first_client.state(), GoalStatus.PREEMPTED)
-        time.sleep(0.3)  # give a wrongly shared cancel time to arrive (not a timing assertion)
-        self.assertTrue(second_client.is_active())
-        self.assertIs(second.executor.status, BehaviorStatus.RUNNING)
-        second.executor.preempt()
-        self.assertIs(second.join().status, BehaviorStatus.PREEMPTED)
-        self.assertTrue(wait_for(lambda: second_client.state() == GoalStatus.PREEMPTED))
+        self.assertTrue(wait_for(lambda: client.state() == GoalStatus.ACTIVE))
+        first.executor.preempt()
+        self.assertIs(first.join().status, BehaviorStatus.PREEMPTED)
+        self.assertTrue(wait_for(lambda: client.state() == GoalStatus.PREEMPTED))
+
+    def test_generated_behavior_runs_under_behavior_runner(self):
+        statuses = []
+        rospy.Subscriber("/flexbe_generated/behavior_runner/status", BehaviorStatusMsg, statuses.append)
+        self.assertTrue(
+            wait_for(lambda: any(m.code == BehaviorStatusMsg.FINISHED for m in list(statuses))),
+            [(m.behavior, m.code, m.reason) for m in statuses],
+        )
+        finished = [m for m in list(statuses) if m.code == BehaviorStatusMsg.FINISHED][-1]
+        self.assertEqual((finished.behavior, finished.outcome), ("Hello FlexBE", "finished"))
 
     def test_publisher_state_of_one_behavior_reaches_subscriber_state_of_another(self):
         listener = Run(ListenSM, parameters={"topic": "compat_chatter"}, name="listener")
         talker = Run(ExampleSM, parameters={"topic": "compat_chatter", "limit": 1}, name="talker")
-        self.assertIsNot(listener.proxies, talker.proxies)
+        self.assertIs(listener.proxies, talker.proxies)  # one set per process, as in FlexBE
         publisher = talker.proxies.get_publisher("compat_chatter")
         self.assertTrue(wait_for(lambda: publisher.get_num_connections() >= 1))
         listener.start()
@@ -148,7 +148,7 @@ class TestFlexBECompat(unittest.TestCase):
         self.assertEqual(listener.messages(), [("HINT", "listening")])
 
     def test_flexbe_proxy_methods_on_real_connections(self):
-        proxies = RosProxies()
+        proxies = RosProxies()  # the behavior's own connections: the FlexBE proxies do not use them
         ctx = BehaviorContext("proxy_methods", proxies=proxies)
         logs = []
         ctx.hooks.log.append(logs.append)
@@ -166,11 +166,12 @@ class TestFlexBECompat(unittest.TestCase):
                 self.assertEqual([sub.get_from_buffer("compat_numbers").data for _ in range(3)], [1, 2, 3])
                 self.assertFalse(sub.has_buffered("compat_numbers"))
                 sub.disable_buffer("compat_numbers")
-                sub.unsubscribe_topic("compat_numbers")
                 pub.publish("compat_numbers", Int32(4))
                 self.assertTrue(wait_for(lambda: sub.get_last_msg("compat_numbers").data == 4))
-                self.assertEqual(len(received), 3)  # the callback is gone, the cache still works
                 self.assertFalse(sub.has_buffered("compat_numbers"))
+                sub.unsubscribe_topic("compat_numbers")  # gone for the whole process, as in FlexBE
+                self.assertFalse(sub.is_available("compat_numbers"))
+                self.assertIsNone(proxies.get_subscription("compat_numbers"))
 
                 client = ProxyActionClient({"get_path": GetPathAction}, wait_duration=WAIT_S)
                 self.assertTrue(client.is_available("get_path"))

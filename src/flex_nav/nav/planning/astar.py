@@ -157,26 +157,42 @@ def astar(  # noqa: PLR0917, PLR0912, PLR0915 - one compiled kernel
             if size == 0:
                 if in_buckets == 0:
                     break
-                # the next bucket goes into the heap, without the entries a cheaper one has overtaken
+                # the next bucket: its entries of the smallest f go onto the stack, the others into the heap,
+                # without the entries of cells reached more cheaply since
                 current += 1
                 while head[current & (BUCKETS - 1)] == -1:
                     current += 1
-                entry = head[current & (BUCKETS - 1)]
+                first = head[current & (BUCKETS - 1)]
                 head[current & (BUCKETS - 1)] = -1
+                lowest = np.inf
+                entry = first
+                while entry != -1:
+                    cell = int(pool[entry, 2])
+                    if pool[entry, 0] < lowest and state[cell] == generation and pool[entry, 1] == g[cell]:
+                        lowest = pool[entry, 0]
+                    entry = int(pool[entry, 3])
+                entry = first
                 while entry != -1:
                     following = int(pool[entry, 3])
                     cell = int(pool[entry, 2])
                     if state[cell] == generation and pool[entry, 1] == g[cell]:
-                        if size == heap.shape[0]:
-                            return np.inf, FULL_HEAP
-                        _push(heap, size, pool[entry, 0], cell)
-                        size += 1
+                        if pool[entry, 0] == lowest:
+                            if top == stack.shape[0]:
+                                return np.inf, FULL_STACK
+                            stack[top] = cell
+                            top += 1
+                        else:
+                            if size == heap.shape[0]:
+                                return np.inf, FULL_HEAP
+                            _push(heap, size, pool[entry, 0], cell)
+                            size += 1
                     pool[entry, 3] = free
                     free = entry
                     in_buckets -= 1
                     entry = following
-                if size == 0:
-                    continue
+                if top > 0:
+                    f_min = lowest
+                continue
             f_min = heap[0, 0]
             node = _pop(heap, size)
             size -= 1
