@@ -62,6 +62,7 @@ STATE_MODULES = (
     "wait_state",
     "backoff_state",
     "obstacle_class_state",
+    "obstacle_fusion_state",
     "push_state",
     "wait_path_clear_state",
     "robot_pose_state",

@@ -1,4 +1,4 @@
-"""flex_nav.compat: SMACH's and FlexBE's Python APIs on top of flex_nav (no rospy import).
+"""flex_nav.compat: SMACH's and FlexBE's Python APIs on top of flex_nav (rospy only once FlexBE's proxies reach ROS).
 
 - :mod:`flex_nav.compat.smach` -- SMACH's API with SMACH's semantics (blocking ``execute``, threads in
   ``Concurrence``), for code written against ``import smach`` (and ``smach_ros`` on top of it).

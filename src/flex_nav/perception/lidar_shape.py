@@ -379,3 +379,29 @@ def _box(feats: ShapeFeatures, params: ShapeParams, corner: bool) -> ShapeCue:
     if feats.points >= LONG_FACE_POINTS:
         return ShapeCue(BOX, 0.85, "straight face within the noise", feats)
     return ShapeCue(BOX, 0.7, f"straight outline of {feats.points} hits within the noise", feats)
+
+
+def cue_ahead(ranges: np.ndarray, angle_min: float, angle_increment: float, range_min: float, range_max: float, *,
+              reach_m: float = 1.2, half_width_m: float = 0.3, params: Optional[ShapeParams] = None,
+              speed_mps: Optional[float] = None) -> ShapeCue:
+    """The lidar cue of the object blocking the way ahead, from a planar scan's fields (``sensor_msgs/LaserScan``:
+    ``ranges`` [m], angles [rad], range limits [m]) in a frame whose x axis points forward (the robot's): the
+    object is the one with the nearest hit in the corridor ``reach_m`` [m] long and 2 x ``half_width_m`` [m] wide
+    ahead of the sensor (``none`` if the corridor is empty). A scan of (nearly) 360 degrees wraps."""
+    validation.number("lidar shape", "reach_m", reach_m, positive=True, unit="[m]")
+    validation.number("lidar shape", "half_width_m", half_width_m, positive=True, unit="[m]")
+    ranges = np.asarray(ranges, dtype=np.float64)
+    angles = angle_min + angle_increment * np.arange(ranges.size)
+    with np.errstate(invalid="ignore"):
+        valid = np.isfinite(ranges) & (ranges >= range_min) & (ranges < range_max)
+    r = np.where(valid, ranges, 0.0)
+    xs = np.where(valid, r * np.cos(angles), np.nan)
+    ys = np.where(valid, r * np.sin(angles), np.nan)
+    with np.errstate(invalid="ignore"):
+        ahead = valid & (xs > 0.0) & (xs <= reach_m) & (np.abs(ys) <= half_width_m)
+    if not ahead.any():
+        return ShapeCue(NONE, 1.0, f"no hit within {reach_m:.2f} m ahead in a {2.0 * half_width_m:.2f} m wide corridor")
+    nearest = int(np.flatnonzero(ahead)[np.argmin(xs[ahead])])
+    wrap = abs(angle_increment) * ranges.size >= 2.0 * math.pi - 1.5 * abs(angle_increment)
+    return classify_shape(xs, ys, (0.0, 0.0), (float(xs[nearest]), float(ys[nearest])), params,
+                          speed_mps=speed_mps, wrap=wrap)

@@ -9,7 +9,7 @@ from typing import List, Tuple
 
 import numpy as np
 import pytest
-from unit.perception.shape_synth import box_corners, noisy_scan
+from unit.perception.shape_synth import box_corners, noisy_scan, ranges_of
 
 from flex_nav.exceptions import ConfigError
 from flex_nav.perception.lidar_shape import (
@@ -19,6 +19,7 @@ from flex_nav.perception.lidar_shape import (
     UNSURE,
     ShapeParams,
     classify_shape,
+    cue_ahead,
     object_speed,
 )
 from flex_nav.perception.moving_obstacles import Track
@@ -209,3 +210,17 @@ def test_parameters_are_validated(field: str, value: float, match: str) -> None:
 def test_mismatched_point_arrays_are_refused() -> None:
     with pytest.raises(ConfigError, match="1-D arrays"):
         classify_shape(np.zeros(3), np.zeros(4), SENSOR, (0.0, 0.0))
+
+
+def test_the_cue_ahead_of_a_laser_scan() -> None:
+    angles = np.radians(np.arange(-180.0, 180.0, 1.0))
+    box = box_in_front(0.4, 0.55, 20.0)
+    ranges = ranges_of(SENSOR, angles, [box], [(0.0, 1.0, 0.2)])  # the box ahead, a person to the left
+    cue = cue_ahead(ranges, -math.pi, math.radians(1.0), 0.1, 12.0)
+    assert cue.label == BOX, cue.describe()
+    nothing = cue_ahead(ranges, -math.pi, math.radians(1.0), 0.1, 12.0, reach_m=0.4)
+    assert nothing.label == NONE and "0.40 m ahead" in nothing.reason
+    turned = cue_ahead(ranges, -1.5 * math.pi, math.radians(1.0), 0.1, 12.0)  # the laser frame turned by 90 deg
+    assert turned.label == PERSON, turned.describe()  # what is ahead in that frame is the person
+    with pytest.raises(ConfigError, match="reach_m"):
+        cue_ahead(ranges, -math.pi, math.radians(1.0), 0.1, 12.0, reach_m=0.0)

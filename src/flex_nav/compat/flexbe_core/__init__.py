@@ -10,13 +10,20 @@
 - :class:`Behavior` is the generated-behavior base class; :func:`build_behavior` turns one into a
   flex_nav :class:`~flex_nav.behavior.Behavior` to run in :class:`~flex_nav.behavior.BehaviorExecutor`.
 - :mod:`flexbe_core.proxy <flex_nav.compat.flexbe_core.proxy>`: ``ProxyPublisher``,
-  ``ProxySubscriberCached``, ``ProxyActionClient``, ``ProxyServiceCaller`` with FlexBE's method names,
-  bound to the connections of ONE behavior (the one being built or run), never shared between behaviors.
+  ``ProxySubscriberCached``, ``ProxyActionClient``, ``ProxyServiceCaller`` with FlexBE's method names and,
+  on purpose, FlexBE's process-wide connections (:mod:`~flex_nav.compat.flexbe_core.proxy.hub`); flex_nav's
+  own states keep one set of connections per behavior.
+- FlexBE code that drives states itself (``state.execute(userdata)``, ``sm.execute(None)``, ``sleep()``,
+  flexbe_testing's Tester) gets FlexBE 1.x's semantics: on_enter on the first call, on_exit with an outcome,
+  ``PreemptableState.preempt``, ``OperatableStateMachine.autonomy_level``, ``sm._last_exception``,
+  :class:`~flex_nav.compat.flexbe_core.core.user_data.UserData` views. These class-level knobs govern that
+  direct execution only; a behavior run by flex_nav's executor keeps autonomy, preemption and priority in its
+  own context, so two behaviors in one process never see each other's.
 
-No global mutable state: autonomy, preemption, priority and proxies belong to the behavior's context.
 :func:`flex_nav.compat.install_aliases` makes ``import flexbe_core`` resolve here when FlexBE is absent.
-Not provided: FlexBE's onboard engine internals (behavior switching, ``BehaviorLibrary``,
-``StateLogger``, ``ProxyTransformListener``); flex_nav's runner and operator interface replace them.
+Not provided: FlexBE's onboard engine internals (behavior switching, ``BehaviorLibrary``, the App's command
+topics, ``ProxyTransformListener``; ``StateLogger`` is a no-op); flex_nav's runner and operator interface replace
+them.
 """
 
 from flex_nav.compat.flexbe_core.autonomy import Autonomy
