@@ -41,7 +41,7 @@ class ObstacleFusionState(State):
 
     -- class_topic            str    flex_nav/ObstacleClass topic of the obstacle_classifier node.
     -- class_max_age_s        float  [s] Older class messages do not count.
-    -- settle_s               float  [s] Camera votes other than person count from messages stamped this long after entry.
+    -- settle_s               float  [s] Camera votes other than person count from messages this long after entry.
     -- timeout_s              float  [s] How long to wait for a decided camera vote (longer than settle_s).
     -- fuse_lidar             bool   Fuse the lidar's shape; false: the camera alone, never look again.
     -- scan_topic             str    sensor_msgs/LaserScan topic (its frame taken as the robot's, x forward).
@@ -64,12 +64,13 @@ class ObstacleFusionState(State):
     <= look_again  The camera is unsure or the cues disagree: move a little (turn, back off) and come back.
     """
 
-    def __init__(  # noqa: PLR0913 - the state's documented parameters
+    def __init__(
         self,
         class_topic: str = "obstacle_class",
         class_max_age_s: float = 1.0,
         settle_s: float = 0.0,
         timeout_s: float = 2.0,
+        *,
         fuse_lidar: bool = True,
         scan_topic: str = "scan",
         scan_max_age_s: float = 0.5,

@@ -38,8 +38,8 @@ EXPECTED = {
     "ClearCostmapsState", "MoveDistanceState", "RotateAngleState", "TimedTwistState", "TimedStopState",
     "PurePursuitState", "BumperMonitorState", "StuckMonitorState", "SensorFreshnessState",
     "OperatorDecisionState", "LogState", "WaitState", "GoalListState", "ReplanState", "FollowUntilBlockedState",
-    "ObstacleClassState", "PushState", "WaitPathClearState", "BackoffState", "RobotPoseState", "FindFrontierState",
-    "MarkFailedGoalState", "SaveMapState",
+    "ObstacleClassState", "ObstacleFusionState", "PushState", "WaitPathClearState", "BackoffState", "RobotPoseState",
+    "FindFrontierState", "MarkFailedGoalState", "SaveMapState",
 }
 
 

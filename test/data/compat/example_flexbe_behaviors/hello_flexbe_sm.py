@@ -1,6 +1,6 @@
 #!/usr/bin/env python
 # -*- coding: utf-8 -*-
-# ruff: noqa: UP008, UP009, E265, ERA001  (laid out as the FlexBE App generates behaviors, on purpose)
+# ruff: noqa  (laid out as the FlexBE App generates behaviors: tabs, header, MANUAL tags; on purpose)
 ###########################################################
 #               WARNING: Generated code!                  #
 #              **************************                 #
