@@ -6,9 +6,11 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Optional
 
+import numpy as np
 from actionlib_msgs.msg import GoalStatus
 from geometry_msgs.msg import PoseStamped
 from sensor_msgs.msg import LaserScan
+from unit.perception.shape_synth import box_corners, ranges_of
 from unit.states.states_testlib import Harness, KinematicRobot, path, pose_stamped, rear_wall_scan, twists
 from unit.states.test_states_obstacles import Camera
 
@@ -49,6 +51,7 @@ class Scene:
         self.camera = Camera(self.h, label)
         self.lidar = self.h.proxies.subscription("scan", LaserScan)
         self.wall_behind_x: Optional[float] = None  # [m] world x of something behind the robot (None: free all round)
+        self.box_ahead_x: Optional[float] = None  # [m] world x of a 0.4 m box's near face ahead (None: no box)
         self.h.proxies.subscription("move_base_simple/goal", PoseStamped).inject(
             pose_stamped(3.0, 0.0, stamp_s=self.h.clock.now()))
 
@@ -63,8 +66,18 @@ class Scene:
             if on_step is not None:
                 on_step()
             self.camera.publish()
-            self.lidar.inject(rear_wall_scan(self.h.clock.now(), self.robot.x, self.wall_behind_x))
+            self.lidar.inject(self.scan())
         raise AssertionError(f"no {text!r} within {max_time_s} s:\n{self.h.log_text()}")
+
+    def scan(self) -> LaserScan:
+        """The robot's scan: the wall behind (if any) and the box ahead (if any)."""
+        scan = rear_wall_scan(self.h.clock.now(), self.robot.x, self.wall_behind_x)
+        if self.box_ahead_x is not None:
+            angles = scan.angle_min + scan.angle_increment * np.arange(len(scan.ranges))
+            face = self.box_ahead_x - self.robot.x
+            box = ranges_of((0.0, 0.0), angles, [box_corners(face + 0.2, 0.0, 0.4, 0.4, 0.2)])
+            scan.ranges = [float(min(r, b)) for r, b in zip(scan.ranges, box)]
+        return scan
 
     def visited(self) -> list:
         return [t for t in self.h.texts() if t]
@@ -115,6 +128,27 @@ def test_heavy_obstacle_push_stalls_then_backs_off_and_plans_around():
     assert any("stalled" in t for t in texts) and any("planning around it" in t for t in texts)
     assert abs(scene.robot.x - 0.0) < 0.05  # 0.3 m pushed, 0.3 m backed off
     assert len(scene.planner.goals) == 2
+
+
+def test_with_the_lidar_a_box_the_camera_calls_clear_is_looked_at_again_then_pushed():
+    scene = Scene("clear", BLOCKED_THEN_DONE, fuse_lidar=True, max_looks=2, look_again_m=-0.15,
+                  push_distance_m=0.5, push_speed_mps=0.2, backoff_m=-0.3)
+    scene.box_ahead_x = 0.55
+    scene.run_until("goal reached", 40.0)
+    texts = scene.h.texts()
+    looks = [t for t in texts if "fused look_again (row 4" in t]
+    assert len(looks) == 2, scene.h.log_text()
+    assert any("fused movable (row 7" in t for t in texts)
+    assert any("pushed 0.5" in t for t in texts)
+    assert -0.15 < scene.robot.x < 0.0  # two looks back (0.13-0.15 m each), the 0.5 m push, the 0.3 m back-off
+
+
+def test_with_the_lidar_a_box_the_camera_calls_movable_is_pushed_at_once():
+    scene = Scene("movable", BLOCKED_THEN_DONE, fuse_lidar=True, push_distance_m=0.5, backoff_m=-0.3)
+    scene.box_ahead_x = 0.55
+    scene.run_until("goal reached", 30.0)
+    assert not any("look_again" in t for t in scene.h.texts())
+    assert any("fused movable (row 6" in t for t in scene.h.texts())
 
 
 def test_tries_are_bounded_then_the_recovery_chain_runs():
