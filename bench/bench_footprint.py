@@ -33,7 +33,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Dict, List, Optional, Tuple
 
-import psutil
+import psutil  # type: ignore[import-untyped]  # a dependency (requirements.txt) without stubs
 
 REPO = Path(__file__).resolve().parents[1]
 SAMPLE_PERIOD_S = 0.25  # [s] wall

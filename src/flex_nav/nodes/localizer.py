@@ -66,13 +66,13 @@ from flex_nav.nav.planar import Pose2D, compose_poses, inverse_pose
 from flex_nav.nav.pose_checks import pose_problem, yaw_of_quaternion
 from flex_nav.ros.conversions import grid_map_of, pose_of_xy_yaw
 from flex_nav.ros.frames import TfSource
+from flex_nav.ros.latest_worker import LatestWorker
 from flex_nav.ros.node import run_node
 from flex_nav.ros.params import param_bool, param_float, param_int, param_str, reject_unknown
 from flex_nav.ros.private_ns import private_name
 from flex_nav.ros.scan_input import Complaints, ScanInput, invalid_beams, transform_msg
 
 NODE_NAME = "localizer"
-SCAN_WAIT_S = 0.5  # [s] wall: the scan thread's longest sleep between checks for shutdown
 TF_CACHE_S = 30.0  # [s] of transforms kept: scans are matched to odometry at their own stamps
 FILTER_PARAMS = tuple(f.name for f in dataclasses.fields(FilterParams))
 NODE_PARAMS = (
@@ -143,11 +143,9 @@ class LocalizerNode:
         self.sub_map = rospy.Subscriber("map", OccupancyGrid, self._on_map, queue_size=1)
         self.sub_initial = rospy.Subscriber("initialpose", PoseWithCovarianceStamped, self._on_initial_pose,
                                             queue_size=1)
-        self._scan_ready = threading.Condition()
-        self._next_scan: Optional[LaserScan] = None
-        self._scan_thread = threading.Thread(target=self._scan_loop, name="localizer scans", daemon=True)
-        self._scan_thread.start()
-        self.sub_scan = rospy.Subscriber("scan", LaserScan, self._on_scan, queue_size=1, buff_size=2**20)
+        # the filter runs on a thread of its own (LatestWorker's docstring says why)
+        self.scan_worker: LatestWorker[LaserScan] = LatestWorker(self._process_scan, "localizer scans")
+        self.sub_scan = rospy.Subscriber("scan", LaserScan, self.scan_worker.offer, queue_size=1, buff_size=2**20)
 
     # -- inputs -----------------------------------------------------------------------------------------------
     def _initial_pose_parameters(self) -> Optional[Tuple[Pose2D, np.ndarray]]:
@@ -239,23 +237,6 @@ class LocalizerNode:
             self._set_status("localizing: global localization (particles over all free space)")
 
     # -- the filter ---------------------------------------------------------------------------------------------
-    def _on_scan(self, scan: LaserScan) -> None:
-        """Hands the scan to the filter's thread (the newest one waiting replaces an older one): rospy calls the
-        scan callbacks of one process one after another on one thread, and a costmap hosted in the same process
-        waits there for the map -> odom transform that this scan's update publishes."""
-        with self._scan_ready:
-            self._next_scan = scan
-            self._scan_ready.notify()
-
-    def _scan_loop(self) -> None:
-        while not rospy.is_shutdown():
-            with self._scan_ready:
-                if self._next_scan is None:
-                    self._scan_ready.wait(SCAN_WAIT_S)
-                scan, self._next_scan = self._next_scan, None
-            if scan is not None:
-                self._process_scan(scan)
-
     def _process_scan(self, scan: LaserScan) -> None:
         with self._lock:
             ready = self._filter is not None

@@ -75,7 +75,7 @@ def _bumper_relay(_tf_buffer: tf2_ros.Buffer) -> object:
 def _localizer(tf_buffer: tf2_ros.Buffer) -> object:
     from flex_nav.nodes.localizer import LocalizerNode  # noqa: PLC0415 - only the hosted components
 
-    return LocalizerNode(None)
+    return LocalizerNode(tf_buffer)
 
 
 # Component name (its namespace, as the node of that name has) -> how to build it; modules are imported only for

@@ -46,6 +46,7 @@ from flex_nav.nav.costmap.layered import Costmap
 from flex_nav.nav.costmap.obstacle_layer import LaserScan, ObstacleLayerParams
 from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.ros.conversions import grid_map_of, occupancy_grid_msg
+from flex_nav.ros.latest_worker import LatestWorker
 from flex_nav.ros.params import param_bool, param_float, param_str, reject_unknown
 from flex_nav.ros.private_ns import private_name
 from flex_nav.ros.robot_pose import RobotPoseSource
@@ -125,7 +126,9 @@ class CostmapROS:
         if self.use_static_map:
             self._subscribers.append(rospy.Subscriber(self.map_topic, OccupancyGrid, self._on_map, queue_size=1))
         if scan_topic:
-            self._subscribers.append(rospy.Subscriber(scan_topic, LaserScanMsg, self._on_scan, queue_size=1))
+            # scans are placed (tf at their stamp) and added on a thread of the costmap's own (see LatestWorker)
+            self.scan_worker: LatestWorker[LaserScanMsg] = LatestWorker(self._on_scan, f"{name} scans")
+            self._subscribers.append(rospy.Subscriber(scan_topic, LaserScanMsg, self.scan_worker.offer, queue_size=1))
         if bumper_topic:
             self._subscribers.append(rospy.Subscriber(bumper_topic, PointStamped, self._on_bumper_hit, queue_size=10))
         # reset=True: a timer whose ROS time jumps back (a restarted simulator, a looped bag) goes on

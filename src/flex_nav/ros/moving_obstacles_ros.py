@@ -38,6 +38,7 @@ from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.perception.moving_obstacles import MovingObstacleTracker, Track, TrackerParams
 from flex_nav.perception.static_mask import StaticMask
 from flex_nav.ros.conversions import grid_map_of
+from flex_nav.ros.latest_worker import LatestWorker
 from flex_nav.ros.params import param_float, param_str, reject_unknown
 from flex_nav.ros.private_ns import private_name, private_namespace
 
@@ -105,7 +106,8 @@ class MovingObstaclesROS:
         self.people_publisher = rospy.Publisher(private_name("~people"), PoseArray, queue_size=1)
         scan_topic = param_str(TRACKER_NS + "scan_topic", "scan")
         map_topic = param_str(TRACKER_NS + "map_topic", "map")
-        self._subscribers = [rospy.Subscriber(scan_topic, LaserScanMsg, self._on_scan, queue_size=1)]
+        self.scan_worker: LatestWorker[LaserScanMsg] = LatestWorker(self._on_scan, "people tracker scans")
+        self._subscribers = [rospy.Subscriber(scan_topic, LaserScanMsg, self.scan_worker.offer, queue_size=1)]
         if map_topic:
             self._subscribers.append(rospy.Subscriber(map_topic, OccupancyGrid, self._on_map, queue_size=1))
 

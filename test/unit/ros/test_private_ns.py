@@ -35,9 +35,8 @@ def test_blocks_nest_and_unwind_after_an_error() -> None:
         with hosted_as("pure_pursuit_topic"):
             assert private_namespace().endswith("/pure_pursuit_topic")
         assert private_namespace().endswith("/pure_pursuit_path")
-    with pytest.raises(RuntimeError):
-        with hosted_as("twist_relay"):
-            raise RuntimeError("component failed")
+    with pytest.raises(RuntimeError), hosted_as("twist_relay"):
+        raise RuntimeError("component failed")
     assert private_namespace() == rospy.get_name()
 
 
@@ -52,9 +51,8 @@ def test_other_threads_do_not_see_the_building_threads_component() -> None:
 
 @pytest.mark.parametrize("bad", ["", "a/b", "~x", "1st", "has space", None])
 def test_a_bad_component_name_is_refused(bad: object) -> None:
-    with pytest.raises(ConfigError, match="not a ROS base name"):
-        with hosted_as(bad):  # type: ignore[arg-type]
-            pass
+    with pytest.raises(ConfigError, match="not a ROS base name"), hosted_as(bad):  # type: ignore[arg-type]
+        pass
 
 
 def test_components_list_valid_and_invalid() -> None:
