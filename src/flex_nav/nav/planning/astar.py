@@ -157,42 +157,26 @@ def astar(  # noqa: PLR0917, PLR0912, PLR0915 - one compiled kernel
             if size == 0:
                 if in_buckets == 0:
                     break
-                # the next bucket: its entries of the smallest f go onto the stack, the others into the heap,
-                # without the entries of cells reached more cheaply since
+                # the next bucket goes into the heap, without the entries a cheaper one has overtaken
                 current += 1
                 while head[current & (BUCKETS - 1)] == -1:
                     current += 1
-                first = head[current & (BUCKETS - 1)]
+                entry = head[current & (BUCKETS - 1)]
                 head[current & (BUCKETS - 1)] = -1
-                lowest = np.inf
-                entry = first
-                while entry != -1:
-                    cell = int(pool[entry, 2])
-                    if pool[entry, 0] < lowest and state[cell] == generation and pool[entry, 1] == g[cell]:
-                        lowest = pool[entry, 0]
-                    entry = int(pool[entry, 3])
-                entry = first
                 while entry != -1:
                     following = int(pool[entry, 3])
                     cell = int(pool[entry, 2])
                     if state[cell] == generation and pool[entry, 1] == g[cell]:
-                        if pool[entry, 0] == lowest:
-                            if top == stack.shape[0]:
-                                return np.inf, FULL_STACK
-                            stack[top] = cell
-                            top += 1
-                        else:
-                            if size == heap.shape[0]:
-                                return np.inf, FULL_HEAP
-                            _push(heap, size, pool[entry, 0], cell)
-                            size += 1
+                        if size == heap.shape[0]:
+                            return np.inf, FULL_HEAP
+                        _push(heap, size, pool[entry, 0], cell)
+                        size += 1
                     pool[entry, 3] = free
                     free = entry
                     in_buckets -= 1
                     entry = following
-                if top > 0:
-                    f_min = lowest
-                continue
+                if size == 0:
+                    continue
             f_min = heap[0, 0]
             node = _pop(heap, size)
             size -= 1
@@ -219,12 +203,26 @@ def astar(  # noqa: PLR0917, PLR0912, PLR0915 - one compiled kernel
             w = weights[costs[nb]]
             if w == np.inf:
                 continue
-            cand = g_node + (w if k < 4 else w * diagonal_factor)
+            via = node
+            if k < 4:
+                cand = g_node + w
+            else:
+                cand = g_node + w * diagonal_factor
+                # the two cells beside the diagonal move, when open, may offer a cheaper way in: taking it
+                # now saves improving this cell later (both are real paths, so optimality is unaffected)
+                side = node + offsets[k] - _D_COL[k]
+                if state[side] == generation and g[side] + w < cand:
+                    cand = g[side] + w
+                    via = side
+                side = node + offsets[k] - _D_ROW[k] * width
+                if state[side] == generation and g[side] + w < cand:
+                    cand = g[side] + w
+                    via = side
             if st == generation and cand >= g[nb]:
                 continue
             state[nb] = generation
             g[nb] = cand
-            parent[nb] = node
+            parent[nb] = via
             nr = row + _D_ROW[k]
             nc = col + _D_COL[k]
             d_row = abs(nr - goal_row)
