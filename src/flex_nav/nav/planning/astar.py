@@ -120,6 +120,7 @@ def astar(  # noqa: PLR0917, PLR0912, PLR0915 - one compiled kernel
     goal_col = goal - goal_row * width
     diag_extra = diagonal_factor - 1.0
     closed_mark = generation + 1
+    per_row = 1.0 / width
     offsets = np.empty(8, dtype=np.int64)
     for k in range(8):
         offsets[k] = _D_ROW[k] * width + _D_COL[k]
@@ -187,7 +188,11 @@ def astar(  # noqa: PLR0917, PLR0912, PLR0915 - one compiled kernel
         g_node = g[node]
         if node == goal:
             return g_node, expanded
-        row = node // width
+        row = np.int64(node * per_row)  # node // width without an integer division, then made exact
+        if row * width > node:
+            row -= 1
+        elif (row + 1) * width <= node:
+            row += 1
         col = node - row * width
         interior = row > 0 and row < height - 1 and col > 0 and col < width - 1
         for k in range(8):
