@@ -9,6 +9,7 @@ import rostest
 from message_log import MessageLog
 from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import Image
+from std_msgs.msg import String
 from std_srvs.srv import SetBool
 
 from flex_nav.msg import ObstacleClass
@@ -55,6 +56,16 @@ class TestObstacleClassifier(unittest.TestCase):
         fresh = call("/robot2/safe_to_push", True)  # forget the window, wait for 5 new frames
         self.assertTrue(fresh.success, fresh.message)
         self.assertRegex(fresh.message, r"^safe: movable [3-5]/5 votes")
+
+    def test_the_fused_decision_and_both_cues_are_published_and_answered(self):
+        box = latest("/robot2/obstacle_fusion", String).newest(lambda m: m.data.startswith("fused movable"))
+        self.assertIn("(row 6: the camera sees a movable object", box.data)
+        self.assertIn("| lidar box", box.data)  # the 0.3 m box 1 m ahead: a straight face or a corner
+        person = latest("/robot1/obstacle_fusion", String).newest(lambda m: m.data.startswith("fused person"))
+        self.assertIn("| camera", person.data)
+        answer = call("/robot2/safe_to_push", False)
+        self.assertTrue(answer.success, answer.message)  # the camera's answer, as before
+        self.assertIn("; fused ", answer.message)
 
     def test_the_simulated_depth_image_is_registered_to_the_colour_image(self):
         rgb = rospy.wait_for_message("/robot1/camera/rgb/image_raw", Image, timeout=WAIT_S)

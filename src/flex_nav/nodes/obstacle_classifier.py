@@ -8,13 +8,17 @@ Subscribes ``camera/rgb/image_raw`` (sensor_msgs/Image: rgb8, bgr8, rgba8, bgra8
 model that takes depth (the shipped one does), ``camera/depth/image_raw`` (32FC1 [m] or 16UC1 [mm], REP
 118, registered to the colour image: same field of view, any resolution); a colour frame is classified
 with the depth frame whose stamp is at most ``~max_depth_lag`` away, and skipped if none comes.
-Publishes ``obstacle_class`` (flex_nav/ObstacleClass) after every classified frame.
+Publishes ``obstacle_class`` (flex_nav/ObstacleClass) after every classified frame and, with a scan
+(``~scan_topic``, sensor_msgs/LaserScan, its frame taken as the robot's: x forward), ``obstacle_fusion``
+(std_msgs/String): the camera's vote fused with the lidar's shape of the object ahead
+(:mod:`flex_nav.perception.fusion`, no look taken yet), the decision and both cues on one line.
 Serves ``safe_to_push`` (std_srvs/SetBool): ``success`` is True only when the smoothed label is
 ``movable``, fewer than ``~person_veto`` frames of the window saw a person and the latest classified
 image is at most ``~max_image_age`` old; ``message`` says what the robot sees. ``data``: False = answer
 from the current window (the thesis' behavior); True = a *fresh vote*: forget the window, wait for
 ``~window`` new frames (at most ``~fresh_vote_timeout`` [s] wall clock, else not safe), then answer
 (use it after stopping in front of the obstacle, so frames taken while approaching do not count).
+The answer (``success``) is the camera's alone, as before; ``message`` ends with the fused line.
 
 Private parameters (a misspelt one, a bad value, a missing or broken model make the node exit with
 status 2 and a message naming the parameter or field):
@@ -37,6 +41,13 @@ status 2 and a message naming the parameter or field):
   ~max_image_age       float  1.0          [s] safe_to_push refuses when the latest classified image is older
   ~fresh_vote_timeout  float  5.0          [s] wall-clock bound of a fresh vote (data = True)
   ~max_depth_lag       float  0.1          [s] RGB-D models: largest stamp difference of a colour and a depth frame
+  ~scan_topic          str    scan         sensor_msgs/LaserScan of the lidar's cue ('' = none: lidar unsure)
+  ~scan_max_age        float  0.5          [s] an older scan (by arrival) is no lidar cue
+  ~scan_reach          float  1.2          [m] the object is the nearest scan hit this far ahead...
+  ~scan_half_width     float  0.3          [m] ...and at most this far to either side
+  ~camera_min_confidence float 0.7        fusion: a camera vote less confident than this is unsure
+  ~lidar_min_confidence float  0.6        fusion: a lidar box less confident than this is unsure
+  ~max_looks           int    2            fusion: looks again the rule allows (the node reports look 0)
 """
 
 from __future__ import annotations
@@ -46,15 +57,18 @@ import time
 from typing import Any, Dict, Optional, Tuple
 
 import rospy
-from sensor_msgs.msg import Image
+from sensor_msgs.msg import Image, LaserScan
+from std_msgs.msg import String
 from std_srvs.srv import SetBool, SetBoolResponse
 
 from flex_nav.exceptions import ConfigError
 from flex_nav.msg import ObstacleClass
 from flex_nav.perception.factory import PerceptionConfig, as_names, build
 from flex_nav.perception.frame_pairing import FramePairing
+from flex_nav.perception.fusion import MAX_LOOKS, CameraCue, FusedDecision, FusionParams, fuse
 from flex_nav.perception.image import to_depth, to_rgb
 from flex_nav.perception.labels import LABELS, Prediction
+from flex_nav.perception.lidar_shape import UNSURE, ShapeCue, cue_ahead
 from flex_nav.perception.push_decision import describe, safe_to_push
 from flex_nav.perception.roi import Roi
 from flex_nav.perception.smoothing import MAX_WINDOW, MajorityVote, Vote
@@ -63,7 +77,8 @@ from flex_nav.ros.params import param_float, param_int, param_str, reject_unknow
 PARAMS = (
     "model_type", "model", "metadata", "class_map", "class_names", "roi", "conf_threshold", "iou_threshold",
     "min_roi_overlap", "yolo_layout", "input_size", "window", "max_rate", "person_veto", "max_image_age",
-    "fresh_vote_timeout", "max_depth_lag",
+    "fresh_vote_timeout", "max_depth_lag", "scan_topic", "scan_max_age", "scan_reach", "scan_half_width",
+    "camera_min_confidence", "lidar_min_confidence", "max_looks",
 )
 IMAGE_BUFFER = 1 << 24  # [bytes] socket buffer: a whole 640x480 image fits, so the queue of one holds the newest
 
@@ -130,6 +145,11 @@ class ObstacleClassifierNode:
         self._first_colour: Optional[float] = None  # [s] ROS time the first colour image arrived
         self._fresh_frames = 0  # frames classified since the last reset
         self.publisher = rospy.Publisher("obstacle_class", ObstacleClass, queue_size=5)
+        self._read_fusion_params()
+        self._scan: Optional[Tuple[float, LaserScan]] = None  # ([s] ROS time of arrival, the newest scan)
+        self.fusion_publisher = rospy.Publisher("obstacle_fusion", String, queue_size=5)
+        self.scan_subscriber = rospy.Subscriber(self.scan_topic, LaserScan, self._on_scan, queue_size=1,
+                                                buff_size=1 << 20) if self.scan_topic else None
         self.service = rospy.Service("safe_to_push", SetBool, self._on_safe_to_push)
         self.subscriber = rospy.Subscriber(
             "camera/rgb/image_raw", Image, self._on_image, queue_size=1, buff_size=IMAGE_BUFFER
@@ -199,6 +219,7 @@ class ObstacleClassifierNode:
             self._fresh_frames += 1
             self._cond.notify_all()
         self.publisher.publish(self._message(vote, prediction, colour))
+        self.fusion_publisher.publish(String(data=self.fused(vote).line()))
 
     @staticmethod
     def _message(vote: Vote, prediction: Prediction, image: Image) -> ObstacleClass:
@@ -213,6 +234,38 @@ class ObstacleClassifierNode:
         out.labels = list(LABELS)
         out.counts = bytes(vote.counts[label] for label in LABELS)  # uint8[] is bytes in genpy
         return out
+
+    # -- lidar and fusion ---------------------------------------------------------------------------
+    def _read_fusion_params(self) -> None:
+        self.scan_topic = param_str("~scan_topic", "scan")
+        self.scan_max_age = param_float("~scan_max_age", 0.5, 0.0)  # [s]
+        self.scan_reach = param_float("~scan_reach", 1.2, 0.01)  # [m]
+        self.scan_half_width = param_float("~scan_half_width", 0.3, 0.01)  # [m]
+        self.fusion = FusionParams(camera_min_confidence=param_float("~camera_min_confidence", 0.7, 0.0, 1.0),
+                                   lidar_min_confidence=param_float("~lidar_min_confidence", 0.6, 0.0, 1.0),
+                                   max_looks=param_int("~max_looks", 2, 0, MAX_LOOKS))
+
+    def _on_scan(self, msg: LaserScan) -> None:
+        with self._cond:
+            self._scan = (rospy.get_time(), msg)
+
+    def lidar_cue(self) -> ShapeCue:
+        """The lidar's cue of the object ahead in the newest scan (unsure without a fresh one)."""
+        with self._cond:
+            entry = self._scan
+        if entry is None:
+            why = f"no scan on {self.scan_subscriber.resolved_name} yet" if self.scan_subscriber else "~scan_topic ''"
+            return ShapeCue(UNSURE, 0.0, why)
+        age = rospy.get_time() - entry[0]
+        if age > self.scan_max_age:
+            return ShapeCue(UNSURE, 0.0, f"the newest scan is {age:.2f} s old (max {self.scan_max_age:g} s)")
+        scan = entry[1]
+        return cue_ahead(scan.ranges, scan.angle_min, scan.angle_increment, scan.range_min, scan.range_max,
+                         reach_m=self.scan_reach, half_width_m=self.scan_half_width)
+
+    def fused(self, vote: Vote) -> FusedDecision:
+        """The camera's ``vote`` fused with the lidar's cue, before any look again."""
+        return fuse(CameraCue.from_vote(vote), self.lidar_cue(), 0, self.fusion)
 
     # -- service ------------------------------------------------------------------------------------
     def _on_safe_to_push(self, request: Any) -> SetBoolResponse:
@@ -239,4 +292,4 @@ class ObstacleClassifierNode:
         if age is None and self.depth_subscriber is not None:
             message += (f" (this model needs a depth image on {self.depth_subscriber.resolved_name} within "
                         f"{self.max_depth_lag:g} s of each colour image; {unpaired} frame(s) found no partner)")
-        return safe, message
+        return safe, f"{message}; {self.fused(vote).line()}"
