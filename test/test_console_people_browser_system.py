@@ -1,9 +1,9 @@
 """Tracked people on the operator console's map, seen in a real browser (headless Debian Chromium and Selenium).
 
 The stack of the push_or_avoid scenarios without the camera: the S6 world (an open room that four scripted people
-walk across), one TurtleBot 4 with its navigation, localizer and behavior runner, its path controller tracking
-moving obstacles in the scan (``pure_pursuit_path/yield_to_people``, as ``flex_nav.apps.scenario_run`` sets it),
-and the console on 127.0.0.1. The robot stands at its start facing the walkers; nothing is driven. The page is the
+walk across), one TurtleBot 4 with its navigation and behavior runner (oracle localization), its path controller
+tracking moving obstacles in the scan (``pure_pursuit_path/yield_to_people``, as ``flex_nav.apps.scenario_run`` sets
+it), and the console on 127.0.0.1. The robot stands at its start facing the walkers; nothing is driven. The page is the
 only observer (this process starts no ROS node): the people the controller's tracker confirms must be drawn on the
 map's canvas (its ``data-people`` list, and pixels of the people's colour where they are drawn) near the lines the
 world's scripts walk them along.
@@ -77,8 +77,10 @@ def test_the_tracked_people_are_drawn_where_the_walkers_walk(tmp_path: Path) -> 
     assert len(walks) == 4 and all(len(walk) >= 2 for walk in walks), "S6 should have four walking people"
     run = nav_demo.RobotRun(ROBOT, scenario_run.PROFILE, [("goal", world.goals["goal"])])
     run.pose = world.spawns[0].pose if world.spawns else world.goals["start"]
+    # oracle localization (the simulator's map -> odom): with the localizer on a loaded machine its map -> odom came
+    # 0.45-0.6 s after each scan, later than the tracker waits for it, and the tracker dropped every scan
     system = argparse.Namespace(world=WORLD, rtf=1.0, seed=0, gui=False, autonomy="full", behavior="push_or_avoid",
-                                localization="localizer", map=None)
+                                localization="oracle", map=None)
     params = {f"/{ROBOT}/pure_pursuit_path/yield_to_people": True}  # the tracker publishes ~people while watched
     port = free_port()
     with contextlib.ExitStack() as exits:
@@ -116,7 +118,7 @@ def test_the_tracked_people_are_drawn_where_the_walkers_walk(tmp_path: Path) -> 
                       "tracked people drawn on the map", PEOPLE_S)
         seen_s = time.monotonic() - started
         near = [p for p in people if walk_distance((p["x"], p["y"]), walks) < NEAR_WALK_M]
-        assert near, f"people drawn off every walker's line: {people} (lines {walks})"
+        assert near and len(near) >= len(people) - 1, f"people drawn off the walkers' lines: {people} (lines {walks})"
         counts = json.loads(browser.script("return document.getElementById('map').dataset.drawn"))[RUNNER]
         assert counts.get("people", [0])[0] >= 1, counts
         print(f"people drawn {seen_s:.1f} s after the robot: {people}", flush=True)
