@@ -109,6 +109,7 @@ class Sampler:
                     continue
                 with self.lock:
                     sample = self.figures.processes.setdefault(proc.pid, ProcessSample(label))
+                    sample.label = label  # a child of roslaunch shows roslaunch's command line until it execs
                     sample.rss_peak_mb = max(sample.rss_peak_mb, rss_mb)
                     sample.cpu_s = times.user + times.system
                 if sample.label in ROBOT:
@@ -189,9 +190,10 @@ def main() -> int:
     print(f"load before: {' '.join(f'{v:.2f}' for v in os.getloadavg())}; {os.cpu_count()} cores")
     modes = ["combined", "separate"] if args.mode == "both" else [args.mode]
     results: Dict[str, Tuple[float, float, float]] = {}
-    with tempfile.TemporaryDirectory(prefix="bench_footprint_") as tmp:
-        for mode in modes:
-            results[mode] = report(run_demo(mode, args.rtf, Path(tmp) / mode))
+    out = Path(tempfile.mkdtemp(prefix="bench_footprint_"))
+    print(f"demo outputs and logs in {out}")
+    for mode in modes:
+        results[mode] = report(run_demo(mode, args.rtf, out / mode))
     if len(results) == 2:
         (c_rss, c_cpu, c_rtf), (s_rss, s_cpu, s_rtf) = results["combined"], results["separate"]
         print(f"combined / separate: memory {c_rss / s_rss:.2f}x, CPU {c_cpu / s_cpu:.2f}x, "
