@@ -1,14 +1,17 @@
 #!/usr/bin/env python3
 """The demo's footprint: memory per process, CPU per simulated second and the real-time factor reached.
 
-Runs the README's demo (``python -m flex_nav.apps.nav_demo``, one TurtleBot 2, the lab lap of 4 goals) twice in
-the same run: with one robot's navigation servers and controllers in one ``navigation`` process (the default)
-and with a process each (``--separate-processes``, the reference). While each runs, every process under the demo
-is sampled every 0.25 s (psutil): resident memory (RSS) and CPU time (user + system).
+Runs the README's demo (``python -m flex_nav.apps.nav_demo``, one TurtleBot 2, the lab lap of 4 goals), or with
+``--run s4`` the scenario S4 (``python -m flex_nav.apps.scenario_run``, TurtleBot 4, push_or_avoid with the
+camera and the obstacle classifier), twice in the same run: with one robot's navigation servers and controllers
+in one ``navigation`` process (the default) and with a process each (``--separate-processes``, the reference).
+While each runs, every process under it is sampled every 0.25 s (psutil): resident memory (RSS) and CPU time
+(user + system).
 
 Figures per run:
 - RSS per process (its peak) and the robot's total: every flex_nav process of the robot (navigation servers and
-  controllers, twist_relay, bumper_relay, localizer, behavior runner) and the map server; the simulator and
+  controllers, twist_relay, bumper_relay, localizer, behavior runner, the obstacle classifier in S4) and the map
+  server; the simulator and
   ROS's own processes (roslaunch, rosmaster, rosout, rosbag) listed apart;
 - CPU-seconds per simulated second from the first goal to the last arrival, per process and for the robot;
 - the real-time factor reached over the same span (simulated seconds per wall second) at the asked ``--rtf``
@@ -22,6 +25,7 @@ Run: .venv/bin/python bench/bench_footprint.py [--rtf 0] [--mode both|combined|s
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import re
 import subprocess
@@ -37,8 +41,9 @@ import psutil  # type: ignore[import-untyped]  # a dependency (requirements.txt)
 
 REPO = Path(__file__).resolve().parents[1]
 SAMPLE_PERIOD_S = 0.25  # [s] wall
-ROBOT = {"navigation", "get_path_server", "follow_path_server", "follow_topic_server", "pure_pursuit_path",
-         "pure_pursuit_topic", "twist_relay", "bumper_relay", "localizer", "behavior_runner", "map_server"}
+ROBOT = {"navigation", "obstacle_classifier", "get_path_server", "follow_path_server", "follow_topic_server",
+         "pure_pursuit_path", "pure_pursuit_topic", "twist_relay", "bumper_relay", "localizer", "behavior_runner",
+         "map_server"}
 SIM_LINE = re.compile(r"^\[sim\s+([0-9.]+) s\]")
 END_LINE = re.compile(r"goals reached: (\d+)/(\d+).*sim time: ([0-9.]+) s, wall time: ([0-9.]+) s")
 
@@ -123,8 +128,12 @@ class Sampler:
                 sample.cpu_at_first_goal_s = sample.cpu_s
 
 
-def run_demo(mode: str, rtf: float, out: Path) -> RunFigures:
-    argv = [sys.executable, "-m", "flex_nav.apps.nav_demo", "--rtf", str(rtf), "--out", str(out)]
+S4_ARGV = ["-m", "flex_nav.apps.scenario_run", "--world", "s4_light_box_short_route", "--behavior", "push_or_avoid"]
+
+
+def run_demo(mode: str, rtf: float, out: Path, scenario: bool = False) -> RunFigures:
+    app = S4_ARGV if scenario else ["-m", "flex_nav.apps.nav_demo"]
+    argv = [sys.executable, *app, "--rtf", str(rtf), "--out", str(out)]
     if mode == "separate":
         argv.append("--separate-processes")
     figures = RunFigures(mode)
@@ -147,6 +156,10 @@ def run_demo(mode: str, rtf: float, out: Path) -> RunFigures:
         ended = END_LINE.search(line)
         if ended:
             figures.reached = f"{ended.group(1)}/{ended.group(2)}"
+        if line.startswith("RESULT "):
+            result = json.loads(line[len("RESULT "):])
+            figures.reached = (f"{'arrived' if result.get('success') else 'NOT arrived'}, pushes "
+                               f"{result.get('pushes_succeeded')}/{result.get('pushes_tried')}")
     proc.wait(timeout=60)
     log.close()
     if figures.reached == "?" or figures.first_goal is None:
@@ -186,6 +199,8 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--rtf", type=float, default=0.0, help="demo real-time factor (0: as fast as possible)")
     parser.add_argument("--mode", choices=("both", "combined", "separate"), default="both")
+    parser.add_argument("--run", choices=("demo", "s4"), default="demo",
+                        help="the README's demo, or the scenario S4 (push_or_avoid, camera and classifier)")
     args = parser.parse_args()
     print(f"load before: {' '.join(f'{v:.2f}' for v in os.getloadavg())}; {os.cpu_count()} cores")
     modes = ["combined", "separate"] if args.mode == "both" else [args.mode]
@@ -193,7 +208,7 @@ def main() -> int:
     out = Path(tempfile.mkdtemp(prefix="bench_footprint_"))
     print(f"demo outputs and logs in {out}")
     for mode in modes:
-        results[mode] = report(run_demo(mode, args.rtf, out / mode))
+        results[mode] = report(run_demo(mode, args.rtf, out / mode, scenario=args.run == "s4"))
     if len(results) == 2:
         (c_rss, c_cpu, c_rtf), (s_rss, s_cpu, s_rtf) = results["combined"], results["separate"]
         print(f"combined / separate: memory {c_rss / s_rss:.2f}x, CPU {c_cpu / s_cpu:.2f}x, "
