@@ -388,6 +388,18 @@ def cue_ahead(ranges: np.ndarray, angle_min: float, angle_increment: float, rang
     ``ranges`` [m], angles [rad], range limits [m]) in a frame whose x axis points forward (the robot's): the
     object is the one with the nearest hit in the corridor ``reach_m`` [m] long and 2 x ``half_width_m`` [m] wide
     ahead of the sensor (``none`` if the corridor is empty). A scan of (nearly) 360 degrees wraps."""
+    xs, ys, nearest, wrap = _ahead(ranges, angle_min, angle_increment, range_min, range_max,
+                                   reach_m=reach_m, half_width_m=half_width_m)
+    if nearest is None:
+        return ShapeCue(NONE, 1.0, f"no hit within {reach_m:.2f} m ahead in a {2.0 * half_width_m:.2f} m wide corridor")
+    return classify_shape(xs, ys, (0.0, 0.0), (float(xs[nearest]), float(ys[nearest])), params,
+                          speed_mps=speed_mps, wrap=wrap)
+
+
+def _ahead(ranges: np.ndarray, angle_min: float, angle_increment: float, range_min: float, range_max: float, *,
+           reach_m: float, half_width_m: float) -> Tuple[np.ndarray, np.ndarray, Optional[int], bool]:
+    """A scan's end points (xs, ys [m], NaN: no return) in its frame, the index of the nearest hit in the
+    corridor ahead (None: empty) and whether the scan wraps (covers about 360 degrees)."""
     validation.number("lidar shape", "reach_m", reach_m, positive=True, unit="[m]")
     validation.number("lidar shape", "half_width_m", half_width_m, positive=True, unit="[m]")
     ranges = np.asarray(ranges, dtype=np.float64)
@@ -399,9 +411,49 @@ def cue_ahead(ranges: np.ndarray, angle_min: float, angle_increment: float, rang
     ys = np.where(valid, r * np.sin(angles), np.nan)
     with np.errstate(invalid="ignore"):
         ahead = valid & (xs > 0.0) & (xs <= reach_m) & (np.abs(ys) <= half_width_m)
-    if not ahead.any():
-        return ShapeCue(NONE, 1.0, f"no hit within {reach_m:.2f} m ahead in a {2.0 * half_width_m:.2f} m wide corridor")
-    nearest = int(np.flatnonzero(ahead)[np.argmin(xs[ahead])])
     wrap = abs(angle_increment) * ranges.size >= 2.0 * math.pi - 1.5 * abs(angle_increment)
-    return classify_shape(xs, ys, (0.0, 0.0), (float(xs[nearest]), float(ys[nearest])), params,
-                          speed_mps=speed_mps, wrap=wrap)
+    if not ahead.any():
+        return xs, ys, None, wrap
+    return xs, ys, int(np.flatnonzero(ahead)[np.argmin(xs[ahead])]), wrap
+
+
+def _hull(points: np.ndarray) -> np.ndarray:
+    """Convex hull (counter-clockwise, no repeated corner) of (N, 2) points, by the monotone chain."""
+    pts = np.unique(points, axis=0)
+    if len(pts) < 3:
+        return pts
+
+    def half(ordered: np.ndarray) -> List[np.ndarray]:
+        chain: List[np.ndarray] = []
+        for p in ordered:
+            while len(chain) >= 2 and float(np.cross(chain[-1] - chain[-2], p - chain[-2])) <= 0.0:
+                chain.pop()
+            chain.append(p)
+        return chain
+
+    lower, upper = half(pts), half(pts[::-1])
+    hull: np.ndarray = np.array(lower[:-1] + upper[:-1])
+    return hull
+
+
+def footprint_ahead(ranges: np.ndarray, angle_min: float, angle_increment: float, range_min: float,
+                    range_max: float, *, reach_m: float = 1.2, half_width_m: float = 0.3, depth_m: float = 0.0,
+                    params: Optional[ShapeParams] = None) -> Optional[np.ndarray]:
+    """The footprint (convex, counter-clockwise (N, 2) [m], the scan's frame) of the object ahead that
+    :func:`cue_ahead` would classify: its hits and the same hits ``depth_m`` [m] farther along their beams (the
+    lidar sees only the near side; 0: as deep as it is wide, at most ``box_max_size_m``). None if the corridor is
+    empty or the object has fewer than 2 hits."""
+    params = params if params is not None else ShapeParams()
+    validation.number("lidar shape", "depth_m", depth_m, minimum=0.0, unit="[m]")
+    xs, ys, nearest, wrap = _ahead(ranges, angle_min, angle_increment, range_min, range_max,
+                                   reach_m=reach_m, half_width_m=half_width_m)
+    if nearest is None:
+        return None
+    run = next(c for c in clusters(xs, ys, (0.0, 0.0), params, wrap=wrap) if nearest in c)
+    if len(run) < 2:
+        return None
+    near = np.column_stack((xs[run], ys[run]))
+    depth = depth_m if depth_m > 0.0 else min(_size(near[:, 0], near[:, 1]), params.box_max_size_m)
+    unit = near / np.hypot(near[:, 0], near[:, 1])[:, None]
+    hull = _hull(np.concatenate((near, near + depth * unit)))
+    return hull if len(hull) >= 3 else None

@@ -20,6 +20,7 @@ from flex_nav.perception.lidar_shape import (
     ShapeParams,
     classify_shape,
     cue_ahead,
+    footprint_ahead,
     object_speed,
 )
 from flex_nav.perception.moving_obstacles import Track
@@ -224,3 +225,19 @@ def test_the_cue_ahead_of_a_laser_scan() -> None:
     assert turned.label == PERSON, turned.describe()  # what is ahead in that frame is the person
     with pytest.raises(ConfigError, match="reach_m"):
         cue_ahead(ranges, -math.pi, math.radians(1.0), 0.1, 12.0, reach_m=0.0)
+
+
+def test_the_footprint_ahead_covers_the_box() -> None:
+    angles = np.radians(np.arange(-180.0, 180.0, 1.0))
+    box = box_in_front(0.4, 0.55, 0.0)  # x 0.55-0.95, y -0.2-0.2
+    ranges = ranges_of(SENSOR, angles, [box])
+    footprint = footprint_ahead(ranges, -math.pi, math.radians(1.0), 0.1, 12.0)
+    assert footprint is not None
+    area2 = np.sum(footprint[:, 0] * np.roll(footprint[:, 1], -1) - np.roll(footprint[:, 0], -1) * footprint[:, 1])
+    assert area2 > 0.0  # counter-clockwise
+    low, high = footprint.min(axis=0), footprint.max(axis=0)
+    assert abs(low[0] - 0.55) < 0.02 and high[0] > 0.9  # from the face, as deep as the box is wide
+    assert low[1] < -0.17 and high[1] > 0.17
+    shallow = footprint_ahead(ranges, -math.pi, math.radians(1.0), 0.1, 12.0, depth_m=0.1)
+    assert shallow is not None and shallow[:, 0].max() < 0.7
+    assert footprint_ahead(ranges, -math.pi, math.radians(1.0), 0.1, 12.0, reach_m=0.5) is None
