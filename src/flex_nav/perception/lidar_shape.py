@@ -419,7 +419,7 @@ def _ahead(ranges: np.ndarray, angle_min: float, angle_increment: float, range_m
 
 def _hull(points: np.ndarray) -> np.ndarray:
     """Convex hull (counter-clockwise, no repeated corner) of (N, 2) points, by the monotone chain."""
-    pts = np.unique(points, axis=0)
+    pts: np.ndarray = np.unique(points, axis=0)
     if len(pts) < 3:
         return pts
 
