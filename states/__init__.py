@@ -20,7 +20,9 @@ Modules (one state or one small family each):
 - monitors: :mod:`bumper_monitor_state` (bumper/cliff, configured by robot profile),
   :mod:`stuck_monitor_state`, :mod:`sensor_freshness_state`;
 - obstacles (push or avoid): :mod:`follow_until_blocked_state` (FollowPath with a ``blocked`` outcome),
-  :mod:`obstacle_class_state` (person / movable / clear from the obstacle classifier), :mod:`push_state`
+  :mod:`obstacle_class_state` (person / movable / clear from the obstacle classifier), :mod:`obstacle_fusion_state`
+  (camera class + lidar shape, bounded looks again), :mod:`remember_obstacle_state` (a heavy obstacle's footprint
+  for the costmap's obstacle memory), :mod:`push_state`
   (push a distance, fails fast on a heavy object, never pushes a person), :mod:`wait_path_clear_state`;
 - operator: :mod:`operator_decision_state`, :mod:`log_state`, :mod:`wait_state`;
 - retries: :mod:`backoff_state` (a wait before the next try of a goal, doubling after each failed one);
@@ -63,6 +65,7 @@ STATE_MODULES = (
     "backoff_state",
     "obstacle_class_state",
     "obstacle_fusion_state",
+    "remember_obstacle_state",
     "push_state",
     "wait_path_clear_state",
     "robot_pose_state",

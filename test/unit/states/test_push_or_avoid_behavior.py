@@ -151,6 +151,24 @@ def test_with_the_lidar_a_box_the_camera_calls_movable_is_pushed_at_once():
     assert any("fused movable (row 6" in t for t in scene.h.texts())
 
 
+def test_a_heavy_obstacle_is_reported_to_the_obstacle_memory_with_remember_heavy():
+    scene = Scene("movable", BLOCKED_THEN_DONE, push_distance_m=1.0, push_speed_mps=0.2, backoff_m=-0.3,
+                  remember_heavy=True)
+    scene.box_ahead_x = 0.5
+
+    def heavy():
+        if scene.robot.x >= 0.3 and scene.robot.v > 0.0:
+            scene.robot.blocked = True
+        elif scene.robot.blocked and any("stalled" in t for t in scene.h.texts()):
+            scene.robot.blocked = False
+
+    scene.run_until("goal reached", 40.0, on_step=heavy)
+    (mark,) = scene.h.proxies.pub("obstacle_memory/mark").messages
+    xs = [p.x for p in mark.polygon.points]
+    assert abs(min(xs) - (0.5 - scene.robot.x)) < 0.05  # the box's face, seen from where the robot backed off to
+    assert any(t.startswith("obstacle remembered") for t in scene.h.texts())
+
+
 def test_tries_are_bounded_then_the_recovery_chain_runs():
     always_blocked = [(GoalStatus.ABORTED, FollowPathResult.FAILURE, BLOCKED)] * 8
     scene = Scene("clear", always_blocked, plans=8, max_tries=2.0)

@@ -39,7 +39,7 @@ EXPECTED = {
     "PurePursuitState", "BumperMonitorState", "StuckMonitorState", "SensorFreshnessState",
     "OperatorDecisionState", "LogState", "WaitState", "GoalListState", "ReplanState", "FollowUntilBlockedState",
     "ObstacleClassState", "ObstacleFusionState", "PushState", "WaitPathClearState", "BackoffState", "RobotPoseState",
-    "FindFrontierState", "MarkFailedGoalState", "SaveMapState",
+    "FindFrontierState", "MarkFailedGoalState", "SaveMapState", "RememberObstacleState",
 }
 
 
