@@ -9,6 +9,7 @@ import pytest
 
 from flex_nav.exceptions import ConfigError
 from flex_nav.nav.costmap.costmap_grid import INSCRIBED, LETHAL, NO_INFORMATION, CostmapGeometry
+from flex_nav.nav.costmap.inflation import InflationParams, inflate
 from flex_nav.nav.planning.astar import QueueStorage, line_cost
 from flex_nav.nav.planning.planner import GridPlanner, PlannerParams, PlanStatus
 
@@ -328,3 +329,60 @@ def test_start_escape_leaves_an_inscribed_start_but_nothing_else_changes():
     assert escaping.plan(lethal, geo, start, goal).status is PlanStatus.START_BLOCKED  # never out of a lethal cell
     with pytest.raises(ConfigError, match="start_escape"):
         PlannerParams(start_escape=-1.0)
+
+
+def inflated_rectangles(rng, size=80):
+    """Costs of a few random lethal rectangles inflated as costmap_2d does (0.05 m cells): long cost gradients."""
+    costs = np.zeros((size, size), dtype=np.uint8)
+    for _ in range(12):
+        r, c = rng.integers(0, size, 2)
+        h, w = rng.integers(2, 14, 2)
+        costs[r : r + h, c : c + w] = LETHAL
+    return inflate(costs, 0.05, InflationParams(inscribed_radius=0.1, inflation_radius=0.6, cost_scaling_factor=3.0))
+
+
+@pytest.mark.parametrize("params", [PlannerParams(), PlannerParams(diagonal_factor=1.0)])
+def test_cost_equals_dijkstra_on_inflated_rectangle_maps(params):
+    # inflation gradients make many cells reachable first by a dearer diagonal and later by a cheaper way:
+    # the queue's bucket ring, its drop of overtaken entries and the way in beside a diagonal are all used
+    rng = np.random.default_rng(5)
+    planner = GridPlanner(params)
+    for _ in range(12):
+        costs = inflated_rectangles(rng)
+        free = np.argwhere(np.isfinite(planner.weights[costs]))
+        s, g = two_free_cells(rng, free)
+        cost, cells, _ = planner.plan_cells(costs, s, g)
+        expected = dijkstra(costs, s, g, params)
+        assert cost == pytest.approx(expected, rel=1e-12, abs=1e-9) or math.isinf(cost) == math.isinf(expected)
+        if math.isfinite(expected):
+            assert planner.path_cost(costs, cells) == pytest.approx(cost, rel=1e-12)
+
+
+def test_open_space_search_expands_only_the_path():
+    # the heuristic is exact in free space and equal-f successors are taken deepest first, so the search
+    # runs straight to the goal: one expanded cell per path cell
+    costs = np.zeros((300, 300), dtype=np.uint8)
+    planner = GridPlanner()
+    for goal in ((250, 100), (20, 290), (299, 299), (150, 0)):
+        cost, cells, expanded = planner.plan_cells(costs, (10, 10), goal)
+        assert expanded == len(cells)
+        assert cost == pytest.approx(planner.heuristic_scale * octile((10, 10), goal), rel=1e-12)
+
+
+def octile(a, b):
+    d_row, d_col = abs(a[0] - b[0]), abs(a[1] - b[1])
+    return max(d_row, d_col) + (math.sqrt(2.0) - 1.0) * min(d_row, d_col)
+
+
+def test_unreachable_goal_expands_the_start_region_once():
+    costs = np.zeros((40, 40), dtype=np.uint8)
+    costs[10:20, 10] = costs[10:20, 20] = costs[10, 10:21] = costs[19, 10:21] = LETHAL  # a closed box
+    costs[25:, :] = 30  # a cheaper-or-dearer mix outside: the search still closes every cell once
+    costs[30:35, 5:35] = 120
+    planner = GridPlanner()
+    cost, cells, expanded = planner.plan_cells(costs, (2, 2), (15, 15))
+    assert math.isinf(cost) and len(cells) == 0
+    outside = 40 * 40 - 10 * 11  # every cell but the box and what it encloses
+    assert expanded == outside
+    cost, _, expanded = planner.plan_cells(costs, (15, 15), (2, 2))  # from inside: only the inside
+    assert math.isinf(cost) and expanded == 8 * 9

@@ -195,6 +195,9 @@ def astar(  # noqa: PLR0917, PLR0912, PLR0915 - one compiled kernel
             row += 1
         col = node - row * width
         interior = row > 0 and row < height - 1 and col > 0 and col < width - 1
+        # the node's octile distance to the goal [cells] as (longer, shorter) axis
+        far = max(abs(row - goal_row), abs(col - goal_col))
+        near = min(abs(row - goal_row), abs(col - goal_col))
         for k in range(8):
             if not interior:
                 nr = row + _D_ROW[k]
@@ -232,13 +235,19 @@ def astar(  # noqa: PLR0917, PLR0912, PLR0915 - one compiled kernel
             nc = col + _D_COL[k]
             d_row = abs(nr - goal_row)
             d_col = abs(nc - goal_col)
-            if d_row < d_col:
-                h = heuristic_scale * (d_col + diag_extra * d_row)
-            else:
-                h = heuristic_scale * (d_row + diag_extra * d_col)
-            f = cand + h
-            if f <= f_min:
-                # f is the queue's minimum: it would be popped next anyway (order among equal f is free)
+            nb_far = max(d_row, d_col)
+            nb_near = min(d_row, d_col)
+            f = cand + heuristic_scale * (nb_far + diag_extra * nb_near)
+            if f <= f_min or (
+                # a move of the cheapest weight straight along the heuristic's path to the goal: f is the
+                # node's, exactly (in floating point the sums may differ in the last bits)
+                w == heuristic_scale
+                and via == node
+                and nb_far == far - 1
+                and nb_near == (near if k < 4 else near - 1)
+            ):
+                # f is the queue's minimum: it would be popped next anyway (order among equal f is free);
+                # deepest first, so in free space the search runs straight to the goal
                 if top == stack.shape[0]:
                     return np.inf, FULL_STACK
                 stack[top] = nb
