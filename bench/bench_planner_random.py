@@ -49,7 +49,7 @@ except ImportError as err:  # bench-only references
     sys.exit(f"{err}: install the bench references first: bench/run.sh planner_random")
 
 from bench_costmap import INFLATION  # noqa: E402
-from bench_planner import dijkstra_costs, pyastar_cost_in_model  # noqa: E402
+from bench_planner import dijkstra_costs, load, pyastar_cost_in_model  # noqa: E402
 
 from flex_nav.nav.costmap.costmap_grid import LETHAL, CostmapGeometry  # noqa: E402
 from flex_nav.nav.costmap.inflation import Inflator  # noqa: E402
@@ -120,11 +120,6 @@ def timed(call: Callable[..., T], *args: Any) -> Tuple[T, float, float]:
     wall, cpu = time.perf_counter(), time.thread_time()
     out = call(*args)
     return out, time.perf_counter() - wall, time.thread_time() - cpu
-
-
-def load() -> str:
-    one, five, fifteen = os.getloadavg()
-    return f"load average {one:.2f} {five:.2f} {fifteen:.2f}"
 
 
 def ms(values: List[float]) -> str:
