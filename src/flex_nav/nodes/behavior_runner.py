@@ -23,7 +23,8 @@ the active states' userdata on the latched ``~userdata`` (JSON, :mod:`flex_nav.b
 value summarized and bounded, at most ``userdata_rate_hz`` messages a second, only when it changed;
 :mod:`flex_nav.ros.userdata_publisher`).
 Each run gets its own :class:`~flex_nav.ros.proxies.RosProxies`, shut down (goals cancelled, topics
-unregistered) when it ends, so runs never share connections. The runner installs flex_nav's
+unregistered) when it ends, so runs of flex_nav's states never share connections (states written for FlexBE use
+the ``flexbe_core`` layer's process-wide proxies, as in FlexBE). The runner installs flex_nav's
 ``smach`` / ``flexbe_core`` aliases (unless the real packages exist), so state libraries written for them load.
 
 Commands come from any node on the ROS graph (ROS 1 has no authentication), so they are not trusted:
