@@ -32,13 +32,14 @@ def private_namespace() -> str:
 
 
 def private_name(name: str) -> str:
-    """``name`` with a leading ``~`` resolved to :func:`private_namespace`; other names are returned unchanged
-    (rospy resolves them against the node's namespace, which every hosted component shares)."""
-    if not name.startswith("~"):
+    """``name`` with a leading ``~`` resolved to the namespace of the component being built; outside one, and for
+    other names, ``name`` unchanged (rospy resolves ``~`` against the node's name, and relative names against the
+    node's namespace, which every hosted component shares)."""
+    hosted = _hosted.get()
+    if hosted is None or not name.startswith("~"):
         return name
     rest = name[1:].lstrip("/")
-    base = private_namespace().rstrip("/")
-    return f"{base}/{rest}" if rest else base
+    return f"{hosted.rstrip('/')}/{rest}" if rest else hosted
 
 
 @contextlib.contextmanager

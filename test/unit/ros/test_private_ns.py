@@ -13,9 +13,9 @@ from flex_nav.nodes.navigation import COMPONENTS, DEFAULT_COMPONENTS, component_
 from flex_nav.ros.private_ns import hosted_as, private_name, private_namespace
 
 
-def test_outside_a_component_tilde_is_the_node_name() -> None:
+def test_outside_a_component_tilde_is_left_to_rospy() -> None:
     assert private_namespace() == rospy.get_name()
-    assert private_name("~plan") == rospy.get_name().rstrip("/") + "/plan"
+    assert private_name("~plan") == "~plan"  # rospy resolves it against the node's name
 
 
 def test_inside_a_component_tilde_is_its_namespace() -> None:
