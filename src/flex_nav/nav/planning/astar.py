@@ -13,10 +13,17 @@ do). It has three parts:
   (a row [f, g, cell, next] of ``pool`` linked into its bucket). One move raises f by at most the move's
   cost plus the heuristic's change, so the live buckets always fit in the ring;
 - a 4-ary min-heap on f (rows [f, cell]) holding the current bucket: when the heap runs dry, the next
-  non-empty bucket is moved into it, dropping the entries of cells reached more cheaply since;
-- a LIFO stack: a successor whose f equals the current minimum f would be popped next anyway, so it skips
-  the heap. In free space, where the heuristic is exact, most cells go through the stack, which also
-  breaks ties towards deeper cells (larger g) and keeps the search narrow.
+  non-empty bucket is moved into it (heapified at once), dropping the entries of cells reached more
+  cheaply since;
+- a LIFO stack for cells whose f is the queue's minimum, which would be popped next anyway: a successor of
+  the same f, or a whole bucket whose entries all have one f (a plateau reached from several sides). In
+  free space most cells go through it, deepest first, so the search runs straight at the goal.
+
+"The same f" is decided without trusting floating-point sums to be exact: a successor entered at the
+cheapest weight along the heuristic's own path (its octile distance falls by exactly the move's step) has
+its node's f in exact arithmetic; otherwise two f values count as one when they differ by at most
+``ROUNDING`` (1e-12) relative, far below the 1e-9 to which costs are compared and far above the rounding
+of the sums (about 1e-16 per term).
 
 To avoid clearing H·W arrays on every query, the per-cell arrays are reused across queries and a cell's
 entries count only when its ``state`` stamp equals the query's generation number.
@@ -35,6 +42,9 @@ NO_PARENT = -1
 _D_ROW = np.array([-1, 1, 0, 0, -1, -1, 1, 1], dtype=np.int64)
 _D_COL = np.array([0, 0, -1, 1, -1, 1, -1, 1], dtype=np.int64)
 BUCKETS = 4096  # ring of f buckets (a power of two)
+# relative difference of two f values that is taken for floating-point rounding of one real value: f sums
+# ~1e4 terms, each rounded to 1.1e-16 relative; path costs are compared to 1e-9 relative
+ROUNDING = 1e-12
 # what astar returns as the expanded count when one of the queue's arrays is full
 FULL_HEAP = -1
 FULL_STACK = -2
@@ -58,15 +68,8 @@ def _push(heap: np.ndarray, size: int, key: float, item: int) -> None:  # pragma
 
 
 @njit(cache=True, nogil=True)
-def _pop(heap: np.ndarray, size: int) -> int:  # pragma: no cover - compiled
-    # removes the root of a heap of ``size`` rows and returns its item
-    top = int(heap[0, 1])
-    size -= 1
-    if size == 0:
-        return top
-    key = heap[size, 0]
-    item = heap[size, 1]
-    pos = 0
+def _sift_down(heap: np.ndarray, size: int, pos: int, key: float, item: float) -> None:  # pragma: no cover
+    # places row [key, item] at ``pos`` or below, in a heap of ``size`` rows
     while True:
         first = 4 * pos + 1
         if first >= size:
@@ -84,11 +87,20 @@ def _pop(heap: np.ndarray, size: int) -> int:  # pragma: no cover - compiled
         pos = best
     heap[pos, 0] = key
     heap[pos, 1] = item
+
+
+@njit(cache=True, nogil=True)
+def _pop(heap: np.ndarray, size: int) -> int:  # pragma: no cover - compiled
+    # removes the root of a heap of ``size`` rows and returns its item
+    top = int(heap[0, 1])
+    size -= 1
+    if size > 0:
+        _sift_down(heap, size, 0, heap[size, 0], heap[size, 1])
     return top
 
 
 @njit(cache=True, nogil=True)
-def astar(  # noqa: PLR0917, PLR0912, PLR0915 - one compiled kernel
+def astar(  # noqa: PLR0911, PLR0917, PLR0912, PLR0915 - one compiled kernel
     costs: np.ndarray,
     width: int,
     weights: np.ndarray,
@@ -164,20 +176,38 @@ def astar(  # noqa: PLR0917, PLR0912, PLR0915 - one compiled kernel
                     current += 1
                 entry = head[current & (BUCKETS - 1)]
                 head[current & (BUCKETS - 1)] = -1
+                low = np.inf
+                high = 0.0
                 while entry != -1:
                     following = int(pool[entry, 3])
                     cell = int(pool[entry, 2])
                     if state[cell] == generation and pool[entry, 1] == g[cell]:
                         if size == heap.shape[0]:
                             return np.inf, FULL_HEAP
-                        _push(heap, size, pool[entry, 0], cell)
+                        heap[size, 0] = pool[entry, 0]
+                        heap[size, 1] = cell
                         size += 1
+                        low = min(low, pool[entry, 0])
+                        high = max(high, pool[entry, 0])
                     pool[entry, 3] = free
                     free = entry
                     in_buckets -= 1
                     entry = following
                 if size == 0:
                     continue
+                if high - low <= ROUNDING * high:
+                    # one f, up to rounding (a plateau reached from several sides): any order will do, the
+                    # stack's is the cheapest
+                    if size > stack.shape[0]:
+                        return np.inf, FULL_STACK
+                    for i in range(size):
+                        stack[i] = int(heap[i, 1])
+                    top = size
+                    size = 0
+                    f_min = high
+                    continue
+                for pos in range((size - 2) // 4, -1, -1):  # heapify
+                    _sift_down(heap, size, pos, heap[pos, 0], heap[pos, 1])
             f_min = heap[0, 0]
             node = _pop(heap, size)
             size -= 1
@@ -238,7 +268,7 @@ def astar(  # noqa: PLR0917, PLR0912, PLR0915 - one compiled kernel
             nb_far = max(d_row, d_col)
             nb_near = min(d_row, d_col)
             f = cand + heuristic_scale * (nb_far + diag_extra * nb_near)
-            if f <= f_min or (
+            if f <= f_min + ROUNDING * f_min or (
                 # a move of the cheapest weight straight along the heuristic's path to the goal: f is the
                 # node's, exactly (in floating point the sums may differ in the last bits)
                 w == heuristic_scale
