@@ -56,6 +56,13 @@ def test_navigation_launch_namespaces_every_node():
         capture_output=True, text=True, timeout=60, check=True,
         env={**os.environ, "ROS_PACKAGE_PATH": str(REPO_ROOT)},
     )
+    assert done.stdout.split() == ["/robot7/navigation"]  # one process hosts them (combined:=true)
+    done = subprocess.run(
+        ["roslaunch", "--nodes", str(REPO_ROOT / "launch" / "navigation.launch"), "namespace:=robot7",
+         "pure_pursuit_topic:=false", "combined:=false"],
+        capture_output=True, text=True, timeout=60, check=True,
+        env={**os.environ, "ROS_PACKAGE_PATH": str(REPO_ROOT)},
+    )
     nodes = done.stdout.split()
     assert nodes == ["/robot7/get_path_server", "/robot7/follow_path_server", "/robot7/follow_topic_server",
                      "/robot7/pure_pursuit_path", "/robot7/twist_relay"]

@@ -30,13 +30,24 @@ def _package_path(monkeypatch: pytest.MonkeyPatch) -> None:
 
 def test_all_on_one_computer_is_the_default_without_heartbeat() -> None:
     nodes, params = load("flex_nav_robot.launch")
+    assert nodes == ["behavior_runner", "navigation"]
+    assert sorted(params["/robot1/navigation/components"]) == ROBOT_NODES  # one process hosts them all
+    assert params["/robot1/pure_pursuit_topic/heartbeat_timeout"] == 0.0
+    nodes, params = load("flex_nav_robot.launch", "combined_navigation:=false")
     assert nodes == sorted([*ROBOT_NODES, "behavior_runner"])
+    assert "/robot1/navigation/components" not in params
     assert params["/robot1/pure_pursuit_topic/heartbeat_timeout"] == 0.0
 
 
-def test_the_robot_part_watches_the_heartbeat_and_runs_no_runner() -> None:
-    nodes, params = load("flex_nav_robot.launch", "part:=robot", "twist_relay:=true")
-    assert nodes == sorted([*ROBOT_NODES, "twist_relay"])
+@pytest.mark.parametrize("combined", [True, False])
+def test_the_robot_part_watches_the_heartbeat_and_runs_no_runner(combined: bool) -> None:
+    nodes, params = load("flex_nav_robot.launch", "part:=robot", "twist_relay:=true",
+                         f"combined_navigation:={str(combined).lower()}")
+    if combined:
+        assert nodes == ["navigation"]
+        assert sorted(params["/robot1/navigation/components"]) == sorted([*ROBOT_NODES, "twist_relay"])
+    else:
+        assert nodes == sorted([*ROBOT_NODES, "twist_relay"])
     for node in ("pure_pursuit_path", "pure_pursuit_topic", "twist_relay"):
         assert params[f"/robot1/{node}/heartbeat_timeout"] == 0.5  # twist_relay's timeout (config)
     assert params["/robot1/twist_relay/timeout"] == 0.5
@@ -75,6 +86,8 @@ def test_the_simulators_twist_relay_takes_a_heartbeat_timeout() -> None:
 
 def test_the_robot_part_localizes_in_its_namespace_unless_told_not_to() -> None:
     nodes, params = load("flex_nav_robot.launch", "robot:=robot7", "part:=robot")
+    assert "localizer" in params["/robot7/navigation/components"]
+    nodes, params = load("flex_nav_robot.launch", "robot:=robot7", "part:=robot", "combined_navigation:=false")
     assert "localizer" in nodes
     assert params["/robot7/localizer/odom_frame_id"] == "robot7/odom"
     assert params["/robot7/localizer/base_frame_id"] == "robot7/base_footprint"
@@ -82,8 +95,10 @@ def test_the_robot_part_localizes_in_its_namespace_unless_told_not_to() -> None:
     assert params["/robot7/localizer/recovery_alpha_fast"] == 0.1  # config/localizer.yaml
     for controller in ("pure_pursuit_path", "pure_pursuit_topic"):  # people are tracked in the smooth odom frame
         assert params[f"/robot7/{controller}/people_tracker/tracking_frame"] == "robot7/odom"
-    nodes, _params = load("flex_nav_robot.launch", "localizer:=false")
+    nodes, params = load("flex_nav_robot.launch", "localizer:=false")
     assert "localizer" not in nodes
+    assert "localizer" not in params["/robot1/navigation/components"]
+    assert "/robot1/localizer/odom_frame_id" not in params
 
 
 def test_the_simulator_launch_leaves_map_to_odom_to_the_localizer_unless_oracle() -> None:
@@ -101,3 +116,15 @@ def test_the_robot_part_sets_the_profiles_robot_description(profile: str) -> Non
     assert params["/robot2/robot_description"] == (REPO_ROOT / "urdf" / f"{profile}.urdf").read_text()
     _, operator = load("flex_nav_robot.launch", "part:=operator", f"profile:={profile}")
     assert "/robot1/robot_description" not in operator  # the robot's side sets it, once
+
+
+def test_the_navigation_process_hosts_the_components_asked_for() -> None:
+    nodes, params = load("navigation.launch", "namespace:=robot7", "pure_pursuit_topic:=false", "follow_topic:=false")
+    assert nodes == ["navigation"]
+    assert params["/robot7/navigation/components"] == [
+        "get_path_server", "follow_path_server", "pure_pursuit_path", "twist_relay"]
+    assert params["/robot7/pure_pursuit_path/robot_base_frame"] == "base_footprint"  # where the component reads it
+    assert "/robot7/pure_pursuit_topic/robot_base_frame" not in params
+    nodes, _params = load("navigation.launch", "get_path:=false", "follow_path:=false", "follow_topic:=false",
+                          "pure_pursuit_path:=false", "pure_pursuit_topic:=false", "twist_relay:=false")
+    assert nodes == []  # nothing asked for: no process (an empty ~components would be refused)
