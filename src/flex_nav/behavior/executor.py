@@ -20,7 +20,8 @@ behavior's structure (an unknown path or outcome raises :class:`BehaviorCommandE
 and then applied by the executor's thread between two ticks; each returns a
 ``concurrent.futures.Future`` that completes when the command was applied (or fails with a
 BehaviorCommandError saying why, e.g. the state is not active any more). Queries (``status``,
-``result``, ``active_paths``, ``requested_outcomes``, ``autonomy``) are safe from any thread too.
+``result``, ``active_paths``, ``requested_outcomes``, ``autonomy``, ``active_userdata``) are safe from any thread
+too.
 
 Failure is loud and safe: an exception in a state, a hook or the engine fails the behavior
 (status FAILED, reason naming the state and error), after every active state was exited
