@@ -16,8 +16,9 @@ A. flex_nav's default model (straight 1, diagonal √2, cell weight 50 + 0.8·co
 B. the identical problem: flex_nav with ``diagonal_factor=1`` (``plan_cells``) against the same pyastar2d
    call; the optimal costs must agree.
 
-Optimality of A is checked against an exact Dijkstra (scipy.sparse.csgraph on the whole map's graph) on the
-first ``FLEX_NAV_BENCH_DIJKSTRA_PAIRS`` long pairs of the first map of each size (default 2; 0 skips it), up to
+Optimality of A is checked against an exact Dijkstra (scipy.sparse.csgraph on the whole map's graph) on
+``FLEX_NAV_BENCH_DIJKSTRA_PAIRS`` pairs of the first map of each size (default 3: the two diagonals, top-left to
+bottom-right and top-right to bottom-left, and the first mid pair; 0 skips it), up to
 ``FLEX_NAV_BENCH_DIJKSTRA_MAX`` cells (default 2000²; scipy needs about 8 GB for the 4000² graph).
 
 Options: ``--sizes 500 1000`` (default 500 1000 2000 4000), ``--repeats N`` (each pair timed N times,
@@ -63,7 +64,7 @@ SIDE_M = (0.2, 2.5)  # [m] range of a rectangle's sides
 CORNER_IN = 40  # [cells] start and goal this far in from the corners
 MAPS = {500: 6, 1000: 4, 2000: 3, 4000: 2}  # maps per size
 MID_PAIRS = 6  # per map
-DIJKSTRA_PAIRS = int(os.environ.get("FLEX_NAV_BENCH_DIJKSTRA_PAIRS", "2"))
+DIJKSTRA_PAIRS = int(os.environ.get("FLEX_NAV_BENCH_DIJKSTRA_PAIRS", "3"))
 DIJKSTRA_MAX = int(os.environ.get("FLEX_NAV_BENCH_DIJKSTRA_MAX", str(2000 * 2000)))  # [cells]
 
 
@@ -150,7 +151,7 @@ def run_size(size: int, repeats: int, planner: GridPlanner, same: GridPlanner) -
         costs = random_map(size, seed)
         long_pairs, mid_pairs = queries(costs, seed)
         flat = (planner.weights[costs] / planner.params.neutral_cost).astype(np.float32).ravel()
-        mine_long: List[float] = []
+        found: Dict[Tuple[Cell, Cell], float] = {}  # flex_nav's A cost of each pair
         for kind, pairs in (("long", long_pairs), ("mid", mid_pairs)):
             for start, goal in pairs:
                 s_idx, g_idx = start[0] * size + start[1], goal[0] * size + goal[1]
@@ -171,12 +172,11 @@ def run_size(size: int, repeats: int, planner: GridPlanner, same: GridPlanner) -
                     not_cheaper = False
                 total_b += 1
                 equal_b += math.isclose(cost_b, pyastar_cost_in_model(same, costs, py_path_b), rel_tol=1e-9)
-                if kind == "long":
-                    mine_long.append(result.cost)
+                found[(start, goal)] = result.cost
         if index == 0 and DIJKSTRA_PAIRS > 0 and size * size <= DIJKSTRA_MAX:
-            subset = long_pairs[:DIJKSTRA_PAIRS]
+            subset = (long_pairs[0::2] + mid_pairs)[:DIJKSTRA_PAIRS]  # the two diagonals, then mid pairs
             exact = dijkstra_costs(costs, planner, [p[0] for p in subset], [p[1] for p in subset])
-            checked.extend(zip(mine_long[: len(subset)], exact))
+            checked.extend(zip([found[p] for p in subset], exact))
     for kind in ("long", "mid"):
         for clock, table in (("wall", times), ("CPU", cpu)):
             mine, ref = table[f"mine_a_{kind}"], table[f"py_a_{kind}"]
