@@ -20,6 +20,10 @@ ROBOT_TOPICS = {
     ("rviz/Path", "Local plan"): "follow_path_server/plan",
     ("rviz/Path", "move_base_like plan"): "move_base_like/plan",
     ("rviz/PoseArray", "Particles"): "particlecloud",
+    ("rviz/PoseArray", "People"): "pure_pursuit_path/people",  # the controllers' tracked people
+    ("rviz/PoseArray", "People (topic follower)"): "pure_pursuit_topic/people",
+    ("rviz/PointStamped", "Bumper contacts"): "bumper_hits",  # bumper_relay's contact points
+    ("rviz/Marker", "Obstacle class"): "obstacle_class_marker",  # obstacle_classifier's class as a text marker
     ("rviz/Odometry", "Odometry"): "odom",
 }
 
@@ -43,8 +47,8 @@ def leaves(displays: List[Dict[str, Any]]) -> Iterator[Dict[str, Any]]:
 def test_displays_and_tools_are_in_the_robots_namespaces(name: str, robots: List[str]) -> None:
     manager = rviz_config(name)["Visualization Manager"]
     assert manager["Global Options"]["Fixed Frame"] == "map"
-    shown = [(d["Class"], d["Name"], d.get("Topic") or d.get("Robot Description"), d.get("TF Prefix"))
-             for d in leaves(manager["Displays"])]
+    shown = [(d["Class"], d["Name"], d.get("Topic") or d.get("Marker Topic") or d.get("Robot Description"),
+              d.get("TF Prefix")) for d in leaves(manager["Displays"])]
     expected: List[Tuple[str, str, str, Optional[str]]] = [("rviz/Map", "Map", "/map", None)]
     for ns in robots:
         expected += [(cls, label, f"/{ns}/{topic}", None) for (cls, label), topic in ROBOT_TOPICS.items()]

@@ -8,7 +8,8 @@ Subscribes ``camera/rgb/image_raw`` (sensor_msgs/Image: rgb8, bgr8, rgba8, bgra8
 model that takes depth (the shipped one does), ``camera/depth/image_raw`` (32FC1 [m] or 16UC1 [mm], REP
 118, registered to the colour image: same field of view, any resolution); a colour frame is classified
 with the depth frame whose stamp is at most ``~max_depth_lag`` away, and skipped if none comes.
-Publishes ``obstacle_class`` (flex_nav/ObstacleClass) after every classified frame and, with a scan
+Publishes ``obstacle_class`` (flex_nav/ObstacleClass) after every classified frame (and the same as an RViz text
+on ``obstacle_class_marker``, :mod:`flex_nav.nodes.obstacle_class_marker`) and, with a scan
 (``~scan_topic``, sensor_msgs/LaserScan, its frame taken as the robot's: x forward), ``obstacle_fusion``
 (std_msgs/String): the camera's vote fused with the lidar's shape of the object ahead
 (:mod:`flex_nav.perception.fusion`, no look taken yet), the decision and both cues on one line.
@@ -63,6 +64,7 @@ from std_srvs.srv import SetBool, SetBoolResponse
 
 from flex_nav.exceptions import ConfigError
 from flex_nav.msg import ObstacleClass
+from flex_nav.nodes.obstacle_class_marker import ClassMarkerPublisher
 from flex_nav.perception.factory import PerceptionConfig, as_names, build
 from flex_nav.perception.frame_pairing import FramePairing
 from flex_nav.perception.fusion import MAX_LOOKS, CameraCue, FusedDecision, FusionParams, fuse
@@ -145,6 +147,7 @@ class ObstacleClassifierNode:
         self._first_colour: Optional[float] = None  # [s] ROS time the first colour image arrived
         self._fresh_frames = 0  # frames classified since the last reset
         self.publisher = rospy.Publisher("obstacle_class", ObstacleClass, queue_size=5)
+        self.class_marker = ClassMarkerPublisher()  # the class as an RViz text marker
         self._read_fusion_params()
         self._scan: Optional[Tuple[float, LaserScan]] = None  # ([s] ROS time of arrival, the newest scan)
         self.fusion_publisher = rospy.Publisher("obstacle_fusion", String, queue_size=5)
@@ -218,7 +221,10 @@ class ObstacleClassifierNode:
             self._last_frame = rospy.get_time()
             self._fresh_frames += 1
             self._cond.notify_all()
-        self.publisher.publish(self._message(vote, prediction, colour))
+        message = self._message(vote, prediction, colour)
+        self.publisher.publish(message)
+        scan = self._scan
+        self.class_marker.publish(message, scan[1].header.frame_id if scan is not None else None)
         self.fusion_publisher.publish(String(data=self.fused(vote).line()))
 
     @staticmethod
