@@ -5,15 +5,17 @@ The camera's class comes from the ``obstacle_class`` topic as in
 :class:`~flex_nav_states.obstacle_class_state.ObstacleClassState` (a person in the latest frame at once, any
 other vote from frames taken ``settle_s`` after entry); the lidar's from the newest ``scan_topic`` scan
 (:func:`flex_nav.perception.lidar_shape.cue_ahead`: the object with the nearest hit in a corridor ahead; the
-scan's frame is taken as the robot's, x forward, as for the back-off's rear check). The two are fused by
-:func:`flex_nav.perception.fusion.fuse` (its module documents the rule); the decision and both cues are logged
-on one line. With ``fuse_lidar`` false the state decides from the camera alone, exactly as ObstacleClassState
+scan's frame is taken as the robot's, x forward, as for the back-off's rear check; the object's speed is its
+centre's displacement since the first scan of the visit, over at least 0.5 s, while the robot stands). The two
+are fused by :func:`flex_nav.perception.fusion.fuse` (its module documents the rule); the decision and both cues
+are logged on one line. With ``fuse_lidar`` false the state decides from the camera alone, exactly as ObstacleClassState
 (it never looks again).
 """
 
 from __future__ import annotations
 
-from typing import Optional
+import math
+from typing import Optional, Tuple
 
 from sensor_msgs.msg import LaserScan
 
@@ -28,6 +30,8 @@ from flex_nav_states import validation
 from flex_nav_states.messages import message_age_s
 from flex_nav_states.obstacle_class_state import DECIDED, ClassReader
 from flex_nav_states.proxy_types import SubscriptionLike, proxies_of
+
+MOVING_WINDOW_S = 0.5  # [s] the object's speed is measured over at least this long (centre noise ~1 cm: < 0.05 m/s)
 
 
 class ObstacleFusionState(State):
@@ -102,6 +106,7 @@ class ObstacleFusionState(State):
             raise ConfigError(f"{owner}: {err}") from err
         self._scan: Optional[SubscriptionLike] = None
         self._enter_s = 0.0
+        self._first_centre: Optional[Tuple[float, Tuple[float, float]]] = None  # ([s], (x, y) [m]) of this visit
 
     def on_start(self) -> None:
         self._reader.start(self)
@@ -110,6 +115,7 @@ class ObstacleFusionState(State):
 
     def on_enter(self, userdata: UserDataView) -> None:
         self._enter_s = self.now_s()
+        self._first_centre = None
 
     def execute(self, userdata: UserDataView) -> Optional[str]:
         label, msg = self._reader.settled(self, self._enter_s + self._settle_s)
@@ -151,5 +157,25 @@ class ObstacleFusionState(State):
         scan = sub.last()
         if scan is None or message_age_s(scan, sub, self.now_s()) > self._scan_max_age_s:
             return ShapeCue(UNSURE, 0.0, f"no scan on {self._scan_topic} newer than {self._scan_max_age_s:g} s")
+        cue = cue_ahead(scan.ranges, scan.angle_min, scan.angle_increment, scan.range_min, scan.range_max,
+                        reach_m=self._reach_m, half_width_m=self._half_width_m)
+        speed = self._object_speed(cue)
+        if speed is None:
+            return cue
         return cue_ahead(scan.ranges, scan.angle_min, scan.angle_increment, scan.range_min, scan.range_max,
-                         reach_m=self._reach_m, half_width_m=self._half_width_m)
+                         reach_m=self._reach_m, half_width_m=self._half_width_m, speed_mps=speed)
+
+    def _object_speed(self, cue: ShapeCue) -> Optional[float]:
+        """[m/s] how fast the object's centre moved since the first cue of this visit (the robot stands while it
+        classifies), once at least MOVING_WINDOW_S apart; None before that or without an object."""
+        if cue.features is None:
+            return None
+        now = self.now_s()
+        if self._first_centre is None:
+            self._first_centre = (now, cue.features.centre)
+            return None
+        start_s, (x0, y0) = self._first_centre
+        if now - start_s < MOVING_WINDOW_S:
+            return None
+        x1, y1 = cue.features.centre
+        return math.hypot(x1 - x0, y1 - y0) / (now - start_s)

@@ -50,7 +50,8 @@ def decide(state: ObstacleFusionState, label: Optional[str], confidence: float =
     while h.clock.now() <= end:
         if label is not None:
             camera.inject(class_msg(label, h.clock.now(), confidence, frame_label))
-        lidar.inject(scan_msg(h.clock.now(), polygons, circles))
+        shapes = polygons(h.clock.now() - START_S) if callable(polygons) else polygons
+        lidar.inject(scan_msg(h.clock.now(), shapes, circles))
         if h.tick():
             return h.executor.result(), h
         h.advance(STEP_S)
@@ -84,6 +85,16 @@ def test_a_person_on_the_lidar_decides_at_once_whatever_the_camera() -> None:
     result, h = decide(ObstacleFusionState(settle_s=1.0, timeout_s=3.0), "movable", polygons=NOTHING, circles=body)
     assert result.outcome == "person" and result.outputs["obstacle_fusion"].startswith("fused person (row 2")
     assert h.clock.now() - START_S < 0.5  # at once, not after the camera's settle_s
+
+
+def test_a_box_shape_that_moves_is_a_person() -> None:
+    def cart(t: float) -> list:  # something box-shaped wheeled across the way at 0.4 m/s
+        return [box_corners(0.75, -0.2 + 0.4 * t, 0.4, 0.4, 0.0)]
+
+    result, _ = decide(ObstacleFusionState(settle_s=1.0, timeout_s=3.0), "clear", polygons=cart)
+    assert result.outcome == "person" and "(moves at 0.3" in result.outputs["obstacle_fusion"], result.outputs
+    standing, _ = decide(ObstacleFusionState(settle_s=1.0, timeout_s=3.0, max_looks=0), "clear")
+    assert standing.outcome == "movable" and "speed 0.0" in standing.outputs["obstacle_fusion"]  # measured: still
 
 
 def test_a_person_in_the_cameras_latest_frame_is_a_person() -> None:
