@@ -3,8 +3,9 @@
 ``pure_pursuit_path`` serves FollowPath (the path is in the goal); ``pure_pursuit_topic`` serves FollowTopic
 (it follows the newest nav_msgs/Path on the topic named in the goal, e.g. a follow server's ``plan``).
 Both publish geometry_msgs/TwistStamped on ``cmd_vel_stamped`` (see ``twist_relay`` for a Twist driver), and
-the robot's footprint on ``footprint`` (geometry_msgs/PolygonStamped, latched, in ``~robot_base_frame``: the
-circle of the local costmap's ``robot_radius``, :func:`flex_nav.nav.footprint.circle_footprint`), for RViz.
+the robot's footprint on ``footprint`` (geometry_msgs/PolygonStamped, latched and sent again every 0.2 s, in
+``~robot_base_frame``: the circle of the local costmap's ``robot_radius``,
+:func:`flex_nav.nav.footprint.circle_footprint`), for RViz.
 
 Control ticks are synchronised to odometry: a tick runs as soon as a new ``odom`` message has arrived and
 one period of ``~controller_frequency`` has passed since the previous tick (so the rate never exceeds it,
@@ -95,6 +96,9 @@ class Wake(enum.Enum):
     LINK_LOST = "link lost"
 
 
+FOOTPRINT_PERIOD_S = 0.2  # [s] (ROS time) the footprint is published again this often, for RViz
+
+
 def footprint_msg(radius_m: float, base_frame: str) -> PolygonStamped:
     """The footprint polygon of a round base of ``radius_m`` [m] in ``base_frame`` (stamp 0: valid at any time)."""
     msg = PolygonStamped()
@@ -172,8 +176,12 @@ class PurePursuitController(FollowNode):
         self.cmd_publisher = rospy.Publisher("cmd_vel_stamped", TwistStamped, queue_size=1, tcp_nodelay=True)
         self.footprint_publisher = rospy.Publisher("footprint", PolygonStamped, queue_size=1, latch=True)
         if self.costmap.inflation.inscribed_radius > 0.0:  # a point robot (robot_radius 0) has no outline to draw
-            self.footprint_publisher.publish(footprint_msg(self.costmap.inflation.inscribed_radius,
-                                                          self.robot_base_frame))
+            footprint = footprint_msg(self.costmap.inflation.inscribed_radius, self.robot_base_frame)
+            self.footprint_publisher.publish(footprint)
+            # RViz's Polygon display places a polygon once, where its frame is when it arrives: sent once, the
+            # footprint stayed where the robot started; sent again it follows the robot
+            self._footprint_timer = rospy.Timer(rospy.Duration(FOOTPRINT_PERIOD_S),
+                                                lambda _event: self.footprint_publisher.publish(footprint))
         self._shut_down = False  # set by the shutdown hook: no moving command after its zero twist
         rospy.on_shutdown(self._on_shutdown)
         self.odom_subscriber = rospy.Subscriber("odom", Odometry, self._on_odom, queue_size=1, tcp_nodelay=True)
