@@ -58,7 +58,7 @@ def label_of(cmdline: List[str]) -> str:
             return arg.split(":=", 1)[1]
     for arg in cmdline[:3]:
         base = os.path.basename(arg)
-        if base in ("sim", "map_server", "roscore", "rosmaster", "roslaunch", "record"):
+        if base in ("sim", "map_server", "obstacle_classifier", "roscore", "rosmaster", "roslaunch", "record"):
             return base
     return ""
 
