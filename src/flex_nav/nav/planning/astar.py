@@ -22,8 +22,10 @@ do). It has three parts:
 "The same f" is decided without trusting floating-point sums to be exact: a successor entered at the
 cheapest weight along the heuristic's own path (its octile distance falls by exactly the move's step) has
 its node's f in exact arithmetic; otherwise two f values count as one when they differ by at most
-``ROUNDING`` (1e-12) relative, far below the 1e-9 to which costs are compared and far above the rounding
-of the sums (about 1e-16 per term).
+``ROUNDING`` (1e-12) relative: far below the 1e-9 to which costs are compared, above the rounding of the
+sums (1.1e-16 per added term, about 1e-14 after the 1e4 steps of a long path). Two really different f
+values that close may be popped in either order; the cost found can then exceed the optimum by that much
+(1e-12 relative), which is the precision the costs have anyway.
 
 To avoid clearing H·W arrays on every query, the per-cell arrays are reused across queries and a cell's
 entries count only when its ``state`` stamp equals the query's generation number.
@@ -42,8 +44,7 @@ NO_PARENT = -1
 _D_ROW = np.array([-1, 1, 0, 0, -1, -1, 1, 1], dtype=np.int64)
 _D_COL = np.array([0, 0, -1, 1, -1, 1, -1, 1], dtype=np.int64)
 BUCKETS = 4096  # ring of f buckets (a power of two)
-# relative difference of two f values that is taken for floating-point rounding of one real value: f sums
-# ~1e4 terms, each rounded to 1.1e-16 relative; path costs are compared to 1e-9 relative
+# relative difference of two f values taken for floating-point rounding of one real value (see above)
 ROUNDING = 1e-12
 # what astar returns as the expanded count when one of the queue's arrays is full
 FULL_HEAP = -1
