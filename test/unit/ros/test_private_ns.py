@@ -62,7 +62,8 @@ def test_components_list_valid_and_invalid() -> None:
         component_names(["get_plan"])
     with pytest.raises(ConfigError, match="twice"):
         component_names(["twist_relay", "twist_relay"])
-    for empty in ([], "get_path_server", None):
+    not_a_list: List[object] = [[], "get_path_server", None]
+    for empty in not_a_list:
         with pytest.raises(ConfigError, match="non-empty list"):
             component_names(empty)
     assert set(DEFAULT_COMPONENTS) < set(COMPONENTS)
