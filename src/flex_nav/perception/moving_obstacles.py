@@ -198,8 +198,10 @@ class MovingObstacleTracker:
         flt.stamp_s = stamp_s
 
     def _correct(self, flt: _Filter, seg: Segment, stamp_s: float) -> None:
-        h_cov = flt.cov[:2, :2] + self._meas_cov
-        gain = flt.cov[:, :2] @ np.linalg.inv(h_cov)
+        (a, b), (c, d) = (flt.cov[:2, :2] + self._meas_cov).tolist()
+        det = a * d - b * c  # > 0: a covariance plus the measurement noise
+        # the 2x2 inverse in closed form: np.linalg.inv's per-call overhead was 40 % of a controller's time in S4
+        gain = flt.cov[:, :2] @ np.array([[d, -b], [-c, a]]) * (1.0 / det)
         innovation = np.array([seg.x, seg.y]) - flt.state[:2]
         flt.state = flt.state + gain @ innovation
         flt.cov = flt.cov - gain @ flt.cov[:2, :]
