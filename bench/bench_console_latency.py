@@ -14,7 +14,9 @@ for a page opened afterwards (its snapshot). Target: first shown <= 1 s.
 
 ``--soak MINUTES``: instead, the memory of the console node (resident set) and of the page (JS heap, DOM nodes)
 sampled every minute while the fake runner sends 20 transitions, 20 activity updates and 5 log lines a second
-(a busy behavior; the demo's runner sends far fewer) -- the issue's "flat over 30 min".
+(a busy behavior; the demo's runner sends far fewer) -- the issue's "flat over 30 min". ``--soak MINUTES --url
+http://127.0.0.1:PORT/``: the same samples of a console already running (the demo's: ``tools/demo.sh --console PORT
+--hold``, its real runners and the map view's overlays), found by its port; nothing is started but the browser.
 
 Prints each figure with its ratio to the target and the machine's load average beside it (2 cores shared with
 other work here: the figures move with the load), then PASS or FAIL (exit status 1). Needs Debian's chromium and
@@ -29,7 +31,7 @@ import sys
 import tempfile
 import time
 from pathlib import Path
-from typing import Any, Dict, List, Tuple
+from typing import Any, Callable, Dict, List, Tuple
 
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO / "src"))
@@ -199,13 +201,13 @@ def console_pid(group: int) -> int:
     return group
 
 
-def soak(browser: HeadlessBrowser, runner: FakeRunner, pid: int, minutes: float) -> bool:
-    """Memory samples every SOAK_SAMPLE_S while the runner is busy; True when neither grew by more than 20 %
-    (and 20 MB) from the second sample to the last."""
+def soak(browser: HeadlessBrowser, busy: Callable[[float], None], pid: int, minutes: float) -> bool:
+    """Memory samples every SOAK_SAMPLE_S while ``busy(seconds)`` keeps the console busy (or just waits); True when
+    neither grew by more than 20 % (and 20 MB) from the second sample to the last."""
     page = ("return [performance.memory ? performance.memory.usedJSHeapSize / 1048576 : -1, "
             "document.getElementsByTagName('*').length];")
     samples: List[Tuple[float, float, float, int]] = []
-    started, i = time.monotonic(), 0
+    started = time.monotonic()
     print("minute  console RSS [MB]  page JS heap [MB]  page DOM nodes  load (1 min)")
     while True:
         heap, nodes = browser.script(page)
@@ -215,12 +217,41 @@ def soak(browser: HeadlessBrowser, runner: FakeRunner, pid: int, minutes: float)
               f"{os.getloadavg()[0]:.2f}", flush=True)
         if elapsed >= minutes:
             break
-        i = runner.busy(min(SOAK_SAMPLE_S, (minutes - elapsed) * 60.0), SOAK_HZ, i)
+        busy(min(SOAK_SAMPLE_S, (minutes - elapsed) * 60.0))
     base, last = samples[min(1, len(samples) - 1)], samples[-1]
     flat = all(last[k] <= max(base[k] * 1.2, base[k] + 20.0) for k in (1, 2))
-    print(f"{i} transitions in {last[0]:.1f} min; console {base[1]:.1f} -> {last[1]:.1f} MB, page heap "
+    print(f"{last[0]:.1f} min; console {base[1]:.1f} -> {last[1]:.1f} MB, page heap "
           f"{base[2]:.1f} -> {last[2]:.1f} MB, DOM nodes {base[3]} -> {last[3]}: {'flat' if flat else 'GROWS'}")
     return flat
+
+
+def console_by_port(port: int) -> int:
+    """The console node's Python process serving ``port`` (its ``_port:=PORT`` argument); 0 when none."""
+    for entry in Path("/proc").iterdir():
+        try:
+            args = (entry / "cmdline").read_bytes().split(b"\0") if entry.name.isdigit() else []
+        except OSError:
+            continue
+        text = b" ".join(args).decode(errors="replace")
+        if "python" in text and "console" in text and "rosrun" not in text and f"_port:={port}" in text:
+            return int(entry.name)
+    return 0
+
+
+def soak_attached(url: str, minutes: float) -> int:
+    """``--soak MINUTES --url URL``: sample a console that runs already; the exit status."""
+    pid = console_by_port(int(url.rstrip("/").rsplit(":", 1)[1]))
+    if not pid:
+        print(f"no console node serving {url} found", file=sys.stderr)
+        return 2
+    with HeadlessBrowser(extra_arguments=("--enable-precise-memory-info",)) as browser:
+        browser.driver.get(url)
+        wait(browser, "return document.querySelectorAll('#graph svg g.node').length > 0;", "a runner's graph drawn")
+        wait(browser, "return document.getElementById('map-info').textContent.startsWith('map ');", "the map shown")
+        print(f"console node {pid} at {url}; the page shows the graph and the map ({load()})")
+        flat = soak(browser, time.sleep, pid, minutes)
+    print(f"{'PASS' if flat else 'FAIL'}: memory over {minutes:g} min ({load()})")
+    return 0 if flat else 1
 
 
 def wait(browser: HeadlessBrowser, script: str, what: str) -> Any:
@@ -272,6 +303,8 @@ def map_first_shown(browser: HeadlessBrowser, url: str) -> Tuple[float, float, f
 
 def main() -> int:
     soak_minutes = float(sys.argv[sys.argv.index("--soak") + 1]) if "--soak" in sys.argv else 0.0
+    if soak_minutes > 0 and "--url" in sys.argv:
+        return soak_attached(sys.argv[sys.argv.index("--url") + 1], soak_minutes)
     with tempfile.TemporaryDirectory() as home:
         master = PrivateMaster(ros_home=Path(home) / "ros_home").start()
         os.environ.update(master.env)
@@ -300,7 +333,13 @@ def main() -> int:
                 wait(browser, "return document.querySelectorAll('#graph svg g.node').length > 0;",
                      "the runner's graph drawn")
                 if soak_minutes > 0:
-                    flat = soak(browser, runner, console_pid(console.popen.pid), soak_minutes)
+                    transitions = [0]
+
+                    def busy(seconds: float) -> None:
+                        transitions[0] = runner.busy(seconds, SOAK_HZ, transitions[0])
+
+                    flat = soak(browser, busy, console_pid(console.popen.pid), soak_minutes)
+                    print(f"{transitions[0]} transitions sent")
                     print(f"{'PASS' if flat else 'FAIL'}: memory over {soak_minutes:g} min ({load()})")
                     return 0 if flat else 1
                 before = load()
