@@ -8,7 +8,9 @@ screenshots until the robots have driven and the view shows everything. The test
 the 3D view is there and not blank, the map's free and occupied cells (lethal costmap cells over them) in their
 colours, the scan, the footprint following the robot and the global plan drawn; RViz ran to the end and logged no
 ERROR (an unknown display class, a config it cannot parse, a topic of the wrong type are ERRORs). With RViz missing
-the command fails with "rviz ... not installed: run tools/install.sh", and so do the tests.
+the command fails with "rviz ... not installed: run tools/install.sh", and so do the tests. A last test runs RViz
+without the stack and checks that the displays of a bumper contact, a tracked person and the classifier's class
+text draw what ``rostopic pub`` sends them (the demo's run shows none of them).
 """
 
 from __future__ import annotations
@@ -107,3 +109,58 @@ def test_two_robots_in_multi_robot_config(two_robots: Shown) -> None:
     assert facts["rviz_running"] and rviz_errors(log) == [], rviz_errors(log)
     for robot, at_robot in enumerate(footprint_rings(two_robots), 1):
         assert at_robot >= 0.6, f"robot{robot}: no footprint outline around it (ring coverage {at_robot:.2f})"
+
+
+MARKER_TOPICS = [  # (topic, type, message): what the new displays of flex_nav.rviz show, placed in the map frame
+    ("/robot1/bumper_hits", "geometry_msgs/PointStamped", "{header: {frame_id: map}, point: {x: 2.0, y: 2.0}}"),
+    ("/robot1/pure_pursuit_path/people", "geometry_msgs/PoseArray",
+     "{header: {frame_id: map}, poses: [{position: {x: 6.0, y: 4.0}, orientation: {w: 1.0}}]}"),
+    ("/robot1/obstacle_class_marker", "visualization_msgs/Marker",
+     "{header: {frame_id: map}, ns: obstacle_class, type: 9, action: 0, pose: {position: {x: 2.0, y: 5.0}, "
+     "orientation: {w: 1.0}}, scale: {z: 0.4}, color: {r: 0.35, g: 1.0, b: 0.35, a: 1.0}, text: 'movable 0.93 (5/5)'}"),
+]
+
+
+def test_marker_displays_draw_their_topics(tmp_path: Path) -> None:
+    """RViz with flex_nav.rviz and no stack: a bumper contact, a tracked person and a class text published by
+    ``rostopic pub`` are drawn where they are, in their displays' colours."""
+    import time  # noqa: PLC0415
+
+    from flex_nav.apps.rviz_screenshot import SCREEN, checked_setup, tinted, view_geometry  # noqa: PLC0415
+    from flex_nav.testing.private_master import PrivateMaster  # noqa: PLC0415
+    from flex_nav.testing.process import ManagedProcess  # noqa: PLC0415
+    from flex_nav.testing.xvfb import VirtualDisplay  # noqa: PLC0415
+
+    config = checked_setup(REPO_ROOT / "rviz" / "flex_nav.rviz")
+    scale, centre = view_geometry(config)
+    wanted = {"bumper contact": ((2.0, 2.0), (255, 0, 255)), "person": ((6.0, 4.0), (255, 255, 0)),
+              "class text": ((2.0, 5.0), (89, 255, 89))}  # (map point [m], colour)
+    found: Dict[str, int] = {}
+    with PrivateMaster(ros_home=tmp_path / "ros_home") as master, \
+            VirtualDisplay(*SCREEN, log_path=tmp_path / "xvfb.log") as display:
+        processes = [ManagedProcess(["rostopic", "pub", "-r", "2", topic, kind, message], env=master.env,
+                                    log_path=tmp_path / f"pub{k}.log") for k, (topic, kind, message) in
+                     enumerate(MARKER_TOPICS)]
+        rviz = ManagedProcess(["rviz", "-d", str(config)], env=display.env(master.env),
+                              log_path=tmp_path / "rviz.log")
+        try:
+            deadline = time.monotonic() + 60.0
+            while time.monotonic() < deadline:
+                time.sleep(2.0)
+                assert rviz.running(), rviz.log_tail()
+                rgb = read_png(display.screenshot(tmp_path / "markers.png"))
+                view = analyse(rgb).view
+                assert view is not None
+                for name, (point, colour) in wanted.items():
+                    cx, cy = map_to_pixel(view, scale, centre, *point)
+                    patch = rgb[int(cy) - 40:int(cy) + 40, int(cx) - 90:int(cx) + 90]
+                    found[name] = int(tinted(patch, colour).sum())
+                if all(count >= 20 for count in found.values()):
+                    break
+        finally:
+            rviz.stop()
+            for proc in processes:
+                proc.stop()
+    log = (tmp_path / "rviz.log").read_text(errors="replace")
+    assert all(count >= 20 for count in found.values()), f"pixels of each marker's colour where it is: {found}"
+    assert rviz_errors(log) == [], rviz_errors(log)
