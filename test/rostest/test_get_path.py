@@ -80,9 +80,12 @@ class TestGetPath(unittest.TestCase):
         return [(p.pose.position.x, p.pose.position.y) for p in plan.poses]
 
     def assert_on_free_cells(self, plan):
+        """No plan point on an occupied cell. The unknown patch (x 6.0..7.0, y 0.5..1.0) counts as free: the global
+        costmap runs without track_unknown_space, as costmap_2d's default; a plan to (7.0, 1.0), the patch's
+        corner, may run along its top row or the row above at the same cost."""
         for x, y in self.points(plan):
             row, col = self.grid.world_to_cell(x, y)
-            self.assertEqual(self.grid.occupancy[row, col], 0, f"plan point ({x:.2f}, {y:.2f}) is not free")
+            self.assertIn(self.grid.occupancy[row, col], (0, -1), f"plan point ({x:.2f}, {y:.2f}) is not free")
 
     def test_plan_around_the_wall(self):
         state, result = self.ask(goal_msg(7.0, 1.0, q=(0.0, 0.0, math.sin(0.5), math.cos(0.5))))

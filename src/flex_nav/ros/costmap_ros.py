@@ -14,7 +14,8 @@ Parameters (private, under ``~<name>/``; units in brackets):
 - ``bumper_topic`` (str, "bumper_hits"; geometry_msgs/PointStamped contact points; "" for none) and
   ``bumper_memory`` [s] (60.0): contacts stay lethal this long, through lidar clearing and clear_costmap
 - ``robot_radius`` [m] (inscribed radius, 0.18), ``inflation_radius`` [m] (0.5), ``cost_scaling_factor`` [1/m] (5.0)
-- ``track_unknown_space`` (bool, false), ``update_frequency`` [Hz] (5.0), ``publish_frequency`` [Hz] (1.0)
+- ``track_unknown_space`` (bool, false), ``update_frequency`` [Hz] (5.0), ``publish_frequency`` [Hz] (1.0; at
+  most the update frequency: a publication follows an update on the same timer; 0: never)
 - ``transform_tolerance`` [s] (0.5)
 
 Publishes the costmap as OccupancyGrid on ``~<name>/costmap``. The node serves ClearCostmap on
@@ -132,11 +133,11 @@ class CostmapROS:
         if bumper_topic:
             self._subscribers.append(rospy.Subscriber(bumper_topic, PointStamped, self._on_bumper_hit, queue_size=10))
         # reset=True: a timer whose ROS time jumps back (a restarted simulator, a looped bag) goes on
+        # one timer thread for updating and publishing: every thread sleeping on ROS time is woken by every
+        # /clock message (rospy), a real cost when several components share a process
+        self._publish_period_s = 1.0 / publish_hz if publish_hz > 0 else math.inf  # [s] ROS time
+        self._published_s = -math.inf  # [s] ROS time of the last publication
         self._update_timer = rospy.Timer(rospy.Duration(1.0 / update_hz), self._on_update_timer, reset=True)
-        self._publish_timer = (
-            rospy.Timer(rospy.Duration(1.0 / publish_hz), self._on_publish_timer, reset=True)
-            if publish_hz > 0 else None
-        )
         self._clear_server: Optional[actionlib.SimpleActionServer] = None
 
     # ------------------------------------------------------------------ inputs
@@ -222,13 +223,17 @@ class CostmapROS:
         rospy.loginfo(f"{self.name}: bumper hit marked at ({x:.2f}, {y:.2f}) in {self.global_frame}")
 
     # ------------------------------------------------------------------ upkeep
-    def _on_update_timer(self, _event: rospy.timer.TimerEvent) -> None:
+    def _on_update_timer(self, event: rospy.timer.TimerEvent) -> None:
         try:
             self._update()
         except Exception as err:  # an exception would end rospy's timer thread: the costmap would freeze
             rospy.logerr_throttle(5.0, f"{self.name}: costmap update failed: {err!r}")
-
-    def _on_publish_timer(self, _event: rospy.timer.TimerEvent) -> None:
+        now_s = event.current_real.to_sec()
+        if now_s < self._published_s:  # ROS time went back (a restarted simulation): publish on the new timeline
+            self._published_s = -math.inf
+        if now_s - self._published_s < self._publish_period_s - 1e-6:
+            return
+        self._published_s = now_s
         try:
             self.publish()
         except Exception as err:  # as above: the next tick tries again
