@@ -41,7 +41,10 @@ Parameters (private): ``global_frame`` ("map"), ``robot_base_frame`` ("base_foot
 ``blocked``), ``blocked_timeout`` [s] (0.5), ``yield_to_people`` (false; true: track moving obstacles in the
 scan and give way to them, ``yielding/*`` and ``people_tracker/*``, see
 :mod:`flex_nav.ros.moving_obstacles_ros`), ``pure_pursuit/*``
-(:class:`flex_nav.nav.control.pure_pursuit.PurePursuitParams` by name; unknown names are rejected).
+(:class:`flex_nav.nav.control.pure_pursuit.PurePursuitParams` by name; unknown names are rejected),
+``social_distance/enabled`` (false; true: keep ``social_distance/min_distance_m`` (0.3 m) between the footprint
+and every tracked person while moving, slowing from ``slow_distance_m``; the other fields of
+:class:`flex_nav.nav.control.social_distance.SocialParams` by name; tracks people as ``yield_to_people`` does).
 """
 
 from __future__ import annotations
@@ -70,7 +73,7 @@ from flex_nav.ros.costmap_ros import CostmapROS
 from flex_nav.ros.frames import TfSource, frame_pose, path_in_frame
 from flex_nav.ros.goal_server import GoalOutcome, GoalTicket
 from flex_nav.ros.heartbeat import HeartbeatListener
-from flex_nav.ros.moving_obstacles_ros import MovingObstaclesROS, yield_rule
+from flex_nav.ros.moving_obstacles_ros import MovingObstaclesROS, social_rule, yield_rule
 from flex_nav.ros.params import param_bool, param_float, param_str
 from flex_nav.ros.private_ns import private_name
 from flex_nav.ros.proxies import SHUTDOWN_DRAIN_S, drain_publisher
@@ -81,7 +84,7 @@ PARAMETERS = (
     "global_frame", "robot_base_frame", "controller_frequency", "sensor_timeout", "sensor_grace", "collision_timeout",
     "transform_timeout", "topic_timeout", "feedback_frequency", "local_costmap", "pure_pursuit",
     "blocked_distance", "blocked_timeout", "yield_to_people", "yielding", "people_tracker", "client_timeout",
-    "localization_timeout", "heartbeat_timeout",
+    "localization_timeout", "heartbeat_timeout", "social_distance",
 )
 CLOCK_CHECK_PERIOD_S = 0.05  # [s] wall: longest wait in the control loop before ROS time is looked at again
 
@@ -150,7 +153,9 @@ class PurePursuitController(FollowNode):
         warm_up(params)
         sensors = ["odom", "scan"] if self.costmap.scan_topic else ["odom"]
         yield_to_people = param_bool("~yield_to_people", False)
-        self.people = MovingObstaclesROS(self.tf_buffer, self.global_frame) if yield_to_people else None
+        social = social_rule()
+        self.people = (MovingObstaclesROS(self.tf_buffer, self.global_frame)
+                       if yield_to_people or social is not None else None)
         yielding = (yield_rule(self.costmap.inflation.inscribed_radius, params.desired_linear_vel)
                     if yield_to_people else None)
         sensor_timeout_s = param_float("~sensor_timeout", 0.5, 0.01, 600.0)
@@ -168,6 +173,9 @@ class PurePursuitController(FollowNode):
             blocked_timeout_s=param_float("~blocked_timeout", 0.5, 0.0, 600.0),
             yielding=yielding,
             sensor_grace_s=param_float("~sensor_grace", 0.0, 0.0, 600.0),
+            social=social,
+            footprint=(circle_footprint(self.costmap.inflation.inscribed_radius)
+                       if social is not None and self.costmap.inflation.inscribed_radius > 0.0 else None),
         )
         self._odom: Optional[Odometry] = None
         self._odom_count = 0

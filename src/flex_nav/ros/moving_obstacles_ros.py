@@ -32,7 +32,8 @@ from nav_msgs.msg import OccupancyGrid
 from sensor_msgs.msg import LaserScan as LaserScanMsg
 from std_msgs.msg import Bool
 
-from flex_nav.exceptions import ConfigError
+from flex_nav.exceptions import ConfigError, choices_message
+from flex_nav.nav.control.social_distance import SocialDistanceRule, SocialParams
 from flex_nav.nav.control.yielding import YieldDecision, YieldMode, YieldParams, YieldRule
 from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.perception.moving_obstacles import MovingObstacleTracker, Track, TrackerParams
@@ -67,6 +68,31 @@ def yield_rule(robot_radius_m: float, speed_mps: float) -> YieldRule:
         return YieldRule(YieldParams.from_mapping(values))
     except (ConfigError, TypeError) as err:
         raise ConfigError(f"{rospy.resolve_name(private_name(YIELD_NS))}: {err}") from err
+
+
+SOCIAL_NS = "~social_distance"
+
+
+def social_rule() -> Optional[SocialDistanceRule]:
+    """The SocialDistanceRule from ``~social_distance/``: ``enabled`` (false) and the fields of
+    :class:`~flex_nav.nav.control.social_distance.SocialParams` by name; None when not enabled."""
+    name = rospy.resolve_name(private_name(SOCIAL_NS))
+    raw = rospy.get_param(private_name(SOCIAL_NS), {})
+    if not isinstance(raw, dict):
+        raise ConfigError(f"parameter {name} must be a dictionary, got {raw!r}")
+    values = dict(raw)
+    enabled = values.pop("enabled", False)
+    if not isinstance(enabled, bool):
+        raise ConfigError(f"parameter {name}/enabled = {enabled!r} is not true/false")
+    valid = [f.name for f in dataclasses.fields(SocialParams)]
+    for key in values:
+        if key not in valid:
+            raise ConfigError(choices_message(f"parameter {name}: name", key, ["enabled", *valid]))
+    try:
+        rule = SocialDistanceRule(SocialParams(**{k: float(v) for k, v in values.items()}))
+    except (ConfigError, TypeError, ValueError) as err:
+        raise ConfigError(f"{name}: {err}") from err
+    return rule if enabled else None
 
 
 def people_message(tracks: List[Track], frame: str, stamp: rospy.Time) -> PoseArray:

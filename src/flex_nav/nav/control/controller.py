@@ -22,7 +22,10 @@ and so does every failure:
   to :meth:`SafeFollower.tick`, people walking into the path are given way to: while the rule is active its
   command replaces the controller's, and neither the blocked-path watch nor the collision timeout runs
   (a person crossing is waited for, not reported as a blocked path); nor does an obstacle on the path
-  that a walking person explains (see :meth:`YieldRule.explains`) count as blocking it.
+  that a walking person explains (see :meth:`YieldRule.explains`) count as blocking it;
+- with a ``social`` distance rule (off by default; :mod:`flex_nav.nav.control.social_distance`) and the robot's
+  ``footprint``, every moving command (the controller's or the yield rule's) is scaled down so the footprint
+  keeps ``min_distance_m`` from every tracked person: slower near people, stopped early, never toward one.
 
 Pure: the node passes times (one clock, [s]) and callables for the pose and the local costmap.
 """
@@ -40,6 +43,7 @@ from flex_nav.exceptions import ConfigError, FlexNavError
 from flex_nav.nav.control.blocked import BlockedPathWatch, obstacle_on_path
 from flex_nav.nav.control.pure_pursuit import Command, PurePursuitParams, PursuitStatus, RegulatedPurePursuit
 from flex_nav.nav.control.safety import SensorWatchdog
+from flex_nav.nav.control.social_distance import SocialDistanceRule, SocialLimit
 from flex_nav.nav.control.yielding import YieldDecision, YieldRule
 from flex_nav.nav.costmap.costmap_grid import CostmapGeometry
 from flex_nav.nav.path import as_path, cumulative_lengths
@@ -70,6 +74,7 @@ class Decision:
     reason: str = ""
     command: Optional[Command] = None  # pure pursuit's output, when it ran
     yielded: Optional[YieldDecision] = None  # the yield rule's decision, when it replaced the command
+    social: Optional[SocialLimit] = None  # the social distance rule's limit, when it slowed the command
 
     @property
     def stops(self) -> bool:
@@ -96,7 +101,10 @@ class SafeFollower:
         blocked_timeout_s: float = 0.5,
         yielding: Optional[YieldRule] = None,
         sensor_grace_s: float = 0.0,
+        social: Optional[SocialDistanceRule] = None,
+        footprint: Optional[np.ndarray] = None,
     ) -> None:
+        """``social`` needs ``footprint``: the robot's outline, (N, 2) [m] in its base frame."""
         for name, value in (("collision_timeout_s", collision_timeout_s), ("nominal_period_s", nominal_period_s),
                             ("sensor_grace_s", sensor_grace_s)):
             if not math.isfinite(value) or value < 0.0:
@@ -114,6 +122,12 @@ class SafeFollower:
         self._yielding_since_s: Optional[float] = None  # [s] giving way to people without a break since then
         self.blocked = BlockedPathWatch(blocked_distance_m, blocked_timeout_s)
         self.yielding = yielding  # give way to moving tracks (None: off)
+        if social is not None and (footprint is None or np.asarray(footprint).ndim != 2
+                                   or np.asarray(footprint).shape[0] < 3 or np.asarray(footprint).shape[1] != 2):
+            raise ConfigError(f"a social distance rule needs the footprint as (N >= 3, 2) corners [m], got "
+                              f"{None if footprint is None else np.asarray(footprint).shape}")
+        self.social = social  # keep a distance from tracked people (None: off)
+        self.footprint = None if footprint is None else np.asarray(footprint, dtype=np.float64)
         # the last guard's limits: max_angular_vel [rad/s]; desired_linear_vel or the hurry speed [m/s]
         self._w_max = params.max_angular_vel
         self._v_max = max(params.desired_linear_vel, yielding.params.hurry_speed_mps if yielding else 0.0)
@@ -224,11 +238,11 @@ class SafeFollower:
             return _stop(Outcome.SUCCEEDED, "goal reached", command)
         if status is PursuitStatus.INVALID_INPUT:
             return _stop(Outcome.ABORTED, command.reason, command)
-        moving = list(tracks()) if self.yielding is not None else []
+        moving = list(tracks()) if self.yielding is not None or self.social is not None else []
         s_robot = float(self._lengths[-1]) - command.distance_to_goal  # [m] along the path (nan: unknown)
         given_way = self._give_way(now_s, robot, command, moving, costmap, velocity[0], s_robot)
         if given_way is not None:
-            return given_way
+            return self._keep_distance(given_way, robot, moving)
         if self.blocked.enabled and costs is not None and geometry is not None and self._path is not None:
             obstacle = (obstacle_on_path(self._path, self._lengths, s_robot, distance_m=self.blocked.distance_m,
                                          costs=costs, geometry=geometry)
@@ -249,7 +263,18 @@ class SafeFollower:
         self._blocked_since_s = None
         if not (math.isfinite(command.v) and math.isfinite(command.w)):
             return _stop(Outcome.ABORTED, f"internal error: non-finite command ({command.v}, {command.w})", command)
-        return Decision(command.v, command.w, Outcome.RUNNING, command.reason, command)
+        return self._keep_distance(Decision(command.v, command.w, Outcome.RUNNING, command.reason, command), robot,
+                                   moving)
+
+    def _keep_distance(self, decision: Decision, robot: Pose2D, people: Sequence[Track]) -> Decision:
+        """``decision`` with its command scaled by the social distance rule (unchanged when the rule is off, the
+        robot stands, or nobody limits it)."""
+        if self.social is None or self.footprint is None or decision.stops or not people:
+            return decision
+        limit = self.social.limit(robot, self.footprint, decision.v, decision.w, people)
+        if limit.scale >= 1.0:
+            return decision
+        return replace(decision, v=limit.v, w=limit.w, reason=f"{decision.reason}; {limit.reason}", social=limit)
 
     def _give_way(self, now_s: float, robot: Pose2D, command: Command, tracks: Sequence[Track],  # noqa: PLR0917
                   costmap: LocalCostmap, speed: float, s_robot: float) -> Optional[Decision]:
