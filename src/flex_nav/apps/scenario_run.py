@@ -62,6 +62,9 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     parser.add_argument("--out", type=Path, required=True, help="output directory")
     parser.add_argument("--bag", action="store_true", help="record run.bag (commands, odometry, plans, ...)")
     add_separate_processes_argument(parser)
+    parser.add_argument("--social-distance", type=float, default=0.0, metavar="M",
+                        help="[m] keep this distance from tracked people while moving (push_or_avoid's follower; "
+                             "0: off, the default)")
     add_localization_argument(parser)
     return parser.parse_args(argv)
 
@@ -107,6 +110,9 @@ def start(stack: contextlib.ExitStack, args: argparse.Namespace, run: RobotRun) 
         f"/{ROBOT}/pure_pursuit_path/yield_to_people": True,  # push_or_avoid's follower
         f"/{ROBOT}/pure_pursuit_path/yielding/hurry_speed_mps": HURRY_SPEED_MPS,
     }
+    if args.social_distance > 0.0:
+        params[f"/{ROBOT}/pure_pursuit_path/social_distance"] = {"enabled": True,
+                                                                  "min_distance_m": args.social_distance}
     for costmap in ("get_path_server/global_costmap", "pure_pursuit_path/local_costmap",
                     "pure_pursuit_topic/local_costmap"):
         params[f"/{ROBOT}/{costmap}/bumper_memory"] = BUMPER_MEMORY_S
@@ -179,6 +185,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
             result.people_contacts = len(monitor.people_contacts)
             trajectory = [(t, x, y) for t, x, y in monitor.timed_trajectory if t >= goal_sim_s]
         result.min_people_clearance_m = people_clearance(world, trajectory)
+        result.min_people_clearance_moving_m = people_clearance(world, trajectory, moving_only=True)
         if not result.note and not result.success:
             result.note = run.failed_reason or "goal given up"
     title = (f"{args.behavior} in {world.name} (seed {args.seed}): "

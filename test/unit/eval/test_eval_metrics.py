@@ -30,6 +30,20 @@ def test_clearance_is_centre_distance_minus_both_radii():
     assert people_clearance(world, trajectory[:1], goal_sim_s=1.0) == math.inf  # no sample after the goal
 
 
+def test_clearance_while_moving_skips_the_samples_where_the_robot_stood():
+    world = load_world("s3_person_in_door")
+    radius = world.people[0].radius
+    # it drives to 1.5 m from the person (at (5, 2) until 25 s), then stands at 1.0 m: the person is nearest then
+    trajectory = [(0.0, 1.5, 2.0), (5.0, 3.5, 2.0), (6.0, 4.0, 2.0), (10.0, 4.0, 2.0)]
+    assert people_clearance(world, trajectory, robot_radius_m=0.2) == pytest.approx(1.0 - radius - 0.2)
+    moving = people_clearance(world, trajectory, robot_radius_m=0.2, moving_only=True)
+    assert moving == pytest.approx(1.0 - radius - 0.2)  # it arrived at 1.0 m moving (0.5 m/s)
+    standing_close = [(0.0, 1.5, 2.0), (5.0, 3.5, 2.0), (6.0, 3.5, 2.0)]
+    assert people_clearance(world, standing_close, robot_radius_m=0.2, moving_only=True) == pytest.approx(
+        1.5 - radius - 0.2)  # the last sample stood still: only the moving one counts
+    assert people_clearance(world, [(0.0, 4.0, 2.0)], moving_only=True) == math.inf  # one sample: no speed
+
+
 def test_a_world_without_people_has_infinite_clearance():
     assert people_clearance(load_world("s1_light_box_door"), [(0.0, 1.0, 1.0)]) == math.inf
 

@@ -31,12 +31,16 @@ class RunResult:
     pushes_succeeded: int = 0
     people_contacts: int = 0  # contacts that began between the robot and a person
     min_people_clearance_m: float = math.inf  # [m] smallest robot-person gap (inf: no person in the world)
+    # [m] the same while the robot moved (faster than MOVING_MPS): a person walking up to a standing robot is not
+    # the robot coming close (inf: no person, or never near one while moving)
+    min_people_clearance_moving_m: float = math.inf
     note: str = ""  # why it ended when not reached
     picture: str = ""
 
     def to_dict(self) -> Dict[str, Any]:
         values = asdict(self)
-        for key in ("time_s", "heading_error_deg", "min_people_clearance_m"):  # JSON has no NaN / inf
+        for key in ("time_s", "heading_error_deg", "min_people_clearance_m",
+                    "min_people_clearance_moving_m"):  # JSON has no NaN / inf
             value = values[key]
             values[key] = None if not math.isfinite(value) else value
         return values
@@ -46,8 +50,9 @@ class RunResult:
         data = dict(values)
         for key in ("time_s", "heading_error_deg"):  # results recorded before the heading was measured lack it
             data[key] = math.nan if data.get(key) is None else float(data[key])
-        clearance = data.get("min_people_clearance_m")
-        data["min_people_clearance_m"] = math.inf if clearance is None else float(clearance)
+        for key in ("min_people_clearance_m", "min_people_clearance_moving_m"):  # older results lack the second
+            clearance = data.get(key)
+            data[key] = math.inf if clearance is None else float(clearance)
         return cls(**data)
 
 
@@ -82,15 +87,24 @@ def person_position(person: Any, intervals: Sequence[Tuple[float, float]], sim_s
     return x, y
 
 
+MOVING_MPS = 0.02  # [m/s] the robot counts as moving above this speed (ground truth)
+
+
 def people_clearance(world: Any, trajectory: Sequence[Tuple[float, float, float]], goal_sim_s: float = 0.0,
-                     robot_radius_m: float = ROBOT_RADIUS_M) -> float:
+                     robot_radius_m: float = ROBOT_RADIUS_M, moving_only: bool = False) -> float:
     """Smallest gap [m] between the robot (trajectory of (sim s, x, y) from ``goal_sim_s`` on) and any person
-    of ``world``; inf without people or samples."""
+    of ``world``; inf without people or samples. ``moving_only``: only at samples where the robot moved faster
+    than :data:`MOVING_MPS` since the previous sample."""
+    moving = [True] * len(trajectory)
+    if moving_only:
+        moving = [False] + [
+            t1 > t0 and math.hypot(x1 - x0, y1 - y0) / (t1 - t0) > MOVING_MPS
+            for (t0, x0, y0), (t1, x1, y1) in zip(trajectory, trajectory[1:])]
     best = math.inf
     for person in world.people:
         intervals = walking_intervals(person, world.events)
-        for t, x, y in trajectory:
-            if t < goal_sim_s:
+        for (t, x, y), counted in zip(trajectory, moving):
+            if t < goal_sim_s or not counted:
                 continue
             px, py = person_position(person, intervals, t)
             best = min(best, math.hypot(x - px, y - py) - person.radius - robot_radius_m)
