@@ -16,13 +16,14 @@ import rospkg
 import rospy
 import rostest
 import tf2_ros
-from geometry_msgs.msg import PointStamped, TransformStamped, Twist, TwistStamped
+from geometry_msgs.msg import Point32, PointStamped, PolygonStamped, TransformStamped, Twist, TwistStamped
 from message_log import MessageLog
 from nav_msgs.msg import MapMetaData, OccupancyGrid
 from nav_msgs.srv import GetMap
 from roscpp.srv import SetLoggerLevel
 from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import LaserScan
+from std_srvs.srv import Trigger
 
 from flex_nav.msg import ClearCostmapAction, ClearCostmapGoal, ClearCostmapResult
 from flex_nav.nav.costmap.costmap_grid import FREE, LETHAL
@@ -291,6 +292,39 @@ class TestNodesIO(unittest.TestCase):
             marked = costmap.wait_for(lambda m: cell_value(m, ROBOT[0] + 0.2, ROBOT[1]) == 100, timeout_s=0.3,
                                       after=costmap.count())
         self.assertIsNotNone(marked, "the bumper hit was not marked")
+
+    def test_obstacle_memory_keeps_a_heavy_obstacle_through_clear_costmap_until_the_operator_clears_it(self):
+        costmap = Latest("get_path_server/global_costmap/costmap", OccupancyGrid)
+        self.assertIsNotNone(costmap.wait_for(lambda m: True), "no costmap published")
+        heavy = (2.65, 1.0)  # free on the map, 1.65 m ahead of io_base
+        self.assertEqual(cell_value(costmap.wait_for(lambda m: True), *heavy), 0)
+        marks = rospy.Publisher("obstacle_memory/mark", PolygonStamped, queue_size=1)
+        footprint = PolygonStamped()
+        footprint.header.frame_id = "io_base"  # the robot's frame, as RememberObstacleState sends it
+        footprint.polygon.points = [Point32(x=x, y=y) for x, y in ((1.5, -0.15), (1.8, -0.15), (1.8, 0.15),
+                                                                      (1.5, 0.15))]
+        marked = None
+        deadline = rospy.get_time() + WAIT_S
+        while marked is None and rospy.get_time() < deadline:
+            footprint.header.stamp = rospy.Time.now() - rospy.Duration(0.1)
+            marks.publish(footprint)
+            marked = costmap.wait_for(lambda m: cell_value(m, *heavy) == 100, timeout_s=0.3, after=costmap.count())
+        self.assertIsNotNone(marked, "the remembered footprint was not marked")
+        marks.unregister()
+        clear = ActionClientProxy("get_path_server/clear_costmap", ClearCostmapAction)
+        self.assertTrue(clear.is_available(WAIT_S))
+        mark = costmap.count()
+        clear.send_goal(ClearCostmapGoal())
+        self.assertTrue(clear.wait_for_result(5.0))
+        after_clear = costmap.wait_for(lambda m: True, after=mark + 1)  # a publication after the clear
+        self.assertIsNotNone(after_clear)
+        self.assertEqual(cell_value(after_clear, *heavy), 100, "clear_costmap forgot the remembered obstacle")
+        rospy.wait_for_service("get_path_server/global_costmap/clear_obstacle_memory", WAIT_S)
+        answer = rospy.ServiceProxy("get_path_server/global_costmap/clear_obstacle_memory", Trigger)()
+        self.assertTrue(answer.success)
+        self.assertIn("1 remembered obstacle(s) forgotten", answer.message)
+        forgotten = costmap.wait_for(lambda m: cell_value(m, *heavy) == 0, after=costmap.count())
+        self.assertIsNotNone(forgotten, "the operator's clear did not forget it")
 
     def test_rolling_costmap_snapshot_matches_the_newest_scan(self):
         """A controller reads its local costmap through snapshot(): right after a scan, with no timer update in

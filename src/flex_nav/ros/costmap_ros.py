@@ -18,6 +18,12 @@ Parameters (private, under ``~<name>/``; units in brackets):
   most the update frequency: a publication follows an update on the same timer; 0: never)
 - ``transform_tolerance`` [s] (0.5)
 
+- ``obstacle_memory/enabled`` (bool, false; a static, not rolling, costmap only) and the fields of
+  :class:`~flex_nav.nav.costmap.memory_layer.MemoryParams` (``memory_s`` [s] 600, ...): heavy obstacles the
+  behavior found (geometry_msgs/PolygonStamped on ``obstacle_memory/mark``, placed by tf at its stamp) stay LETHAL
+  until ``memory_s`` has passed, a scan sees through them, or the operator calls ``~<name>/clear_obstacle_memory``
+  (std_srvs/Trigger); ClearCostmap keeps them
+
 Publishes the costmap as OccupancyGrid on ``~<name>/costmap``. The node serves ClearCostmap on
 ``<node>/clear_costmap`` (see :meth:`CostmapROS.serve_clear_costmap`). All access to the costmap goes through
 :attr:`lock`.
@@ -34,9 +40,10 @@ import actionlib
 import numpy as np
 import rospy
 import tf2_ros
-from geometry_msgs.msg import PointStamped
+from geometry_msgs.msg import PointStamped, PolygonStamped
 from nav_msgs.msg import OccupancyGrid
 from sensor_msgs.msg import LaserScan as LaserScanMsg
+from std_srvs.srv import Trigger, TriggerRequest, TriggerResponse
 
 from flex_nav.exceptions import ConfigError, NotReadyError
 from flex_nav.msg import ClearCostmapAction, ClearCostmapResult
@@ -44,20 +51,23 @@ from flex_nav.nav.costmap.costmap_grid import CostmapGeometry
 from flex_nav.nav.costmap.grid_map import GridMap
 from flex_nav.nav.costmap.inflation import InflationParams
 from flex_nav.nav.costmap.layered import Costmap
+from flex_nav.nav.costmap.memory_layer import MemoryParams
 from flex_nav.nav.costmap.obstacle_layer import LaserScan, ObstacleLayerParams
+from flex_nav.nav.planar import transform_poses
 from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.ros.conversions import grid_map_of, occupancy_grid_msg
 from flex_nav.ros.latest_worker import LatestWorker
-from flex_nav.ros.params import param_bool, param_float, param_str, reject_unknown
+from flex_nav.ros.params import param_bool, param_float, param_int, param_str, reject_unknown
 from flex_nav.ros.private_ns import private_name
 from flex_nav.ros.robot_pose import RobotPoseSource
 
+MEMORY_MARK_TOPIC = "obstacle_memory/mark"  # heavy obstacles' footprints (states/remember_obstacle_state.py)
 MAP_WAIT_S = 30.0  # [s] default bound on waiting for the first map
 PARAMETERS = (
     "global_frame", "robot_base_frame", "rolling_window", "static_map", "map_topic", "width", "height",
     "resolution", "scan_topic", "bumper_topic", "obstacle_range", "raytrace_range", "track_unknown_space",
     "robot_radius", "inflation_radius", "cost_scaling_factor", "update_frequency", "publish_frequency",
-    "transform_tolerance", "bumper_memory",
+    "transform_tolerance", "bumper_memory", "obstacle_memory",
 )  # the names under ~<name>/ (anything else is a ConfigError)
 
 
@@ -109,6 +119,7 @@ class CostmapROS:
         self.robot_pose = RobotPoseSource(
             tf_buffer, self.global_frame, self.robot_base_frame, param_float(ns + "transform_tolerance", 0.5, 0.0, 10.0)
         )
+        self.memory = self._memory_params(ns)
         if not self.use_static_map and not self.rolling_window:
             raise ConfigError(
                 f"{rospy.resolve_name(private_name(ns))}: a costmap needs static_map: true or rolling_window: true")
@@ -137,6 +148,11 @@ class CostmapROS:
         # /clock message (rospy), a real cost when several components share a process
         self._publish_period_s = 1.0 / publish_hz if publish_hz > 0 else math.inf  # [s] ROS time
         self._published_s = -math.inf  # [s] ROS time of the last publication
+        if self.memory is not None:
+            self._subscribers.append(rospy.Subscriber(MEMORY_MARK_TOPIC, PolygonStamped, self._on_memory_mark,
+                                                      queue_size=10))
+            self._memory_service = rospy.Service(private_name(f"~{name}/clear_obstacle_memory"), Trigger,
+                                                 self._on_clear_memory)
         self._update_timer = rospy.Timer(rospy.Duration(1.0 / update_hz), self._on_update_timer, reset=True)
         self._clear_server: Optional[actionlib.SimpleActionServer] = None
 
@@ -160,9 +176,59 @@ class CostmapROS:
         self._map_received.set()
         self.publish()
 
+    def _memory_params(self, ns: str) -> Optional[MemoryParams]:
+        """``obstacle_memory/`` (None: off)."""
+        sub = ns + "obstacle_memory/"
+        reject_unknown(sub, ["enabled", *(f.name for f in dataclasses.fields(MemoryParams))])
+        if not param_bool(sub + "enabled", False):
+            return None
+        if self.rolling_window or not self.use_static_map:
+            raise ConfigError(f"{rospy.resolve_name(private_name(sub))}enabled: an obstacle memory needs a static "
+                              "costmap (static_map true, rolling_window false)")
+        d = MemoryParams()
+        try:
+            return MemoryParams(
+                memory_s=param_float(sub + "memory_s", d.memory_s),
+                tolerance_m=param_float(sub + "tolerance_m", d.tolerance_m),
+                min_free_beams=param_int(sub + "min_free_beams", d.min_free_beams),
+                min_hits=param_int(sub + "min_hits", d.min_hits),
+                max_range_m=param_float(sub + "max_range_m", d.max_range_m),
+            )  # MemoryParams checks the ranges
+        except ConfigError as err:
+            raise ConfigError(f"{rospy.resolve_name(private_name(sub))}: {err}") from err
+
+    def _on_memory_mark(self, msg: PolygonStamped) -> None:
+        """A heavy obstacle's footprint: into the global frame at its stamp, then remembered."""
+        points = np.array([[p.x, p.y] for p in msg.polygon.points], dtype=np.float64).reshape(-1, 2)
+        try:
+            x, y, yaw = self._frame_pose_at(msg.header.frame_id, msg.header.stamp)
+            footprint = transform_poses(points, x, y, yaw)
+            with self.lock:
+                if self.costmap is None:
+                    raise NotReadyError("no map yet")
+                entry = self.costmap.remember_obstacle(footprint, msg.header.stamp.to_sec())
+        except (NotReadyError, ConfigError) as err:
+            rospy.logwarn(f"{self.name}: obstacle memory: footprint ignored: {err}")
+            return
+        rospy.loginfo(f"{self.name}: obstacle memory: {entry.describe()}")
+
+    def _on_clear_memory(self, _request: TriggerRequest) -> TriggerResponse:
+        with self.lock:
+            forgotten = self.costmap.clear_memory() if self.costmap is not None else []
+        rospy.loginfo(f"{self.name}: obstacle memory cleared by request ({len(forgotten)} forgotten)")
+        return TriggerResponse(success=True, message=f"{len(forgotten)} remembered obstacle(s) forgotten")
+
     def _static_costmap(self, grid: GridMap) -> Costmap:
         if grid.origin[2] != 0.0:
             raise ConfigError(f"{self.name}: map origin yaw must be 0, got {grid.origin[2]}")
+        remembered = (self.costmap.memory_layer.obstacles if self.costmap is not None
+                      and self.costmap.memory_layer is not None else ())
+        costmap = self._new_static_costmap(grid)
+        for obstacle in remembered:  # a new map (the mapper's, say) keeps what was found heavy
+            costmap.remember_obstacle(obstacle.footprint, obstacle.found_s, obstacle.what)
+        return costmap
+
+    def _new_static_costmap(self, grid: GridMap) -> Costmap:
         return Costmap(
             CostmapGeometry(grid.width, grid.height, grid.resolution, grid.origin[0], grid.origin[1]),
             static_map=grid,
@@ -170,6 +236,7 @@ class CostmapROS:
             inflation=self.inflation,
             track_unknown_space=self.track_unknown_space,
             bumper_memory_s=self.bumper_memory_s,
+            memory=self.memory,
         )
 
     def _frame_pose_at(self, frame_id: str, stamp: rospy.Time) -> tuple[float, float, float]:
@@ -250,6 +317,9 @@ class CostmapROS:
             if self.costmap is None:
                 return
             self.costmap.expire_bumper_hits(rospy.get_time())
+            if self.costmap.memory_layer is not None:
+                for gone in self.costmap.expire_memory(rospy.get_time()):
+                    rospy.loginfo(f"{self.name}: obstacle memory: forgotten after memory_s: {gone.describe()}")
             if centre is not None:
                 self.costmap.recentre(centre[0], centre[1])
             self.costmap.update()
