@@ -12,7 +12,7 @@ message. The schema (``"schema": "flex_nav/userdata"``, ``"version": 1``)::
       "schema": "flex_nav/userdata", "version": 1,
       "behavior": "flex_planner",     # "" when none runs (then "states" is [])
       "stamp": 12.5,                  # [s] the behavior's clock when the values were read
-      "states": [STATE, ...],         # the active states, deepest first, then the containers above them
+      "states": [STATE, ...],         # the active states, deepest first, then the containers above them, "/" last
       "states_omitted": 0             # active states left out to keep the message within max_message_chars
     }
 
@@ -264,7 +264,7 @@ def userdata_message(behavior: str, stamp: float, states: Sequence[StateUserdata
                      limits: SummaryLimits = DEFAULT_LIMITS) -> Dict[str, Any]:
     """The message for ``states`` (see the module doc), at most ``limits.max_message_chars`` long as JSON: states
     that do not fit are counted in ``states_omitted``, deepest paths first kept."""
-    ordered = sorted(states, key=lambda s: (-s.path.count("/"), s.path))
+    ordered = sorted(states, key=lambda s: (-s.path.rstrip("/").count("/"), s.path))  # the root ("/") last
     message: Dict[str, Any] = {"schema": SCHEMA, "version": VERSION, "behavior": behavior,
                                "stamp": _number(stamp) if math.isfinite(stamp) else None, "states": [],
                                "states_omitted": 0}

@@ -154,9 +154,9 @@ def test_limits_are_checked() -> None:
 def test_the_message_lists_inputs_and_written_outputs_and_stays_within_its_size() -> None:
     state = StateUserdata("/A/B", (("goal", pose(1.0, 2.0, 0.0)), ("count", MISSING), ("both", 1)),
                           (("plan", MISSING), ("both", 2), ("done", True)))
-    message = userdata_message("b", 3.0, [StateUserdata("/A", (), ()), state])
+    message = userdata_message("b", 3.0, [StateUserdata("/", (), ()), StateUserdata("/A", (), ()), state])
     assert message["schema"] == SCHEMA and message["behavior"] == "b" and message["stamp"] == 3.0
-    assert [s["path"] for s in message["states"]] == ["/A/B", "/A"]  # deepest first
+    assert [s["path"] for s in message["states"]] == ["/A/B", "/A", "/"]  # deepest first, the root last
     keys = message["states"][0]["keys"]
     assert [(k["key"], k["role"], k["set"]) for k in keys] == [
         ("goal", "in", True), ("count", "in", False), ("both", "in/out", True), ("done", "out", True)]

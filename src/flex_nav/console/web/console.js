@@ -438,8 +438,14 @@
     const structure = state && state.structure;
     const reported = data && structure && data.behavior === structure.behavior ? Object.keys(data.states) : [];
     if (!reported.length) { box.appendChild(el("p", "no active state reports userdata", "none")); return; }
-    const paths = selectedPath ? reported.filter((p) => p === selectedPath) : reported;
-    if (!paths.length) { box.appendChild(el("p", `${selectedPath} is not active: no userdata`, "none")); return; }
+    // every active state: only those with keys (containers often have none)
+    const paths = selectedPath ? reported.filter((p) => p === selectedPath)
+      : reported.filter((p) => data.states[p].length);
+    if (!paths.length) {
+      box.appendChild(el("p", selectedPath ? `${selectedPath} is not active: no userdata`
+        : "the active states have no userdata keys", "none"));
+      return;
+    }
     for (const path of paths) {
       box.appendChild(el("h3", path));
       const keys = data.states[path];
