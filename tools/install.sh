@@ -15,7 +15,7 @@ APT_PACKAGES=(
   ros-std-msgs ros-geometry-msgs ros-nav-msgs ros-actionlib-msgs ros-sensor-msgs ros-std-srvs
   python3-rosgraph-msgs python3-rosservice python3-roslib python3-rosmsg python3-tf2-msgs ros-tf2-msgs
   procps graphviz chromium chromium-driver
-  rviz xvfb imagemagick python3-visualization-msgs ros-visualization-msgs
+  rviz xvfb imagemagick python3-visualization-msgs ros-visualization-msgs tmux
   catkin ros-message-generation libgeometry-msgs-dev libnav-msgs-dev libstd-msgs-dev librostest-dev
 )
 
