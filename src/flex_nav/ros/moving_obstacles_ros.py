@@ -153,7 +153,9 @@ class MovingObstaclesROS:
     def _on_scan(self, msg: LaserScanMsg) -> None:
         try:
             laser = self._planar(self.tracking_frame, msg.header.frame_id, msg.header.stamp)
-            to_global = self._planar(self.global_frame, self.tracking_frame, msg.header.stamp)
+            # only to drop the points the static map explains (within static_tolerance): the newest map -> odom
+            # will do, and waiting for the localizer's at this scan's stamp would lose every scan it is late for
+            to_global = self._planar(self.global_frame, self.tracking_frame, rospy.Time(0))
         except (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.ExtrapolationException) as err:
             rospy.logwarn_throttle(5.0, f"people tracker: scan ignored: no transform {self.global_frame} -> "
                                         f"{self.tracking_frame} -> {msg.header.frame_id}: {err}")
