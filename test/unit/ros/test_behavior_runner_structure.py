@@ -57,6 +57,9 @@ def runner(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> Any:
     monkeypatch.setattr(rospy, "Subscriber", Silent)
     monkeypatch.setattr(rospy.Time, "now", staticmethod(lambda: rospy.Time(0)))
     monkeypatch.setattr(behavior_runner, "RosClock", MonotonicClock)
+    # a test earlier in the same pytest process may have shut rospy down (test_console_browser_system.py
+    # signals shutdown when its stack stops): a runner's behavior stops at once while rospy says so
+    monkeypatch.setattr(rospy, "is_shutdown", lambda: False)
     (tmp_path / "small.yaml").write_text(SMALL)
     made = BehaviorRunner([tmp_path])
     yield made
