@@ -66,5 +66,8 @@ def test_the_active_states_userdata_is_latched(runner: BehaviorRunner, tmp_path:
     runner.handle("approve", ["/Count"])
     ended = until(lambda m: m["behavior"] == "" and m["stamp"] is not None)  # the idle runner's has no stamp
     assert ended["states"] == []
+    deadline = time.monotonic() + 5.0  # the runner's thread records the result just after the last userdata
+    while runner.result() is None and time.monotonic() < deadline:
+        time.sleep(0.01)
     result = runner.result()
     assert result is not None and result.status.name == "FINISHED"
