@@ -60,6 +60,15 @@ class ClassReader:
         return (msg.label, msg) if msg is not None else (UNKNOWN, None)
 
 
+def settle_and_timeout(owner: str, settle_s: float, timeout_s: float) -> tuple[float, float]:
+    """The checked ``settle_s`` [s] (>= 0) and ``timeout_s`` [s] (longer than it) of a classifying state."""
+    settle = validation.number(owner, "settle_s", settle_s, minimum=0.0, unit="[s]")
+    timeout = validation.number(owner, "timeout_s", timeout_s, positive=True, unit="[s]")
+    if timeout <= settle:
+        raise ConfigError(f"{owner}: timeout_s {timeout:g} s must be longer than settle_s {settle:g} s")
+    return settle, timeout
+
+
 class ObstacleClassState(State):
     """Reads the class of the region in front of the robot from the obstacle classifier.
 
@@ -87,11 +96,7 @@ class ObstacleClassState(State):
         super().__init__(outcomes=[PERSON, MOVABLE, CLEAR, UNKNOWN], output_keys=["obstacle_class"], rate_hz=20.0)
         owner = type(self).__name__
         self._reader = ClassReader(owner, class_topic, class_max_age_s)
-        self._settle_s = validation.number(owner, "settle_s", settle_s, minimum=0.0, unit="[s]")
-        self._timeout_s = validation.number(owner, "timeout_s", timeout_s, positive=True, unit="[s]")
-        if self._timeout_s <= self._settle_s:
-            raise ConfigError(f"{owner}: timeout_s {self._timeout_s:g} s must be longer than settle_s "
-                              f"{self._settle_s:g} s")
+        self._settle_s, self._timeout_s = settle_and_timeout(owner, settle_s, timeout_s)
         self._enter_s = 0.0
 
     def on_start(self) -> None:

@@ -28,7 +28,7 @@ from flex_nav.perception.lidar_shape import PERSON as LIDAR_PERSON
 from flex_nav.perception.lidar_shape import UNSURE, ShapeCue, cue_ahead
 from flex_nav_states import validation
 from flex_nav_states.messages import message_age_s
-from flex_nav_states.obstacle_class_state import DECIDED, ClassReader
+from flex_nav_states.obstacle_class_state import DECIDED, ClassReader, settle_and_timeout
 from flex_nav_states.proxy_types import SubscriptionLike, proxies_of
 
 MOVING_WINDOW_S = 0.5  # [s] the object's speed is measured over at least this long (centre noise ~1 cm: < 0.05 m/s)
@@ -88,11 +88,7 @@ class ObstacleFusionState(State):
                          output_keys=["looks", "obstacle_class", "obstacle_fusion"], rate_hz=20.0)
         owner = type(self).__name__
         self._reader = ClassReader(owner, class_topic, class_max_age_s)
-        self._settle_s = validation.number(owner, "settle_s", settle_s, minimum=0.0, unit="[s]")
-        self._timeout_s = validation.number(owner, "timeout_s", timeout_s, positive=True, unit="[s]")
-        if self._timeout_s <= self._settle_s:
-            raise ConfigError(f"{owner}: timeout_s {self._timeout_s:g} s must be longer than settle_s "
-                              f"{self._settle_s:g} s")
+        self._settle_s, self._timeout_s = settle_and_timeout(owner, settle_s, timeout_s)
         self._fuse = validation.boolean(owner, "fuse_lidar", fuse_lidar)
         self._scan_topic = validation.name(owner, "scan_topic", scan_topic)
         self._scan_max_age_s = validation.number(owner, "scan_max_age_s", scan_max_age_s, positive=True, unit="[s]")
