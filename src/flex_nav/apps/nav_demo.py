@@ -73,6 +73,7 @@ class RobotRun:
     failed_reason: str = ""
     finished: bool = False
     goal_started_sim_s: float = 0.0
+    goal_times_s: List[float] = field(default_factory=list)  # [s] simulated, per completed goal (nan: given up)
     last_bumper_sim_s: float = -math.inf
 
 
@@ -244,6 +245,8 @@ class DemoMonitor:
             if msg.target in ("Arrived", *GIVEN_UP) and run.next_goal > run.completed:
                 name, goal = run.goals[run.completed]
                 run.completed += 1
+                run.goal_times_s.append(self.sim_s() - run.goal_started_sim_s if msg.target == "Arrived"
+                                        else math.nan)
                 if msg.target == "Arrived":
                     run.reached += 1
                     heading = ""

@@ -8,9 +8,12 @@ push_or_avoid; move_base_like drives with ``pure_pursuit_topic``, which keeps it
 and, for both behaviors, a bumper memory of 5 s in the costmaps (the default 60 s would keep the contacts of a pushed
 box as obstacles in the door it was pushed through; no scenario has obstacles only the bumper finds). Sends the world's
 ``goal`` once the behavior waits for one and records until the behavior is done with it or ``--sim-limit``
-seconds of simulated time pass. Prints one ``RESULT {json}`` line (see :class:`flex_nav.apps.eval.metrics.RunResult`)
-and writes ``run.png`` and logs to ``--out``. Exit 0 when the run was recorded (reached or not), 2 when the
-system could not start.
+seconds of simulated time pass. ``--trips N`` drives from the start to the goal N times, back to the world's
+``start`` between trips (untimed), in one system: what the robot learnt on a trip (the obstacle memory, with the
+behavior parameter ``remember_heavy``) is there on the next; every trip's time is in ``trip_times_s``.
+``--behavior-param KEY=VALUE`` overrides a behavior parameter (YAML value). Prints one ``RESULT {json}`` line
+(see :class:`flex_nav.apps.eval.metrics.RunResult`) and writes ``run.png`` and logs to ``--out``. Exit 0 when the
+run was recorded (reached or not), 2 when the system could not start.
 """
 
 from __future__ import annotations
@@ -26,6 +29,8 @@ import threading
 import time
 from pathlib import Path
 from typing import Any, Dict, List, Optional, Sequence, Tuple
+
+import yaml
 
 from flex_nav.apps.eval.metrics import RunResult, people_clearance
 from flex_nav.apps.nav_demo import (
@@ -65,8 +70,27 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     parser.add_argument("--social-distance", type=float, default=0.0, metavar="M",
                         help="[m] keep this distance from tracked people while moving (push_or_avoid's follower; "
                              "0: off, the default)")
+    parser.add_argument("--trips", type=int, default=1,
+                        help="start -> goal this many times, driving back to the start between them (default 1)")
+    parser.add_argument("--behavior-param", action="append", default=[], metavar="KEY=VALUE",
+                        help="behavior parameter override, a YAML value (e.g. remember_heavy=true); repeatable")
     add_localization_argument(parser)
-    return parser.parse_args(argv)
+    args = parser.parse_args(argv)
+    if args.trips < 1:
+        parser.error(f"--trips must be at least 1, got {args.trips}")
+    args.behavior_params = {}
+    for item in args.behavior_param:
+        key, sep, text = item.partition("=")
+        if not sep or not key:
+            parser.error(f"--behavior-param takes KEY=VALUE, got {item!r}")
+        args.behavior_params[key] = yaml.safe_load(text)
+    return args
+
+
+def trip_goals(goal: Tuple[float, float, float], start: Tuple[float, float, float],
+               trips: int) -> List[Tuple[str, Tuple[float, float, float]]]:
+    """The goals of ``trips`` trips: ``goal``, then (``start``, ``goal``) for every further trip."""
+    return [("goal", goal)] + [("start", start), ("goal", goal)] * (trips - 1)
 
 
 class ScenarioMonitor(DemoMonitor):
@@ -113,6 +137,8 @@ def start(stack: contextlib.ExitStack, args: argparse.Namespace, run: RobotRun) 
     if args.social_distance > 0.0:
         params[f"/{ROBOT}/pure_pursuit_path/social_distance"] = {"enabled": True,
                                                                   "min_distance_m": args.social_distance}
+    if args.behavior_params:
+        params[f"/{ROBOT}/behavior_runner/parameters"] = dict(args.behavior_params)
     for costmap in ("get_path_server/global_costmap", "pure_pursuit_path/local_costmap",
                     "pure_pursuit_topic/local_costmap"):
         params[f"/{ROBOT}/{costmap}/bumper_memory"] = BUMPER_MEMORY_S
@@ -137,8 +163,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
         print(f"scenario_run: world {args.world!r}: {err}", file=sys.stderr)
         return 2
     args.out.mkdir(parents=True, exist_ok=True)
-    run = RobotRun(ROBOT, PROFILE, [("goal", goal)])
-    run.pose = world.spawns[0].pose if world.spawns else world.goals["start"]
+    start_pose = world.spawns[0].pose if world.spawns else world.goals["start"]
+    run = RobotRun(ROBOT, PROFILE, trip_goals(goal, world.goals.get("start", start_pose), args.trips))
+    run.pose = start_pose
     started = time.monotonic()
     result = RunResult(world=world.name, behavior=args.behavior, seed=args.seed)
     with contextlib.ExitStack() as stack:
@@ -161,7 +188,10 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
         monitor.send_due_goals()
         goal_sim_s = monitor.sim_s()
         while not monitor.done() and not rospy.is_shutdown():
-            if monitor.sim_s() - goal_sim_s > args.sim_limit:
+            monitor.send_due_goals()  # the next trip's goal, once the behavior waits for it
+            with monitor.lock:
+                leg_started_s = run.goal_started_sim_s
+            if monitor.sim_s() - leg_started_s > args.sim_limit:
                 result.note = f"sim limit {args.sim_limit:g} s"
                 break
             if time.monotonic() > wall_deadline:
@@ -172,11 +202,14 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
                 result.note = f"{' '.join(dead[0].argv[:4])} exited"
                 break
             time.sleep(0.1)
-        end_sim_s = monitor.sim_s()
         monitor.stopping = True
         with monitor.lock:
-            result.success = run.reached == 1
-            result.time_s = (end_sim_s - goal_sim_s) if result.success else math.nan
+            result.success = run.reached == len(run.goals)
+            first_reached = bool(run.goal_times_s) and math.isfinite(run.goal_times_s[0])
+            result.time_s = run.goal_times_s[0] if first_reached else math.nan
+            if args.trips > 1:  # the goals at even indices are the trips' goals; the rest drive back
+                result.trip_times_s = [run.goal_times_s[i] if i < len(run.goal_times_s) else math.nan
+                                       for i in range(0, len(run.goals), 2)]
             if result.success and run.pose is not None:
                 result.heading_error_deg = heading_error_deg(run.pose, goal)
             result.path_m = run.distance_m

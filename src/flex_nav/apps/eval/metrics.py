@@ -10,7 +10,7 @@ and the robot's radius (negative = overlap).
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, field
 from typing import Any, Dict, List, Sequence, Tuple
 
 ROBOT_RADIUS_M = 0.171  # [m] TurtleBot 4 (sim/robots/turtlebot4.yaml)
@@ -34,6 +34,10 @@ class RunResult:
     # [m] the same while the robot moved (faster than MOVING_MPS): a person walking up to a standing robot is not
     # the robot coming close (inf: no person, or never near one while moving)
     min_people_clearance_moving_m: float = math.inf
+    # [s] simulated time from start to goal of every trip (``scenario_run --trips N``: the robot drives back to
+    # the start between trips, untimed, and keeps what it learnt, e.g. the obstacle memory); the first is time_s;
+    # NaN: that trip's goal not reached; empty: one trip
+    trip_times_s: List[float] = field(default_factory=list)
     note: str = ""  # why it ended when not reached
     picture: str = ""
 
@@ -43,6 +47,7 @@ class RunResult:
                     "min_people_clearance_moving_m"):  # JSON has no NaN / inf
             value = values[key]
             values[key] = None if not math.isfinite(value) else value
+        values["trip_times_s"] = [t if math.isfinite(t) else None for t in self.trip_times_s]
         return values
 
     @classmethod
@@ -53,6 +58,7 @@ class RunResult:
         for key in ("min_people_clearance_m", "min_people_clearance_moving_m"):  # older results lack the second
             clearance = data.get(key)
             data[key] = math.inf if clearance is None else float(clearance)
+        data["trip_times_s"] = [math.nan if t is None else float(t) for t in data.get("trip_times_s") or []]
         return cls(**data)
 
 
