@@ -345,7 +345,7 @@ def start_system(stack: contextlib.ExitStack, args: argparse.Namespace, runs: Li
     parameters = rosgraph.Master("/nav_demo", master_uri=master.uri)
     for name, value in {"/use_sim_time": True, **(params or {})}.items():
         parameters.setParam(name, value)
-    map_yaml = args.map or world_map(Path(args.world).stem)
+    map_yaml = args.map or map_of_world(args.world, out)
     oracle = getattr(args, "localization", "localizer") == "oracle"
     robots_param = ",".join(f"{r.name}:{r.profile}:{r.pose[0]}:{r.pose[1]}:{math.degrees(r.pose[2]):.1f}"
                             for r in runs if r.pose)
@@ -424,6 +424,19 @@ def world_map(world_name: str) -> Path:
     return REPO_ROOT / "sim" / "worlds" / "maps" / f"{world_name}.yaml"
 
 
+def map_of_world(world: str, out: Path) -> Path:
+    """The static map of ``world``: the shipped one for a shipped world's name; for a world file given by its path
+    (a variant of one, or a world of the user's), the map of its static structure written to
+    ``out/map/<file stem>.yaml``, so that a variant with other walls or doors is navigated on its own map."""
+    if "/" not in world and not world.endswith(".yaml"):
+        return world_map(world)
+    from flex_nav_sim.static_map import write_static_map  # noqa: PLC0415
+    from flex_nav_sim.world import load_world  # noqa: PLC0415
+
+    (out / "map").mkdir(parents=True, exist_ok=True)
+    return write_static_map(load_world(world), out / "map" / f"{Path(world).stem}.yaml")
+
+
 def wait_until_ready(monitor: DemoMonitor, processes: List[ManagedProcess], timeout_s: float = STARTUP_TIMEOUT_S
                      ) -> Optional[str]:
     """Wait until every robot's behavior waits for a goal and its localizer is localized; the reason if it did
@@ -468,9 +481,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
     except FlexNavError as err:
         print(f"demo: {err}", file=sys.stderr)
         return 2
-    map_yaml = args.map or world_map(world.name)
     out = args.out or REPO_ROOT / "out" / time.strftime("demo-%Y%m%d-%H%M%S")
     out.mkdir(parents=True, exist_ok=True)
+    map_yaml = args.map or map_of_world(args.world, out)
     robots = ", ".join(f"{r.name} ({r.profile})" for r in runs)
     lap_text = " -> ".join(g for g, _ in runs[0].goals[: max(1, len(runs[0].goals) // args.laps)])
     print(f"flex_nav demo: {args.behavior}, robots {robots} in world '{world.name}', {args.laps} lap(s) of "

@@ -10,7 +10,9 @@ box as obstacles in the door it was pushed through; no scenario has obstacles on
 ``goal`` once the behavior waits for one and records until the behavior is done with it or ``--sim-limit``
 seconds of simulated time pass. ``--trips N`` drives from the start to the goal N times, back to the world's
 ``start`` between trips (untimed), in one system: what the robot learnt on a trip (the obstacle memory, with the
-behavior parameter ``remember_heavy``) is there on the next; every trip's time is in ``trip_times_s``.
+behavior parameter ``remember_heavy``) is there on the next; every trip's time is in ``trip_times_s``. With
+``--clear-between-trips`` both costmaps are cleared (ClearCostmap) at the start before each further trip, as a
+recovery, an operator or a restart does in a day's work: what the lidar marked is gone, the obstacle memory stays.
 ``--behavior-param KEY=VALUE`` overrides a behavior parameter (YAML value). Prints one ``RESULT {json}`` line
 (see :class:`flex_nav.apps.eval.metrics.RunResult`) and writes ``run.png`` and logs to ``--out``. Exit 0 when the
 run was recorded (reached or not), 2 when the system could not start.
@@ -28,7 +30,7 @@ import sys
 import threading
 import time
 from pathlib import Path
-from typing import Any, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Dict, List, Optional, Sequence, Set, Tuple
 
 import yaml
 
@@ -39,9 +41,9 @@ from flex_nav.apps.nav_demo import (
     add_localization_argument,
     add_separate_processes_argument,
     heading_error_deg,
+    map_of_world,
     start_system,
     wait_until_ready,
-    world_map,
     write_picture,
 )
 from flex_nav.exceptions import FlexNavError
@@ -54,6 +56,8 @@ STARTUP_TIMEOUT_S = 90.0  # [s] wall
 HURRY_SPEED_MPS = 0.3  # [m/s] giving way: cross a walker's way at this speed when only that clears (max 0.306)
 BUMPER_MEMORY_S = 5.0  # [s] bumper marks (both behaviors): a pushed box's contacts must not close the door
 SETTLE_S = 2.0  # [s] simulated time between the behavior waiting for a goal and sending it
+CLEAR_COSTMAPS = ("get_path_server/clear_costmap", "pure_pursuit_path/clear_costmap")  # --clear-between-trips
+CLEAR_TIMEOUT_S = 10.0  # [s] wall, per ClearCostmap action
 
 
 def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
@@ -72,6 +76,8 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
                              "0: off, the default)")
     parser.add_argument("--trips", type=int, default=1,
                         help="start -> goal this many times, driving back to the start between them (default 1)")
+    parser.add_argument("--clear-between-trips", action="store_true",
+                        help="clear both costmaps (ClearCostmap) at the start before each further trip")
     parser.add_argument("--behavior-param", action="append", default=[], metavar="KEY=VALUE",
                         help="behavior parameter override, a YAML value (e.g. remember_heavy=true); repeatable")
     add_localization_argument(parser)
@@ -187,7 +193,15 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
             time.sleep(0.1)
         monitor.send_due_goals()
         goal_sim_s = monitor.sim_s()
+        cleared_before: Set[int] = set()  # goal indices before which the costmaps were cleared
         while not monitor.done() and not rospy.is_shutdown():
+            with monitor.lock:
+                back_at_start = run.completed % 2 == 0 and run.next_goal == run.completed > 0
+            if args.clear_between_trips and back_at_start and run.completed not in cleared_before:
+                cleared_before.add(run.completed)
+                problem = clear_costmaps()
+                print(f"[sim {monitor.sim_s():7.1f} s] costmaps cleared before trip {run.completed // 2 + 1}"
+                      f"{': ' + problem if problem else ''}", flush=True)
             monitor.send_due_goals()  # the next trip's goal, once the behavior waits for it
             with monitor.lock:
                 leg_started_s = run.goal_started_sim_s
@@ -223,11 +237,35 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
             result.note = run.failed_reason or "goal given up"
     title = (f"{args.behavior} in {world.name} (seed {args.seed}): "
              f"{'reached' if result.success else 'NOT reached'}")
-    picture = write_picture(args.out, world_map(args.world), [run], title)
+    picture = write_picture(args.out, map_of_world(args.world, args.out), [run], title)
     result.picture = str(picture)
     shutil.rmtree(args.out / "ros_home", ignore_errors=True)
     print("RESULT " + json.dumps(result.to_dict()), flush=True)
     return 0
+
+
+def clear_costmaps() -> str:
+    """Clear the robot's global and controller costmaps (ClearCostmap, each bounded); what went wrong, or ""."""
+    import actionlib  # noqa: PLC0415
+    import rospy  # noqa: PLC0415
+
+    from flex_nav.msg import ClearCostmapAction, ClearCostmapGoal, ClearCostmapResult  # noqa: PLC0415
+
+    problems = []
+    for name in CLEAR_COSTMAPS:
+        client = actionlib.SimpleActionClient(f"/{ROBOT}/{name}", ClearCostmapAction)
+        if not client.wait_for_server(rospy.Duration(CLEAR_TIMEOUT_S)):
+            problems.append(f"{name}: no server within {CLEAR_TIMEOUT_S:g} s")
+            continue
+        client.send_goal(ClearCostmapGoal())
+        if not client.wait_for_result(rospy.Duration(CLEAR_TIMEOUT_S)):
+            client.cancel_goal()
+            problems.append(f"{name}: no result within {CLEAR_TIMEOUT_S:g} s")
+            continue
+        result = client.get_result()
+        if result is None or result.code != ClearCostmapResult.SUCCESS:
+            problems.append(f"{name}: {result.message if result is not None else 'no result'}")
+    return "; ".join(problems)
 
 
 def _interrupt(_signum: int, _frame: object) -> None:

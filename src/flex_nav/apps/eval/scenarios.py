@@ -1,16 +1,16 @@
 """Evaluate the push-or-avoid scenarios: ``python -m flex_nav.apps.eval.scenarios [--seeds 3] [--out DIR]``.
 
-Runs every scenario (S1..S6 worlds) x behavior (move_base_like, push_or_avoid) x seed headless, one
-``python -m flex_nav.apps.scenario_run`` process per run (each with its own private master, so a failed run
-cannot affect the next), with a progress bar on stderr. Runs are independent, so they run in parallel:
-``--workers N`` of them at once on this machine (default: one per core), or on a Dask distributed cluster with
-``--cluster ADDRESS`` (a ``dask scheduler`` and ``dask worker ADDRESS`` processes started from checkouts of this
-repository where tools/install.sh has run; each worker runs one run at a time with ``--nthreads 1``). A run that
-ends without a result (it crashed, timed out, or its worker was lost) is tried once more, and reported; one that
-fails twice is reported and fails the evaluation, never dropped silently. Writes ``results.csv`` (one row per
-run), ``results.md`` (summary per scenario and behavior), both rewritten as each run ends, and one
-``<scenario>-<behavior>-<seed>/run.png`` per run to ``--out`` (on a cluster: on the worker's file system, at the
-same path), plus the run's own ``result.json``. ``--resume`` keeps the runs of ``--out`` that have a
+Runs every scenario (S1..S6 worlds, or world files such as variants of them) x behavior (move_base_like,
+push_or_avoid) x seed headless, one ``python -m flex_nav.apps.scenario_run`` process per run (each with its own
+private master, so a failed run cannot affect the next), with a progress bar on stderr. Runs are independent, so
+they run in parallel: ``--workers N`` of them at once on this machine (default: one per core), or on a Dask
+distributed cluster with ``--cluster ADDRESS`` (a ``dask scheduler`` and ``dask worker ADDRESS`` processes started
+from checkouts of this repository where tools/install.sh has run; each worker runs one run at a time with
+``--nthreads 1``). A run that ends without a result (it crashed, timed out, or its worker was lost) is tried once
+more, and reported; one that fails twice is reported and fails the evaluation, never dropped silently. Writes
+``results.csv`` (one row per run), ``results.md`` (summary per scenario and behavior), both rewritten as each run
+ends, and one ``<scenario>-<behavior>-<seed>/run.png`` per run to ``--out`` (on a cluster: on the worker's file
+system, at the same path), plus the run's own ``result.json``. ``--resume`` keeps the runs of ``--out`` that have a
 ``result.json`` (an interrupted evaluation goes on where it stopped; more behaviors or seeds can be added later).
 Exit 0 when every run was recorded, 1 when a run could not start or crashed twice, 2 when the cluster cannot be
 reached.
@@ -54,8 +54,12 @@ ATTEMPTS = 2  # a run without a result is tried once more
 def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     parser = argparse.ArgumentParser(prog="python -m flex_nav.apps.eval.scenarios",
                                      description=__doc__.split("\n\n")[0])
-    parser.add_argument("--scenarios", default=",".join(SCENARIOS), help="comma-separated worlds (default: all six)")
+    parser.add_argument("--scenarios", default=",".join(SCENARIOS),
+                        help="comma-separated worlds: the six's names (default: all six) or world files (variants)")
     parser.add_argument("--behaviors", default=",".join(BEHAVIORS), help="comma-separated behaviors")
+    parser.add_argument("--behavior-param", action="append", default=[], metavar="BEHAVIOR:KEY=VALUE",
+                        help="a parameter override for every run of BEHAVIOR (e.g. push_or_avoid:fuse_lidar=true); "
+                             "repeatable")
     parser.add_argument("--seeds", type=int, default=3, help="seeds 0..N-1 per scenario and behavior")
     parser.add_argument("--rtf", type=float, default=1.0, help="simulation real-time factor")
     parser.add_argument("--sim-limit", type=float, default=150.0, help="[s] simulated time bound of one goal")
@@ -70,13 +74,24 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     args = parser.parse_args(argv)
     args.scenario_list = [s for s in args.scenarios.split(",") if s]
     args.behavior_list = [b for b in args.behaviors.split(",") if b]
-    for name in args.scenario_list:
-        if name not in SCENARIOS:
-            parser.error(choices_message("scenario", name, SCENARIOS))
+    for i, name in enumerate(args.scenario_list):
+        if name.endswith(".yaml"):  # a world file: the runs start elsewhere, so its absolute path
+            if not Path(name).is_file():
+                parser.error(f"scenario world file {name!r} does not exist")
+            args.scenario_list[i] = str(Path(name).resolve())
+        elif name not in SCENARIOS:
+            parser.error(choices_message("scenario", name, SCENARIOS) + " (or a world file ending in .yaml)")
     known_behaviors = sorted(p.stem for p in behaviors_dir().glob("*.yaml"))
     for name in args.behavior_list:
         if name not in known_behaviors:
             parser.error(choices_message("behavior", name, known_behaviors))
+    args.behavior_params = {}  # behavior -> ["KEY=VALUE", ...]
+    for item in args.behavior_param:
+        behavior, sep, setting = item.partition(":")
+        if not sep or "=" not in setting or behavior not in args.behavior_list:
+            parser.error(f"--behavior-param takes BEHAVIOR:KEY=VALUE with BEHAVIOR one of "
+                         f"{', '.join(args.behavior_list)}; got {item!r}")
+        args.behavior_params.setdefault(behavior, []).append(setting)
     if args.seeds < 1:
         parser.error(f"--seeds {args.seeds} must be >= 1")
     if args.workers < 1:
@@ -98,6 +113,8 @@ def run_one(args: argparse.Namespace, world: str, behavior: str, seed: int, out:
     command = [sys.executable, "-m", "flex_nav.apps.scenario_run", "--world", world, "--behavior", behavior,
                "--seed", str(seed), "--rtf", str(args.rtf), "--sim-limit", str(args.sim_limit), "--out", str(out),
                "--localization", args.localization]
+    for setting in args.behavior_params.get(behavior, []):
+        command += ["--behavior-param", setting]
     out.mkdir(parents=True, exist_ok=True)
     with open(out / "run.log", "w") as log:
         try:
@@ -128,11 +145,11 @@ class PlannedRun:
 
     @property
     def label(self) -> str:
-        return f"{self.world} {self.behavior} seed {self.seed}"
+        return f"{Path(self.world).stem} {self.behavior} seed {self.seed}"
 
     @property
     def directory(self) -> str:
-        return f"{self.world}-{self.behavior}-{self.seed}"
+        return f"{Path(self.world).stem}-{self.behavior}-{self.seed}"
 
 
 class RunFuture(Protocol):

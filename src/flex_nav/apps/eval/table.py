@@ -24,8 +24,17 @@ def to_csv(results: Sequence[RunResult]) -> str:
     writer.writeheader()
     for result in results:
         row = result.to_dict()
-        writer.writerow({k: "" if row[k] is None else row[k] for k in CSV_FIELDS})
+        writer.writerow({k: _cell(row[k]) for k in CSV_FIELDS})
     return out.getvalue()
+
+
+def _cell(value: object) -> object:
+    """A CSV cell: empty for None, a list's items joined by ';' (empty items for None)."""
+    if value is None:
+        return ""
+    if isinstance(value, list):
+        return ";".join("" if v is None else str(v) for v in value)
+    return value
 
 
 def _mean(values: List[float]) -> float:
