@@ -151,9 +151,10 @@ def test_with_the_lidar_a_box_the_camera_calls_movable_is_pushed_at_once():
     assert any("fused movable (row 6" in t for t in scene.h.texts())
 
 
-def test_a_heavy_obstacle_is_reported_to_the_obstacle_memory_with_remember_heavy():
+def heavy_box_scene(**parameters: object) -> "Scene":
+    """A box 0.5 m ahead that stops the robot once it pushes at 0.3 m, until the push gave up."""
     scene = Scene("movable", BLOCKED_THEN_DONE, push_distance_m=1.0, push_speed_mps=0.2, backoff_m=-0.3,
-                  remember_heavy=True)
+                  **parameters)
     scene.box_ahead_x = 0.5
 
     def heavy():
@@ -163,10 +164,22 @@ def test_a_heavy_obstacle_is_reported_to_the_obstacle_memory_with_remember_heavy
             scene.robot.blocked = False
 
     scene.run_until("goal reached", 40.0, on_step=heavy)
+    return scene
+
+
+def test_a_heavy_obstacle_is_reported_to_the_obstacle_memory_by_default():
+    scene = heavy_box_scene()  # remember_heavy: true by default
     (mark,) = scene.h.proxies.pub("obstacle_memory/mark").messages
     xs = [p.x for p in mark.polygon.points]
     assert abs(min(xs) - (0.5 - scene.robot.x)) < 0.05  # the box's face, seen from where the robot backed off to
     assert any(t.startswith("obstacle remembered") for t in scene.h.texts())
+
+
+def test_without_remember_heavy_nothing_is_sent_to_the_memory():
+    scene = heavy_box_scene(remember_heavy=False)
+    assert any("stalled" in t for t in scene.h.texts())
+    assert "obstacle_memory/mark" not in scene.h.proxies.publishers  # not even advertised
+    assert not any(t.startswith("obstacle remembered") for t in scene.h.texts())
 
 
 def test_tries_are_bounded_then_the_recovery_chain_runs():
