@@ -196,6 +196,9 @@ class PurePursuitController(FollowNode):
         self.costmap.serve_clear_costmap(self.name + "/clear_costmap")
         spec = self._serve(on_error=self._on_error)
         rospy.loginfo(f"{self.name}: pure pursuit on {spec.name} goals at {frequency:.1f} Hz in '{self.global_frame}'")
+        if social is not None:
+            rospy.loginfo(f"{self.name}: social distance on: {social.params} (footprint: circle of "
+                          f"{self.costmap.inflation.inscribed_radius:.3f} m)")
 
     # ------------------------------------------------------------------ inputs
     def _on_odom(self, msg: Odometry) -> None:
@@ -368,7 +371,7 @@ class PurePursuitController(FollowNode):
         decision = self.follower.tick(rospy.get_time(), self._robot_pose, self._velocity(), self._local_costmap,
                                       tracks)
         if self.people is not None:
-            self.people.report(decision.yielded)
+            self.people.report(decision.yielded, decision.social)
         return decision
 
     def _report(self, ticket: GoalTicket, decision: Decision, source: Optional[TopicPath]) -> None:

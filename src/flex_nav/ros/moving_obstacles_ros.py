@@ -33,7 +33,7 @@ from sensor_msgs.msg import LaserScan as LaserScanMsg
 from std_msgs.msg import Bool
 
 from flex_nav.exceptions import ConfigError, choices_message
-from flex_nav.nav.control.social_distance import SocialDistanceRule, SocialParams
+from flex_nav.nav.control.social_distance import SocialDistanceRule, SocialLimit, SocialParams
 from flex_nav.nav.control.yielding import YieldDecision, YieldMode, YieldParams, YieldRule
 from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.perception.moving_obstacles import MovingObstacleTracker, Track, TrackerParams
@@ -128,6 +128,7 @@ class MovingObstaclesROS:
         self.lock = threading.Lock()
         self.tracker = MovingObstacleTracker(params)
         self._last_kind: Optional[Tuple[YieldMode, Optional[int]]] = None  # (mode, track) last logged
+        self._last_social: Optional[int] = None  # the track the social distance limited the last tick for
         self.yielding_publisher = rospy.Publisher(private_name("~yielding"), Bool, queue_size=1)
         self.people_publisher = rospy.Publisher(private_name("~people"), PoseArray, queue_size=1)
         scan_topic = param_str(TRACKER_NS + "scan_topic", "scan")
@@ -189,10 +190,18 @@ class MovingObstaclesROS:
         t, q = tf.transform.translation, tf.transform.rotation
         return (t.x, t.y, yaw_of_quaternion(q.x, q.y, q.z, q.w))
 
-    def report(self, yielded: Optional[YieldDecision]) -> None:
+    def report(self, yielded: Optional[YieldDecision], social: Optional[SocialLimit] = None) -> None:
         """One control tick's yield decision (None: not giving way): ``~yielding`` True while giving way (every
         tick, so it goes stale when the controller stops), False once when it ends; a log line when it starts,
-        ends or changes mode or track."""
+        ends or changes mode or track. ``social``: the social distance rule's limit of the tick (None: it did not
+        slow the command): a log line when the person it slows the robot for changes."""
+        limited_by = social.limited_by if social is not None else None
+        if limited_by != self._last_social:
+            if social is not None and limited_by is not None:
+                rospy.loginfo(f"{self.name}: social distance: {social.reason} (command x{social.scale:.2f})")
+            else:
+                rospy.loginfo(f"{self.name}: social distance: no longer limiting")
+            self._last_social = limited_by
         kind = (yielded.mode, yielded.track_id) if yielded is not None else None
         if yielded is not None or self._last_kind is not None:
             self.yielding_publisher.publish(Bool(data=yielded is not None))

@@ -162,3 +162,68 @@ def test_footprint_distance_inside_and_outside() -> None:
 def test_parameters_are_validated(kwargs: dict, match: str) -> None:
     with pytest.raises(ConfigError, match=match):
         SocialParams(**kwargs)
+
+
+# issue 28 in S6: the yield rule's last-moment steps back from walkers passing 0.07-0.1 m away, at 0.2 m/s against
+# their 0.9 m/s, were the closest approaches "while moving"; the robot now stands for them
+
+
+def test_a_walker_who_passes_a_standing_robot_is_not_stepped_back_from_at_the_last_moment() -> None:
+    walker = [person(0.171 + 0.2 + 0.5, 0.5, vx=-0.9)]  # ahead-left, to pass 0.13 m beside it at 0.9 m/s
+    slowed = RULE.limit((0.0, 0.0, 0.0), ROUND, -0.2, 0.0, walker)  # backing away: slower, to stand in time
+    assert 0.0 < slowed.scale < 1.0 and "closing in" in slowed.reason
+    nearer = [person(0.3, 0.5, vx=-0.9)]
+    assert RULE.limit((0.0, 0.0, 0.0), ROUND, -0.2, 0.0, nearer).stopped  # too near to step back: stands
+    slow = [person(0.171 + 0.2 + 0.5, 0.5, vx=-0.05)]  # barely moving: it may leave
+    assert RULE.limit((0.0, 0.0, 0.0), ROUND, -0.2, 0.0, slow).scale == 1.0
+
+
+def test_a_walker_who_would_walk_into_a_standing_robot_may_be_escaped() -> None:
+    head_on = [person(0.171 + 0.2 + 0.5, 0.0, vx=-0.9)]  # straight at it
+    assert RULE.limit((0.0, 0.0, 0.0), ROUND, -0.2, 0.0, head_on).scale == 1.0
+    assert RULE.limit((0.0, 0.0, 0.0), ROUND, 0.0, 0.0, head_on).scale == 1.0  # no motion: nothing to limit
+
+
+def test_inside_the_distance_it_stands_for_a_walker_passing_until_they_are_past() -> None:
+    abeam = [person(0.0, 0.171 + 0.2 + 0.15, vx=0.8)]  # 0.15 m to the left, walking past, not closing
+    out = RULE.limit((0.0, 0.0, 0.0), ROUND, -0.2, 0.0, abeam)
+    assert out.stopped and "walking past" in out.reason
+    standing = [person(0.171 + 0.2 + 0.15, 0.0)]  # a person standing in front: the robot may back away
+    assert RULE.limit((0.0, 0.0, 0.0), ROUND, -0.2, 0.0, standing).scale == 1.0
+
+
+def test_leaving_scale_is_the_largest_that_stands_before_the_gap_is_used() -> None:
+    rule = SocialDistanceRule(SocialParams(latency_s=0.2, decel_mps2=0.5))
+    assert rule.leaving_scale(0.5, -0.3, 0.3, 0.1) == 1.0  # leaves faster than they come
+    assert rule.leaving_scale(0.1, -0.1, 0.2, 0.9) == 0.0  # their approach in the latency alone uses it up
+    k = rule.leaving_scale(0.4, 0.0, 0.3, 0.6)  # passing along, a person coming at 0.6 m/s
+    assert 0.0 < k < 1.0
+    assert rule.gap_used(k, 0.0, 0.3, 0.6) == pytest.approx(0.4, abs=1e-6)
+    assert rule.leaving_scale(-0.05, -0.2, 0.2, 0.0) == 1.0  # inside the distance, a standing person: may leave
+
+
+def test_standing_miss_is_the_gap_a_walker_keeps_to_a_standing_robot() -> None:
+    from flex_nav.nav.control.social_distance import standing_miss_m  # noqa: PLC0415
+
+    assert standing_miss_m((0.0, 0.0, 0.0), 0.2, person(3.0, 1.0, vx=-1.0)) == pytest.approx(1.0 - 0.2 - 0.2)
+    assert standing_miss_m((0.0, 0.0, 0.0), 0.2, person(3.0, 0.1, vx=-1.0)) < 0.0  # walks into it
+    assert standing_miss_m((0.0, 0.0, 0.0), 0.2, person(3.0, 0.1, vx=1.0)) == pytest.approx(3.0 - 0.4, abs=0.01)
+
+
+def test_a_robot_backing_from_walkers_keeps_the_distance_while_it_moves() -> None:
+    """Closed loop: a robot asked to back up at 0.2 m/s the whole time while a walker passes 0.1-0.5 m beside it at
+    0.9 m/s: whenever it moves, everyone is >= 0.3 m from its footprint (it stands while they pass)."""
+    for lateral in (0.1, 0.3, 0.5):
+        x, speed, closest = 0.0, 0.0, math.inf
+        y0 = 0.171 + 0.2 + lateral
+        dt = 0.05
+        for step in range(200):
+            t = step * dt
+            walker = person(3.0 - 0.9 * t, y0, vx=-0.9)
+            command = RULE.limit((x, 0.0, 0.0), ROUND, -0.2, 0.0, [walker]).v
+            speed = max(command, speed - 0.5 * dt) if command < speed else min(command, speed + 0.5 * dt)
+            x += speed * dt
+            if abs(speed) > 0.02:
+                gap = footprint_distance(ROUND + np.array([x, 0.0]), (walker.x - 0.9 * dt, walker.y))[0] - 0.2
+                closest = min(closest, gap)
+        assert closest >= 0.3 - 0.02, (lateral, closest)
