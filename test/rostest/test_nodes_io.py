@@ -24,6 +24,7 @@ from roscpp.srv import SetLoggerLevel
 from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import LaserScan
 from std_srvs.srv import Trigger
+from visualization_msgs.msg import Marker, MarkerArray
 
 from flex_nav.msg import ClearCostmapAction, ClearCostmapGoal, ClearCostmapResult
 from flex_nav.nav.costmap.costmap_grid import FREE, LETHAL
@@ -295,6 +296,10 @@ class TestNodesIO(unittest.TestCase):
 
     def test_obstacle_memory_keeps_a_heavy_obstacle_through_clear_costmap_until_the_operator_clears_it(self):
         costmap = Latest("get_path_server/global_costmap/costmap", OccupancyGrid)
+        remembered = Latest("get_path_server/global_costmap/obstacle_memory", MarkerArray)
+        empty = remembered.wait_for(lambda m: True)  # latched once the map came: nothing remembered yet
+        self.assertIsNotNone(empty, "no obstacle_memory markers latched")
+        self.assertEqual([m.action for m in empty.markers], [Marker.DELETEALL])
         self.assertIsNotNone(costmap.wait_for(lambda m: True), "no costmap published")
         heavy = (2.65, 1.0)  # free on the map, 1.65 m ahead of io_base
         self.assertEqual(cell_value(costmap.wait_for(lambda m: True), *heavy), 0)
@@ -311,6 +316,15 @@ class TestNodesIO(unittest.TestCase):
             marked = costmap.wait_for(lambda m: cell_value(m, *heavy) == 100, timeout_s=0.3, after=costmap.count())
         self.assertIsNotNone(marked, "the remembered footprint was not marked")
         marks.unregister()
+        shown = remembered.wait_for(lambda m: len(m.markers) > 1)
+        self.assertIsNotNone(shown, "the remembered obstacle was not published as markers")
+        self.assertEqual([(m.action, m.type, m.ns) for m in shown.markers],
+                         [(Marker.DELETEALL, 0, ""), (Marker.ADD, Marker.LINE_STRIP, "footprint"),
+                          (Marker.ADD, Marker.TEXT_VIEW_FACING, "text")])
+        self.assertTrue(all(m.header.frame_id == "map" for m in shown.markers))
+        corners = [(round(p.x, 2), round(p.y, 2)) for p in shown.markers[1].points]
+        self.assertEqual(corners, [(2.5, 0.85), (2.8, 0.85), (2.8, 1.15), (2.5, 1.15), (2.5, 0.85)])  # in the map
+        self.assertRegex(shown.markers[2].text, r"^#1 heavy at \(2\.65, 1\.00\) m, 0\.30 x 0\.30 m, found at ")
         clear = ActionClientProxy("get_path_server/clear_costmap", ClearCostmapAction)
         self.assertTrue(clear.is_available(WAIT_S))
         mark = costmap.count()
@@ -325,6 +339,9 @@ class TestNodesIO(unittest.TestCase):
         self.assertIn("1 remembered obstacle(s) forgotten", answer.message)
         forgotten = costmap.wait_for(lambda m: cell_value(m, *heavy) == 0, after=costmap.count())
         self.assertIsNotNone(forgotten, "the operator's clear did not forget it")
+        cleared = remembered.wait_for(lambda m: len(m.markers) == 1)
+        self.assertIsNotNone(cleared, "the operator's clear was not published as markers")
+        self.assertEqual(cleared.markers[0].action, Marker.DELETEALL)
 
     def test_rolling_costmap_snapshot_matches_the_newest_scan(self):
         """A controller reads its local costmap through snapshot(): right after a scan, with no timer update in

@@ -24,6 +24,8 @@ ROBOT_TOPICS = {
     ("rviz/PoseArray", "People (topic follower)"): "pure_pursuit_topic/people",
     ("rviz/PointStamped", "Bumper contacts"): "bumper_hits",  # bumper_relay's contact points
     ("rviz/Marker", "Obstacle class"): "obstacle_class_marker",  # obstacle_classifier's class as a text marker
+    # the global costmap's remembered heavy obstacles (footprints and their describe() texts)
+    ("rviz/MarkerArray", "Obstacle memory"): "get_path_server/global_costmap/obstacle_memory",
     ("rviz/Odometry", "Odometry"): "odom",
 }
 

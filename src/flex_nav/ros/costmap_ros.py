@@ -22,7 +22,9 @@ Parameters (private, under ``~<name>/``; units in brackets):
   :class:`~flex_nav.nav.costmap.memory_layer.MemoryParams` (``memory_s`` [s] 600, ...): heavy obstacles the
   behavior found (geometry_msgs/PolygonStamped on ``obstacle_memory/mark``, placed by tf at its stamp) stay LETHAL
   until ``memory_s`` has passed, a scan sees through them, or the operator calls ``~<name>/clear_obstacle_memory``
-  (std_srvs/Trigger); ClearCostmap keeps them
+  (std_srvs/Trigger); ClearCostmap keeps them. What is remembered is latched on ``~<name>/obstacle_memory``
+  (visualization_msgs/MarkerArray of :func:`~flex_nav.ros.memory_markers.memory_markers`, in ``global_frame``) once
+  the map has come and after every change (a mark, an expiry, a scan that saw one gone, the operator's clear, a new map)
 
 Publishes the costmap as OccupancyGrid on ``~<name>/costmap``. The node serves ClearCostmap on
 ``<node>/clear_costmap`` (see :meth:`CostmapROS.serve_clear_costmap`). All access to the costmap goes through
@@ -44,6 +46,7 @@ from geometry_msgs.msg import PointStamped, PolygonStamped
 from nav_msgs.msg import OccupancyGrid
 from sensor_msgs.msg import LaserScan as LaserScanMsg
 from std_srvs.srv import Trigger, TriggerRequest, TriggerResponse
+from visualization_msgs.msg import MarkerArray
 
 from flex_nav.exceptions import ConfigError, NotReadyError
 from flex_nav.msg import ClearCostmapAction, ClearCostmapResult
@@ -57,11 +60,13 @@ from flex_nav.nav.planar import transform_poses
 from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.ros.conversions import grid_map_of, occupancy_grid_msg
 from flex_nav.ros.latest_worker import LatestWorker
+from flex_nav.ros.memory_markers import memory_markers
 from flex_nav.ros.params import param_bool, param_float, param_int, param_str, reject_unknown
 from flex_nav.ros.private_ns import private_name
 from flex_nav.ros.robot_pose import RobotPoseSource
 
 MEMORY_MARK_TOPIC = "obstacle_memory/mark"  # heavy obstacles' footprints (states/remember_obstacle_state.py)
+MEMORY_TOPIC = "obstacle_memory"  # ~<name>/obstacle_memory: what is remembered, as latched markers
 MAP_WAIT_S = 30.0  # [s] default bound on waiting for the first map
 PARAMETERS = (
     "global_frame", "robot_base_frame", "rolling_window", "static_map", "map_topic", "width", "height",
@@ -73,6 +78,8 @@ PARAMETERS = (
 
 class CostmapROS:
     """One costmap with its ROS inputs and outputs; ``name`` is its parameter namespace (e.g. "global_costmap")."""
+
+    _memory_shown: Optional[Tuple[Tuple[int, float, bytes], ...]] = None  # the remembered obstacles last published
 
     def __init__(
         self,
@@ -134,6 +141,8 @@ class CostmapROS:
                 track_unknown_space=self.track_unknown_space, bumper_memory_s=self.bumper_memory_s,
             )
         self.publisher = rospy.Publisher(private_name(f"~{name}/costmap"), OccupancyGrid, queue_size=1, latch=True)
+        self._memory_publisher = (rospy.Publisher(private_name(f"~{name}/{MEMORY_TOPIC}"), MarkerArray, queue_size=2,
+                                                  latch=True) if self.memory is not None else None)
         self._subscribers = []
         if self.use_static_map:
             self._subscribers.append(rospy.Subscriber(self.map_topic, OccupancyGrid, self._on_map, queue_size=1))
@@ -173,6 +182,7 @@ class CostmapROS:
                 self.costmap.set_static_map(grid)
             else:
                 self.costmap = self._static_costmap(grid)
+            self._publish_memory()
         self._map_received.set()
         self.publish()
 
@@ -207,6 +217,7 @@ class CostmapROS:
                 if self.costmap is None:
                     raise NotReadyError("no map yet")
                 entry = self.costmap.remember_obstacle(footprint, msg.header.stamp.to_sec())
+                self._publish_memory()
         except (NotReadyError, ConfigError) as err:
             rospy.logwarn(f"{self.name}: obstacle memory: footprint ignored: {err}")
             return
@@ -215,8 +226,21 @@ class CostmapROS:
     def _on_clear_memory(self, _request: TriggerRequest) -> TriggerResponse:
         with self.lock:
             forgotten = self.costmap.clear_memory() if self.costmap is not None else []
+            self._publish_memory()
         rospy.loginfo(f"{self.name}: obstacle memory cleared by request ({len(forgotten)} forgotten)")
         return TriggerResponse(success=True, message=f"{len(forgotten)} remembered obstacle(s) forgotten")
+
+    def _publish_memory(self) -> None:
+        """Latch the remembered obstacles on ``~<name>/obstacle_memory`` if they changed since last published (the
+        caller holds :attr:`lock`, so publications follow the changes in order)."""
+        if self._memory_publisher is None or self.costmap is None or self.costmap.memory_layer is None:
+            return
+        obstacles = self.costmap.memory_layer.obstacles
+        shown = tuple((o.obstacle_id, o.found_s, o.footprint.tobytes()) for o in obstacles)
+        if shown == self._memory_shown:
+            return
+        self._memory_shown = shown
+        self._memory_publisher.publish(memory_markers(obstacles, self.global_frame, rospy.Time.now()))
 
     def _static_costmap(self, grid: GridMap) -> Costmap:
         if grid.origin[2] != 0.0:
@@ -266,7 +290,8 @@ class CostmapROS:
             if self.costmap is not None:
                 if base is not None:
                     self.costmap.recentre(base[0], base[1])
-                self.costmap.add_scan(scan)
+                self.costmap.add_scan(scan)  # may forget a remembered obstacle the scan sees through
+                self._publish_memory()
             # only a scan that reached the obstacle layer counts as fresh: one add_scan rejected keeps aging
             self.last_scan_time = msg.header.stamp
             self.last_scan_received_s = rospy.get_time()
@@ -320,6 +345,7 @@ class CostmapROS:
             if self.costmap.memory_layer is not None:
                 for gone in self.costmap.expire_memory(rospy.get_time()):
                     rospy.loginfo(f"{self.name}: obstacle memory: forgotten after memory_s: {gone.describe()}")
+                self._publish_memory()
             if centre is not None:
                 self.costmap.recentre(centre[0], centre[1])
             self.costmap.update()
