@@ -7,9 +7,11 @@ functions take):
 ``map``        frame, resolution [m/cell], width, height [cells], origin [x m, y m, yaw rad], png (base64 of a
                grayscale PNG, row 0 = the map's top, i.e. its largest y), version
 ``map_patch``  version, x, y, width, height [cells: the rectangle's top-left column and row in the PNG's rows], png
-``overlay``    robot, kind (``pose``, ``global_plan``, ``local_plan``, ``scan``, ``particles``, ``people``), stamp [s]
-               and ``pose``: x, y, yaw, radius [m, rad] and footprint ([[x, y], ...] in the robot's base frame,
-               when the robot publishes one; else the circle of radius); the others: points [[x, y], ...]
+``overlay``    robot, kind (``pose``, ``global_plan``, ``local_plan``, ``scan``, ``particles``, ``people``,
+               ``memory``), stamp [s] and ``pose``: x, y, yaw, radius [m, rad] and footprint ([[x, y], ...] in the
+               robot's base frame, when the robot publishes one; else the circle of radius); ``memory``: obstacles
+               [{id, footprint [[x, y], ...], text}] (the heavy obstacles its global costmap remembers, at most
+               ``MAX_REMEMBERED``) and truncated (how many more were not sent); the others: points [[x, y], ...]
                (particles and tracked people [[x, y, yaw]]), in the map frame, rounded to millimetres and thinned to
                at most the kind's point budget
 
@@ -31,11 +33,13 @@ import numpy as np
 from flex_nav.console.errors import CommandRefused, MapViewError
 
 GOAL_KINDS = ("goal", "initial_pose")
-OVERLAY_KINDS = ("pose", "global_plan", "local_plan", "scan", "particles", "people")
+OVERLAY_KINDS = ("pose", "global_plan", "local_plan", "scan", "particles", "people", "memory")
 MAX_POINTS = {"global_plan": 2000, "local_plan": 500, "scan": 720, "particles": 500, "people": 100}  # per message
 MIN_PERIOD_S = {"pose": 0.1, "global_plan": 0.2, "local_plan": 0.2, "scan": 0.2, "particles": 0.5,
-                "people": 0.2}  # [s]
+                "people": 0.2, "memory": 0.5}  # [s]
 MAX_FOOTPRINT_POINTS = 64
+MAX_REMEMBERED = 200  # remembered obstacles of one robot sent to the pages
+MAX_REMEMBERED_TEXT = 200  # [characters] of one remembered obstacle's text
 MAX_MAP_CELLS = 25_000_000  # a 5000 x 5000 grid; a larger one is not shown
 PNG_LEVEL = 6  # zlib level of the map's PNG (0-9)
 # map_server's picture of a grid: free white, occupied black, unknown grey; costs in between shade linearly
@@ -175,6 +179,22 @@ def poses_overlay(robot: str, kind: str, stamp: float, poses: np.ndarray) -> Dic
         raise MapViewError(f"overlay kind {kind!r} is not a set of poses (valid: particles, people)")
     rows = np.asarray(poses, dtype=float).reshape(-1, 3)
     return {"type": "overlay", "robot": robot, "kind": kind, "stamp": stamp, "points": _points(rows, MAX_POINTS[kind])}
+
+
+def memory_overlay(robot: str, stamp: float, obstacles: Sequence[Tuple[int, np.ndarray, str]]) -> Dict[str, Any]:
+    """The heavy obstacles a robot's global costmap remembers: (id, footprint (N >= 3, 2) [m] in the map frame,
+    text) each, at most ``MAX_REMEMBERED`` (``truncated``: how many more), a footprint thinned to
+    ``MAX_FOOTPRINT_POINTS`` corners, a text to ``MAX_REMEMBERED_TEXT`` characters; footprints with fewer than three
+    corners or a corner that is not finite are left out."""
+    shown: List[Dict[str, Any]] = []
+    for obstacle_id, footprint, text in obstacles[:MAX_REMEMBERED]:
+        rows = np.asarray(footprint, dtype=float).reshape(-1, 2)
+        if len(rows) < 3 or not np.isfinite(rows).all():
+            continue
+        shown.append({"id": int(obstacle_id), "footprint": _points(rows, MAX_FOOTPRINT_POINTS),
+                      "text": str(text)[:MAX_REMEMBERED_TEXT]})
+    return {"type": "overlay", "robot": robot, "kind": "memory", "stamp": stamp, "obstacles": shown,
+            "truncated": max(0, len(obstacles) - MAX_REMEMBERED)}
 
 
 class Throttle:

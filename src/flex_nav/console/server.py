@@ -27,12 +27,19 @@ The map view (:mod:`flex_nav.console.mapview`): ``map`` once (and again when its
 (a goal or an initial pose placed on the map) is checked by :func:`~flex_nav.console.mapview.check_goal` and
 given to the ``send_goal`` callable, answered with ``goal_sent`` (``ref``, ``robot``, ``kind``, ``x``, ``y``,
 ``yaw``) or ``refused``.
+
+The obstacle memory: the page's ``{"type": "forget_memory", "id", "robot"}`` asks the robot's global costmap to
+forget every remembered obstacle (the ``forget_memory`` callable, run off the event loop and bounded by
+``FORGET_TIMEOUT_S``; one request per robot at a time): answered at once with ``forget_pending`` (``ref``,
+``robot``) or ``refused``, then with ``memory_forgotten`` (``ref``, ``robot``, ``ok``, ``message``: the costmap's
+answer, or why it could not be asked, e.g. no such service when the memory is off).
 """
 
 from __future__ import annotations
 
 import asyncio
 import collections
+import contextlib
 import dataclasses
 import hmac
 import ipaddress
@@ -40,7 +47,7 @@ import itertools
 import json
 import threading
 from pathlib import Path
-from typing import Any, Awaitable, Callable, Deque, Dict, List, Mapping, Optional, Sequence, Tuple
+from typing import Any, Awaitable, Callable, Deque, Dict, List, Mapping, Optional, Sequence, Set, Tuple
 
 from aiohttp import WSMsgType, web
 
@@ -60,6 +67,8 @@ COOKIE = "flex_nav_console"
 MIN_TOKEN_CHARS = 16
 LOOPBACK_NAMES = ("localhost", "127.0.0.1", "::1")
 HISTORY = 200  # log lines and transitions kept per robot for a page that connects later
+FORGET_TIMEOUT_S = 10.0  # [s] bound on a robot's answer to forget its remembered obstacles
+MESSAGE_TYPES = ("command", "fold", "goal", "forget_memory")  # what a page may send
 SECURITY_HEADERS = {
     "Content-Security-Policy": "default-src 'none'; script-src 'self'; style-src 'self'; img-src 'self' data:; "
                                "connect-src 'self'; frame-ancestors 'none'; base-uri 'none'; form-action 'none'",
@@ -72,6 +81,7 @@ SECURITY_HEADERS = {
 Sender = Callable[[str, RunnerCommand], None]  # (runner name, command): publish it; FlexNavError if it cannot
 Renderer = Callable[[BehaviorStructure, Sequence[str]], str]  # (structure, folded container paths) -> SVG
 GoalSender = Callable[[GoalRequest], None]  # publish a checked goal or initial pose; FlexNavError if it cannot
+MemoryForgetter = Callable[[str], Tuple[bool, str]]  # (runner name): its costmap's (success, message); FlexNavError
 
 
 def is_loopback(host: str) -> bool:
@@ -163,6 +173,9 @@ class Console:
         self.config = config
         self.send = send
         self.send_goal: GoalSender = send_goal or _no_goals
+        self.forget_memory: MemoryForgetter = _no_memory
+        self._forgetting: Set[str] = set()  # robots asked to forget and not yet answered (event loop only)
+        self._tasks: Set[asyncio.Task[None]] = set()  # running requests to forget (kept from the collector)
         self.render = render
         self.map = MapPicture()  # updated in the caller's thread (PNG work stays off the event loop)
         self._map_lock = threading.Lock()
@@ -337,7 +350,8 @@ class Console:
         return {"type": "sent", "ref": ref, "robot": robot, "command": command.command, "args": list(command.args)}
 
     async def message(self, client: int, text: str) -> Dict[str, Any]:
-        """A page's message: a command, or a request for the graph with some containers folded."""
+        """A page's message: a command, a request for the graph with some containers folded, a goal, or a request
+        to forget the remembered obstacles."""
         try:
             data = json.loads(text, parse_constant=_no_constant)
         except (ValueError, RecursionError) as err:
@@ -345,14 +359,51 @@ class Console:
         if not isinstance(data, dict):
             return {"type": "error", "message": "a message must be a JSON object"}
         kind = data.get("type")
-        if kind == "command":
-            return self.command(client, data)
         if kind == "fold":
             return await self.fold(data)
-        if kind == "goal":
-            return self.goal(client, data)
-        return {"type": "error", "message": str(refuse_choice("message type", "type", kind,
-                                                              ["command", "fold", "goal"]))}
+        handlers = {"command": self.command, "goal": self.goal, "forget_memory": self.forget}
+        handler = handlers.get(kind) if isinstance(kind, str) else None
+        if handler is None:
+            return {"type": "error", "message": str(refuse_choice("message type", "type", kind, list(MESSAGE_TYPES)))}
+        return handler(client, data)
+
+    def forget(self, client: int, data: Mapping[str, Any]) -> Dict[str, Any]:
+        """Start asking a robot's global costmap to forget its remembered obstacles; ``forget_pending`` (the
+        costmap's answer follows as ``memory_forgotten``) or ``refused``."""
+        ref = f"{client}:{known_ref(data.get('id'))}"
+        robot = data.get("robot")
+        if not isinstance(robot, str) or robot not in self.robots:
+            err = refuse_choice("robot", "robot", robot, sorted(self.robots))
+            return {"type": "refused", "ref": ref, "robot": robot, "reason": str(err), "field": err.field}
+        if robot in self._forgetting:
+            return {"type": "refused", "ref": ref, "robot": robot, "field": "",
+                    "reason": f"{robot} was asked to forget its remembered obstacles already; wait for its answer"}
+        self._forgetting.add(robot)
+        task = asyncio.get_running_loop().create_task(self._forget(client, ref, robot))
+        self._tasks.add(task)
+        task.add_done_callback(self._tasks.discard)
+        return {"type": "forget_pending", "ref": ref, "robot": robot}
+
+    async def _forget(self, client: int, ref: str, robot: str) -> None:
+        loop = asyncio.get_running_loop()
+
+        def ask() -> Tuple[bool, str]:
+            try:
+                return self.forget_memory(robot)
+            finally:  # only now may the robot be asked again (a call that timed out still holds its thread)
+                with contextlib.suppress(RuntimeError):  # the loop closed meanwhile
+                    loop.call_soon_threadsafe(self._forgetting.discard, robot)
+
+        try:
+            ok, message = await asyncio.wait_for(asyncio.to_thread(ask), FORGET_TIMEOUT_S)
+        except asyncio.TimeoutError:
+            ok, message = False, f"{robot} did not answer within {FORGET_TIMEOUT_S:g} s"
+        except FlexNavError as err:
+            ok, message = False, str(err)
+        page = self.clients.get(client)
+        if page is not None:
+            page.put(json.dumps({"type": "memory_forgotten", "ref": ref, "robot": robot, "ok": bool(ok),
+                                 "message": str(message)}, separators=(",", ":")))
 
     def goal(self, client: int, data: Mapping[str, Any]) -> Dict[str, Any]:
         """Check and send a goal or initial pose placed on the map; the answer for the page."""
@@ -467,6 +518,10 @@ class Console:
 
 def _no_goals(request: GoalRequest) -> None:
     raise NotReadyError("this console sends no goals")
+
+
+def _no_memory(robot: str) -> Tuple[bool, str]:
+    raise NotReadyError("this console reaches no obstacle memory")
 
 
 def _no_constant(name: str) -> Any:

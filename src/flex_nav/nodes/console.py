@@ -15,6 +15,11 @@ controller latches on ``<ns>/footprint`` (PolygonStamped in the base frame), els
 ``robot_radius`` parameter. Goals placed on the page are published as PoseStamped on
 ``<ns>/<goal_topic>``, initial poses as PoseWithCovarianceStamped on ``<ns>/initialpose`` (RViz's covariance).
 
+The obstacle memory: the heavy obstacles the robot's global costmap remembers, latched on
+``<ns>/<memory_costmap>/obstacle_memory`` (visualization_msgs/MarkerArray, :mod:`flex_nav.ros.memory_markers`),
+are drawn on the map (the newest at most every ``MIN_PERIOD_S["memory"]``, none lost); the page's "forget" calls
+``<ns>/<memory_costmap>/clear_obstacle_memory`` (std_srvs/Trigger), waiting ``SERVICE_WAIT_S`` for it to exist.
+
 Parameters (private; unknown names are refused):
 
 - ``~host`` (str, "127.0.0.1"): address to bind. Any address other than a loopback one needs ``~token``.
@@ -27,6 +32,8 @@ Parameters (private; unknown names are refused):
 - ``~goal_topic`` (str, "move_base_simple/goal"): where a robot's goals go, in its namespace (flex_planner's
   ``goal_topic``).
 - ``~pose_period_s`` (float, 0.1): how often each robot's pose is looked up [s].
+- ``~memory_costmap`` (str, "get_path_server/global_costmap"): the costmap with the obstacle memory, in each robot's
+  namespace.
 
 A bad parameter, a missing token for a non-loopback host or a port that cannot be bound ends the node with
 exit status 2 and the reason.
@@ -52,6 +59,8 @@ from nav_msgs.msg import OccupancyGrid, Path
 from rospy.numpy_msg import numpy_msg
 from sensor_msgs.msg import LaserScan
 from std_msgs.msg import String
+from std_srvs.srv import Trigger
+from visualization_msgs.msg import MarkerArray
 
 from flex_nav.console.commands import RunnerCommand
 from flex_nav.console.events import activity_event, feedback_event, log_event, status_event, transition_event
@@ -60,6 +69,7 @@ from flex_nav.console.mapview import (
     GoalRequest,
     GridGeometry,
     Throttle,
+    memory_overlay,
     path_overlay,
     pose_overlay,
     poses_overlay,
@@ -80,11 +90,13 @@ from flex_nav.msg import (
 from flex_nav.nav.planar import transform_poses
 from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.ros.master_probe import MASTER_CALL_TIMEOUT_S, _TimeoutTransport
+from flex_nav.ros.memory_markers import remembered_of_markers
 from flex_nav.ros.node import init_node
 from flex_nav.ros.params import param_float, param_int, param_str, reject_unknown
 
 PARAMETERS = ("host", "port", "token", "discovery_period_s", "max_clients", "map_topic", "goal_topic",
-              "pose_period_s")
+              "pose_period_s", "memory_costmap")
+SERVICE_WAIT_S = 2.0  # [s] how long the clear_obstacle_memory service may take to appear
 DEFAULT_RADIUS_M = 0.2  # [m] footprint drawn when the namespace has no robot_radius parameter
 INITIAL_POSE_COVARIANCE = (0.25, 0.25, 0.06853891945200942)  # [m^2, m^2, rad^2] x, y, yaw: RViz's 2D Pose Estimate
 
@@ -152,6 +164,8 @@ class MapLink:
         radius = rospy.get_param(f"{ns}/robot_radius", DEFAULT_RADIUS_M)
         self.radius_m = float(radius) if isinstance(radius, (int, float)) else DEFAULT_RADIUS_M
         self.footprint: np.ndarray | None = None  # (x, y) rows [m] in the base frame, from <ns>/footprint
+        self._memory_lock = threading.Lock()
+        self._memory_pending: Dict[str, Any] | None = None  # the newest memory overlay not yet submitted
         self.goal_publisher = rospy.Publisher(f"{ns}/{view.goal_topic}", PoseStamped, queue_size=1)
         self.pose_publisher = rospy.Publisher(f"{ns}/initialpose", PoseWithCovarianceStamped, queue_size=1)
         self.subscribers = [
@@ -165,6 +179,8 @@ class MapLink:
                              queue_size=1),
             *(rospy.Subscriber(f"{ns}/{controller}/people", PoseArray, self._on_poses, callback_args="people",
                                queue_size=1) for controller in ("pure_pursuit_path", "pure_pursuit_topic")),
+            rospy.Subscriber(f"{ns}/{view.memory_costmap}/obstacle_memory", MarkerArray, self._on_memory,
+                             queue_size=1),
         ]
 
     def _due(self, kind: str) -> bool:
@@ -214,6 +230,45 @@ class MapLink:
         if points is not None:
             self.console.submit_overlay(poses_overlay(self.runner, kind, msg.header.stamp.to_sec(), points))
 
+    def _on_memory(self, msg: MarkerArray) -> None:
+        frame = msg.markers[0].header.frame_id if msg.markers else self.view.frame
+        rows = remembered_of_markers(msg)
+        shown = []
+        for obstacle_id, footprint, text in rows:
+            points = self._transformed(frame, footprint)
+            if points is None:
+                rospy.logwarn_throttle(30.0, f"console: remembered obstacles of {self.runner} not shown: no "
+                                             f"transform {self.view.frame} -> {frame}")
+                return
+            shown.append((obstacle_id, points, text))
+        with self._memory_lock:
+            self._memory_pending = memory_overlay(self.runner, rospy.get_time(), shown)
+        self.flush_memory()
+
+    def flush_memory(self) -> None:
+        """Submit the newest memory overlay if one waits and its kind is due (called again every pose period,
+        so a change that came too soon after the last is shown late, never lost)."""
+        with self._memory_lock:
+            if self._memory_pending is None or not self._due("memory"):
+                return
+            event, self._memory_pending = self._memory_pending, None
+        self.console.submit_overlay(event)
+
+    def forget_memory(self) -> Tuple[bool, str]:
+        """Call the robot's clear_obstacle_memory service: its (success, message); NotReadyError naming the service
+        when it does not exist (the memory off) or fails."""
+        name = f"{robot_namespace(self.runner)}/{self.view.memory_costmap}/clear_obstacle_memory"
+        try:
+            rospy.wait_for_service(name, timeout=SERVICE_WAIT_S)
+        except rospy.ROSException as err:
+            raise NotReadyError(f"no service {name} (within {SERVICE_WAIT_S:g} s): is the obstacle memory of "
+                                f"{self.view.memory_costmap} off (obstacle_memory/enabled false)?") from err
+        try:
+            answer = rospy.ServiceProxy(name, Trigger)()
+        except (rospy.ServiceException, rospy.ROSException) as err:
+            raise NotReadyError(f"{name} failed: {err}") from err
+        return bool(answer.success), str(answer.message)
+
     def publish_pose(self) -> None:
         pose = self._to_map(self.base_frame)
         if pose is not None:
@@ -253,9 +308,11 @@ def _set_pose(pose: Any, request: GoalRequest) -> None:
 class MapView:
     """The map subscription, a tf buffer, and one :class:`MapLink` per runner (made and closed by the registry)."""
 
-    def __init__(self, console: Console, map_topic: str, goal_topic: str) -> None:
+    def __init__(self, console: Console, map_topic: str, goal_topic: str,
+                 memory_costmap: str = "get_path_server/global_costmap") -> None:
         self.console = console
         self.goal_topic = goal_topic
+        self.memory_costmap = memory_costmap.strip("/")
         self.frame = "map"
         self.tf = tf2_ros.Buffer(cache_time=rospy.Duration(10.0))
         self._tf_listener = tf2_ros.TransformListener(self.tf)
@@ -291,6 +348,7 @@ class RunnerRegistry:
         self.map_links: Dict[str, MapLink] = {}
         self.map_view: MapView | None = None
         self.map_topics: Tuple[str, str] | None = None  # (map topic, goal topic): the map view made at start()
+        self.memory_costmap = "get_path_server/global_costmap"  # in each robot's namespace
         self.pose_period_s = 0.1  # [s]
         self._lock = threading.Lock()
         self._stop = threading.Event()
@@ -298,7 +356,7 @@ class RunnerRegistry:
 
     def start(self) -> None:
         if self.map_topics is not None and self.map_view is None:
-            self.map_view = MapView(self.console, *self.map_topics)
+            self.map_view = MapView(self.console, *self.map_topics, self.memory_costmap)
         self._thread.start()
 
     def stop(self) -> None:
@@ -327,6 +385,7 @@ class RunnerRegistry:
                 map_links = list(self.map_links.values())
             for link in map_links:
                 link.publish_pose()
+                link.flush_memory()
             self._stop.wait(min(self.pose_period_s, max(0.0, next_discovery - time.monotonic())))
 
     def discover_once(self) -> List[str]:
@@ -357,6 +416,13 @@ class RunnerRegistry:
         if link is None:
             raise NotReadyError(f"no map link to {request.robot} (yet)")
         link.send(request)
+
+    def forget_memory(self, robot: str) -> Tuple[bool, str]:
+        with self._lock:
+            link = self.map_links.get(robot)
+        if link is None:
+            raise NotReadyError(f"no map link to {robot} (yet)")
+        return link.forget_memory()
 
     def send(self, robot: str, command: RunnerCommand) -> None:
         with self._lock:
@@ -412,6 +478,10 @@ def main() -> int:
         pose_period_s = param_float("~pose_period_s", 0.1, 0.02, 60.0)
         map_topic = param_str("~map_topic", "/map")
         goal_topic = param_str("~goal_topic", "move_base_simple/goal")
+        memory_costmap = param_str("~memory_costmap", "get_path_server/global_costmap")
+        if not memory_costmap.strip("/"):
+            raise ConfigError("~memory_costmap must name a costmap in the robots' namespaces, e.g. "
+                              "get_path_server/global_costmap")
     except ConfigError as err:
         rospy.logfatal(f"console: {err}")
         print(f"[console] configuration error: {err}", file=sys.stderr)
@@ -420,8 +490,10 @@ def main() -> int:
     registry = RunnerRegistry(console, os.environ.get("ROS_MASTER_URI", ""), period_s)
     registry.pose_period_s = pose_period_s
     registry.map_topics = (map_topic, goal_topic)
+    registry.memory_costmap = memory_costmap
     console.send = registry.send
     console.send_goal = registry.send_goal
+    console.forget_memory = registry.forget_memory
     if shutil.which("dot") is None:
         rospy.logwarn(f"console: Graphviz's dot is not installed: behaviors will not be drawn (commands still work; "
                       f"install the Debian package graphviz; layouts are bounded by {DOT_TIMEOUT_S:g} s)")

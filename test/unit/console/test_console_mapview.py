@@ -18,7 +18,11 @@ from unit.console.test_console_server import ROBOT, console, origin, page, run, 
 from flex_nav.console.errors import CommandRefused, MapViewError
 from flex_nav.console.mapview import (
     FREE,
+    MAX_FOOTPRINT_POINTS,
     MAX_POINTS,
+    MAX_REMEMBERED,
+    MAX_REMEMBERED_TEXT,
+    MIN_PERIOD_S,
     OCCUPIED,
     UNKNOWN,
     GoalRequest,
@@ -26,6 +30,7 @@ from flex_nav.console.mapview import (
     MapPicture,
     Throttle,
     check_goal,
+    memory_overlay,
     path_overlay,
     pose_overlay,
     poses_overlay,
@@ -103,6 +108,24 @@ def test_overlays_are_in_the_map_frame_rounded_and_thinned() -> None:
     assert people["kind"] == "people" and people["points"] == [[1.0, 2.0, 0.5]]
     with pytest.raises(MapViewError, match="'scan' is not a set of poses"):
         poses_overlay(ROBOT, "scan", 4.0, np.zeros((1, 3)))
+
+
+def test_remembered_obstacles_are_rounded_bounded_and_checked() -> None:
+    square = np.array([[1.00049, 2.0], [1.5, 2.0], [1.5, 2.5], [1.0, 2.5]])
+    event = memory_overlay(ROBOT, 3.0, [(4, square, "#4 heavy at (1.25, 2.25) m")])
+    assert event == {"type": "overlay", "robot": ROBOT, "kind": "memory", "stamp": 3.0, "truncated": 0,
+                     "obstacles": [{"id": 4, "footprint": [[1.0, 2.0], [1.5, 2.0], [1.5, 2.5], [1.0, 2.5]],
+                                    "text": "#4 heavy at (1.25, 2.25) m"}]}
+    assert memory_overlay(ROBOT, 3.0, [])["obstacles"] == []  # nothing remembered (the operator cleared it)
+    circle = np.column_stack((np.cos(np.linspace(0, 6, 500)), np.sin(np.linspace(0, 6, 500))))
+    bad = [(1, square[:2], "a line"), (2, np.array([[0.0, 0.0], [1.0, math.nan], [0.0, 1.0]]), "not finite"),
+           (3, circle, "x" * 1000)]
+    (kept,) = memory_overlay(ROBOT, 3.0, bad)["obstacles"]
+    assert kept["id"] == 3 and len(kept["footprint"]) == MAX_FOOTPRINT_POINTS
+    assert kept["text"] == "x" * MAX_REMEMBERED_TEXT
+    many = memory_overlay(ROBOT, 3.0, [(i, square, f"#{i}") for i in range(MAX_REMEMBERED + 7)])
+    assert len(many["obstacles"]) == MAX_REMEMBERED and many["truncated"] == 7
+    assert MIN_PERIOD_S["memory"] > 0  # throttled like the other overlays (the node holds the newest back)
 
 
 def test_the_throttle_lets_one_overlay_of_a_kind_through_per_period() -> None:

@@ -44,7 +44,7 @@ def test_bad_tokens_and_unknown_parameters_exit_2_without_echoing_the_token(
     assert "the token has 11 characters" in err and "tiny-secret" not in err
     assert start_with(monkeypatch, {"prot": 8081}) == 2
     assert ("prot is not a parameter of this node (valid: discovery_period_s, goal_topic, host, map_topic, "
-            "max_clients, port, pose_period_s, token)") in capsys.readouterr().err
+            "max_clients, memory_costmap, port, pose_period_s, token)") in capsys.readouterr().err
 
 
 def test_a_good_configuration_serves(monkeypatch: pytest.MonkeyPatch) -> None:

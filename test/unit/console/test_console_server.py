@@ -8,6 +8,7 @@ import asyncio
 import contextlib
 import hmac
 import json
+import threading
 import time
 from typing import Any, AsyncIterator, Callable, Coroutine, Dict, List, Sequence, Tuple
 
@@ -247,8 +248,68 @@ def test_commands_are_refused_with_the_reason_and_never_sent() -> None:
             await ws.send_str("eval('1')")
             assert "not a JSON message" in (await until(ws, lambda e: e["type"] == "error"))["message"]
             await ws.send_json({"type": "exec"})
-            assert "message type 'exec' is not valid (valid: command, fold, goal)" in (
+            assert "message type 'exec' is not valid (valid: command, fold, goal, forget_memory)" in (
                 await until(ws, lambda e: e["type"] == "error"))["message"]
+            await ws.close()
+    run(check())
+
+
+def test_forget_remembered_obstacles_answers_the_page_with_the_costmaps_answer_or_why_not(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(server_module, "FORGET_TIMEOUT_S", 0.5)
+    asked: List[str] = []
+    release = threading.Event()
+
+    def forget(robot: str) -> Tuple[bool, str]:
+        asked.append(robot)
+        if robot == "/slow/behavior_runner":
+            release.wait(5.0)
+            return True, "late"
+        if robot == "/off/behavior_runner":
+            raise NotReadyError("no service /off/get_path_server/global_costmap/clear_obstacle_memory (within 2 s): "
+                                "is the obstacle memory of get_path_server/global_costmap off?")
+        return True, "2 remembered obstacle(s) forgotten"
+
+    async def check() -> None:
+        made, recorder = console(port=0)
+        made.forget_memory = forget
+        async with served(made) as client:
+            ws = await page(client)
+            await runner_says(made, ws, [ROBOT, "/off/behavior_runner", "/slow/behavior_runner"])
+            await ws.send_json({"type": "forget_memory", "id": 1, "robot": ROBOT})
+            assert await until(ws, lambda e: e["type"] == "forget_pending") == {
+                "type": "forget_pending", "ref": "1:1", "robot": ROBOT}
+            assert await until(ws, lambda e: e["type"] == "memory_forgotten") == {
+                "type": "memory_forgotten", "ref": "1:1", "robot": ROBOT, "ok": True,
+                "message": "2 remembered obstacle(s) forgotten"}
+            await ws.send_json({"type": "forget_memory", "id": 2, "robot": "/off/behavior_runner"})
+            off = await until(ws, lambda e: e["type"] == "memory_forgotten")
+            assert off["ref"] == "1:2" and off["ok"] is False and off["message"].startswith("no service /off/")
+            await ws.send_json({"type": "forget_memory", "id": 3, "robot": "/robot9/behavior_runner"})
+            refused = await until(ws, lambda e: e["type"] in ("forget_pending", "refused"))
+            assert refused["type"] == "refused" and refused["field"] == "robot"
+            assert "robot '/robot9/behavior_runner' is not valid" in refused["reason"]
+            await ws.send_json({"type": "forget_memory", "id": 4, "robot": "/slow/behavior_runner"})
+            await until(ws, lambda e: e["type"] == "forget_pending")
+            await ws.send_json({"type": "forget_memory", "id": 5, "robot": "/slow/behavior_runner"})
+            twice = await until(ws, lambda e: e["type"] in ("forget_pending", "refused", "memory_forgotten"))
+            assert twice["type"] == "refused" and "wait for its answer" in twice["reason"], twice
+            late = await until(ws, lambda e: e["type"] == "memory_forgotten")
+            assert late["ref"] == "1:4" and late["ok"] is False and "did not answer within 0.5 s" in late["message"]
+            await ws.send_json({"type": "forget_memory", "id": 6, "robot": "/slow/behavior_runner"})
+            still = await until(ws, lambda e: e["type"] in ("forget_pending", "refused"))
+            assert still["type"] == "refused", "a robot whose call still hangs was asked again"
+            release.set()  # the hanging call ends: the robot may be asked again
+            for _ in range(50):
+                await ws.send_json({"type": "forget_memory", "id": 7, "robot": "/slow/behavior_runner"})
+                again = await until(ws, lambda e: e["type"] in ("forget_pending", "refused"))
+                if again["type"] == "forget_pending":
+                    break
+                await asyncio.sleep(0.05)
+            assert again["type"] == "forget_pending", again
+            assert (await until(ws, lambda e: e["type"] == "memory_forgotten"))["message"] == "late"
+            assert asked == [ROBOT, "/off/behavior_runner", "/slow/behavior_runner", "/slow/behavior_runner"]
+            assert recorder.sent == []  # nothing went to the runners' command topics
             await ws.close()
     run(check())
 

@@ -111,8 +111,14 @@
       case "error": showError(data.message); break;
       case "map": onMap(data); break;
       case "map_patch": onMapPatch(data); break;
-      case "overlay": robotState(data.robot).overlays[data.kind] = data; drawMapSoon(); break;
+      case "overlay":
+        robotState(data.robot).overlays[data.kind] = data;
+        drawMapSoon();
+        if (data.kind === "memory" && data.robot === current) showMemory();
+        break;
       case "goal_sent": onGoalSent(data); break;
+      case "forget_pending": onForgetPending(data); break;
+      case "memory_forgotten": onMemoryForgotten(data); break;
       default: break;
     }
   }
@@ -211,6 +217,7 @@
 
   // --- the selected robot ---------------------------------------------------------------------------------------
   function showRobot() {
+    showMemory();
     drawGraph();
     showStatus();
     showActivity();
@@ -625,6 +632,7 @@
   const ZOOM_STEP = 1.25;
   const MAX_ZOOM = 64;
   const ROBOT_COLOURS = ["#ef6c00", "#00838f", "#6d4c41", "#c2185b"];
+  const MEMORY_COLOUR = "#8b0000";  // remembered heavy obstacles: dashed dark red
 
   function loadPng(png, done) {
     const img = new Image();
@@ -714,17 +722,23 @@
     ctx.imageSmoothingEnabled = false;
     ctx.drawImage(map.image, v.left, v.bottom - map.info.height * map.info.resolution * v.k,
       map.info.width * map.info.resolution * v.k, map.info.height * map.info.resolution * v.k);
+    for (const state of robots.values()) drawMemory(ctx, v, state.overlays.memory);  // beneath the robots' drawings
     [...robots.keys()].forEach((name, index) => drawRobot(ctx, v, name, ROBOT_COLOURS[index % ROBOT_COLOURS.length]));
-    // what was drawn, for tools and tests: per robot and kind, the pose or [points, the last point]
+    // what was drawn, for tools and tests: per robot and kind, the pose, [remembered obstacles, their ids] or
+    // [points, the last point]
     const drawn = {};
     for (const [name, state] of robots) {
       drawn[name] = {};
       for (const [kind, o] of Object.entries(state.overlays)) {
-        drawn[name][kind] = kind === "pose" ? [o.x, o.y, o.footprint ? o.footprint.length : 0]
-          : [o.points.length, o.points[o.points.length - 1] || null];
+        if (kind === "pose") drawn[name][kind] = [o.x, o.y, o.footprint ? o.footprint.length : 0];
+        else if (kind === "memory") drawn[name][kind] = [o.obstacles.length, o.obstacles.map((b) => b.id)];
+        else drawn[name][kind] = [o.points.length, o.points[o.points.length - 1] || null];
       }
     }
     canvas.dataset.drawn = JSON.stringify(drawn);
+    // the remembered obstacles drawn (every robot's): footprint [[x, y], ...] in map metres and text
+    canvas.dataset.remembered = JSON.stringify(remembered().map(([, b]) => ({ id: b.id, footprint: b.footprint,
+      text: b.text })));
     // the tracked people drawn (every robot's), [x, y] in map metres: where to look for them on the canvas
     canvas.dataset.people = JSON.stringify([...robots.values()].flatMap((state) =>
       state.overlays.people ? state.overlays.people.points.map(([x, y]) => [x, y]) : []));
@@ -747,6 +761,86 @@
     ctx.beginPath();
     points.forEach(([x, y], i) => { const [cx, cy] = toCanvas(v, x, y); if (i) ctx.lineTo(cx, cy); else ctx.moveTo(cx, cy); });
     ctx.stroke();
+  }
+
+  // [robot, obstacle] of every robot's remembered obstacles
+  const remembered = () => [...robots].flatMap(([name, state]) =>
+    state.overlays.memory ? state.overlays.memory.obstacles.map((b) => [name, b]) : []);
+
+  function drawMemory(ctx, v, memory) {
+    if (!memory || !memory.obstacles.length) return;
+    ctx.save();
+    ctx.setLineDash([6, 4]);
+    ctx.strokeStyle = MEMORY_COLOUR;
+    ctx.fillStyle = "rgba(139, 0, 0, 0.15)";
+    ctx.lineWidth = 2.5;
+    for (const obstacle of memory.obstacles) {
+      ctx.beginPath();
+      obstacle.footprint.forEach(([x, y], i) => {
+        const [cx, cy] = toCanvas(v, x, y);
+        if (i) ctx.lineTo(cx, cy); else ctx.moveTo(cx, cy);
+      });
+      ctx.closePath();
+      ctx.fill();
+      ctx.stroke();
+    }
+    ctx.restore();
+  }
+
+  function inside(polygon, x, y) {  // even-odd rule
+    let hit = false;
+    for (let i = 0, j = polygon.length - 1; i < polygon.length; j = i++) {
+      const [xi, yi] = polygon[i];
+      const [xj, yj] = polygon[j];
+      if ((yi > y) !== (yj > y) && x < xi + ((y - yi) * (xj - xi)) / (yj - yi)) hit = !hit;
+    }
+    return hit;
+  }
+
+  function hoverMemory(event) {  // the canvas's title: what the remembered obstacle under the pointer is
+    const canvas = $("map");
+    if (!map.view) { canvas.title = ""; return; }
+    const [x, y] = toMap(map.view, ...mapPoint(event));
+    const under = remembered().filter(([, b]) => inside(b.footprint, x, y));
+    const title = under.map(([name, b]) => (robots.size > 1 ? `${name}: ` : "") + b.text).join("\n");
+    if (canvas.title !== title) canvas.title = title;
+  }
+
+  function showMemory() {
+    const state = robots.get(current);
+    const memory = state && state.overlays.memory;
+    const list = $("memory");
+    if (!memory || !memory.obstacles.length) {
+      list.replaceChildren(el("li", memory ? "nothing remembered" : "no obstacle memory seen", "none"));
+      return;
+    }
+    const items = memory.obstacles.map((b) => el("li", b.text));
+    if (memory.truncated) items.push(el("li", `and ${memory.truncated} more`, "none"));
+    list.replaceChildren(...items);
+  }
+
+  function forgetMemory() {
+    const feedback = document.querySelector('[data-feedback="memory"]');
+    if (!socket || socket.readyState !== WebSocket.OPEN) { showFeedback(feedback, "not connected to the console", "bad"); return; }
+    const id = nextId++;
+    waiting.set(`${client}:${id}`, feedback);
+    showFeedback(feedback, "sending…", "pending");
+    socket.send(JSON.stringify({ type: "forget_memory", id, robot: current }));
+  }
+
+  function onForgetPending(data) {
+    const node = waiting.get(data.ref);
+    if (node) showFeedback(node, `asking ${data.robot}'s obstacle memory…`, "pending");
+    addLine(data.robot, "events", { kind: "command", text: "→ forget remembered obstacles" });
+    if (data.robot === current) soon("transitions");
+  }
+
+  function onMemoryForgotten(data) {
+    const node = waiting.get(data.ref);
+    const text = `${data.ok ? "ok" : "failed"}: ${data.message}`;
+    if (node) { showFeedback(node, text, data.ok ? "ok" : "bad"); waiting.delete(data.ref); }
+    addLine(data.robot, "events", { kind: "feedback", ok: data.ok, text: `← forget remembered obstacles: ${text}` });
+    if (data.robot === current) soon("transitions");
   }
 
   function drawRobot(ctx, v, name, colour) {
@@ -838,6 +932,7 @@
   }
 
   function onMapMove(event) {
+    if (!map.pan && !map.drag) hoverMemory(event);
     if (map.pan) {
       const [cx, cy] = mapPoint(event);
       const k = map.view ? map.view.k : 1;
@@ -891,6 +986,7 @@
     canvas.addEventListener("wheel", onMapWheel, { passive: false });
     canvas.addEventListener("contextmenu", (event) => event.preventDefault());
     $("map-fit").addEventListener("click", fitMap);
+    $("memory-forget").addEventListener("click", forgetMemory);
     window.addEventListener("resize", drawMapSoon);
     if (typeof ResizeObserver === "function") new ResizeObserver(drawMapSoon).observe(canvas);  // layout changes
     const run = document.querySelector('[data-feedback="run"]');
