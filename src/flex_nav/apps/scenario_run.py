@@ -34,7 +34,7 @@ from typing import Any, Dict, List, Optional, Sequence, Set, Tuple
 
 import yaml
 
-from flex_nav.apps.eval.metrics import RunResult, people_clearance
+from flex_nav.apps.eval.metrics import RunResult, classify_contact, people_clearance
 from flex_nav.apps.nav_demo import (
     DemoMonitor,
     RobotRun,
@@ -109,15 +109,20 @@ class ScenarioMonitor(DemoMonitor):
         self.pushes_tried = 0
         self.pushes_succeeded = 0
         self.people_contacts: List[Tuple[float, str]] = []
+        self.robot_caused_contacts = 0  # of people_contacts, the robot's doing (metrics.classify_contact)
         self.timed_trajectory: List[Tuple[float, float, float]] = []  # (sim s, x, y)
+        # the newest ground truth: (x, y, yaw) [m, m, rad] and the twist (v [m/s], w [rad/s]) in the base frame
+        self._truth: Optional[Tuple[Tuple[float, float, float], float, float]] = None
         self._event_lock = threading.Lock()
         self.subs.append(self.rospy.Subscriber(f"/{ROBOT}/sim_events", SimEvent, self._on_sim_event, queue_size=50))
 
     def _on_odom(self, msg: Any, run: RobotRun) -> None:
         super()._on_odom(msg, run)
-        p = msg.pose.pose.position
+        p, q = msg.pose.pose.position, msg.pose.pose.orientation
+        yaw = math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
         with self._event_lock:
             self.timed_trajectory.append((msg.header.stamp.to_sec(), p.x, p.y))
+            self._truth = ((p.x, p.y, yaw), msg.twist.twist.linear.x, msg.twist.twist.angular.z)
 
     def _on_transition(self, msg: Any, run: RobotRun) -> None:
         super()._on_transition(msg, run)
@@ -130,7 +135,21 @@ class ScenarioMonitor(DemoMonitor):
         if msg.other_kind == "person" and msg.kind == msg.CONTACT_BEGIN:
             with self._event_lock:
                 self.people_contacts.append((msg.header.stamp.to_sec(), msg.other))
-            print(f"[sim {self.sim_s():7.1f} s] CONTACT with person {msg.other}", flush=True)
+                truth = self._truth
+            cause = "counted as robot-caused: no ground truth of the robot yet to classify it by"
+            robot_caused = True  # what cannot be classified counts against the robot
+            if truth is not None:
+                pose, v, w = truth
+                try:
+                    classified = classify_contact(pose, v, w, (msg.position.x, msg.position.y))
+                except ValueError as err:
+                    cause = f"counted as robot-caused: {err}"
+                else:
+                    robot_caused = classified.robot_caused
+                    cause = ("robot-caused" if robot_caused else "person-caused") + f": {classified.reason}"
+            with self._event_lock:
+                self.robot_caused_contacts += robot_caused
+            print(f"[sim {self.sim_s():7.1f} s] CONTACT with person {msg.other} ({cause})", flush=True)
 
 
 def start(stack: contextlib.ExitStack, args: argparse.Namespace, run: RobotRun) -> List[ManagedProcess]:
@@ -230,6 +249,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
             result.pushes_tried = monitor.pushes_tried
             result.pushes_succeeded = monitor.pushes_succeeded
             result.people_contacts = len(monitor.people_contacts)
+            result.people_contacts_robot_caused = monitor.robot_caused_contacts
+            result.people_contacts_person_caused = result.people_contacts - monitor.robot_caused_contacts
             trajectory = [(t, x, y) for t, x, y in monitor.timed_trajectory if t >= goal_sim_s]
         result.min_people_clearance_m = people_clearance(world, trajectory)
         result.min_people_clearance_moving_m = people_clearance(world, trajectory, moving_only=True)

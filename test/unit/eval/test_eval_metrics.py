@@ -94,3 +94,40 @@ def test_markdown_summarises_per_scenario_and_behavior():
     assert "| s1 | move_base_like | 0/1 | - | - | 0/0 | 0 | - |" in lines
     assert "| s1 | push_or_avoid | 2/2 | 45.0 | 8.5 | 3/2 | 0 | 0.40 |" in lines
     assert "s1 / move_base_like / seed 0: goal given up" in text
+
+
+def test_contacts_with_people_are_split_by_whose_doing_they_were():
+    from flex_nav.apps.eval.metrics import classify_contact  # noqa: PLC0415
+
+    facing_north = (2.0, 3.0, math.pi / 2.0)  # the robot at (2, 3) facing +y
+    ahead = (2.0, 3.17)  # touched at its front
+    assert classify_contact(facing_north, 0.2, 0.0, ahead).robot_caused  # drove into the person
+    assert not classify_contact(facing_north, 0.0, 0.0, ahead).robot_caused  # stood: the person walked into it
+    assert not classify_contact(facing_north, -0.2, 0.0, ahead).robot_caused  # backed away: walked into it
+    behind = (2.0, 2.83)
+    assert classify_contact(facing_north, -0.2, 0.0, behind).robot_caused  # backed into the person
+    assert not classify_contact(facing_north, 0.2, 0.0, behind).robot_caused  # drove away: walked into its back
+    with pytest.raises(ValueError, match="no direction"):
+        classify_contact(facing_north, 0.2, 0.0, (2.0, 3.0))
+
+
+def test_the_contact_split_round_trips_and_older_results_load_without_it():
+    result = RunResult("s6", "push_or_avoid", 0, success=True, time_s=46.7, people_contacts=3,
+                       people_contacts_robot_caused=1, people_contacts_person_caused=2)
+    back = RunResult.from_dict(result.to_dict())
+    assert (back.people_contacts, back.people_contacts_robot_caused, back.people_contacts_person_caused) == (3, 1, 2)
+    recorded_before = {k: v for k, v in result.to_dict().items() if not k.startswith("people_contacts_")}
+    older = RunResult.from_dict(recorded_before)
+    assert (older.people_contacts, older.people_contacts_robot_caused, older.people_contacts_person_caused) == (3, 0, 0)
+    rows = list(csv.DictReader(io.StringIO(to_csv([result]))))
+    assert rows[0]["people_contacts_robot_caused"] == "1" and rows[0]["people_contacts_person_caused"] == "2"
+
+
+def test_the_table_says_how_many_contacts_were_the_robots_doing():
+    classified = [RunResult("s6", "push_or_avoid", s, success=True, time_s=45.0, path_m=8.6, people_contacts=c,
+                            people_contacts_robot_caused=r, people_contacts_person_caused=c - r)
+                  for s, c, r in ((0, 2, 0), (1, 1, 1))]
+    lines = to_markdown(classified).splitlines()
+    assert "| s6 | push_or_avoid | 2/2 | 45.0 | 8.6 | 0/0 | 3 (1 by the robot) | - |" in lines
+    unclassified = [RunResult("s6", "move_base_like", 0, success=True, time_s=58.0, path_m=9.0, people_contacts=4)]
+    assert "| s6 | move_base_like | 1/1 | 58.0 | 9.0 | 0/0 | 4 | - |" in to_markdown(unclassified).splitlines()

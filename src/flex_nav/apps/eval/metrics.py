@@ -13,6 +13,8 @@ import math
 from dataclasses import asdict, dataclass, field
 from typing import Any, Dict, List, Sequence, Tuple
 
+from flex_nav.nav.control.social_distance import ContactCause, contact_cause
+
 ROBOT_RADIUS_M = 0.171  # [m] TurtleBot 4 (sim/robots/turtlebot4.yaml)
 
 
@@ -29,7 +31,12 @@ class RunResult:
     heading_error_deg: float = math.nan  # [deg] final heading minus the goal's (ground truth; NaN: not reached)
     pushes_tried: int = 0
     pushes_succeeded: int = 0
-    people_contacts: int = 0  # contacts that began between the robot and a person
+    people_contacts: int = 0  # contacts that began between the robot and a person (all of them)
+    # the same split by whose doing they were (:func:`classify_contact`): the robot drove into the person, or the
+    # person walked into a standing robot or one whose touching point moved away or along; results recorded
+    # before the split have 0 and 0 here whatever people_contacts says
+    people_contacts_robot_caused: int = 0
+    people_contacts_person_caused: int = 0
     min_people_clearance_m: float = math.inf  # [m] smallest robot-person gap (inf: no person in the world)
     # [m] the same while the robot moved (faster than MOVING_MPS): a person walking up to a standing robot is not
     # the robot coming close (inf: no person, or never near one while moving)
@@ -94,6 +101,21 @@ def person_position(person: Any, intervals: Sequence[Tuple[float, float]], sim_s
 
 
 MOVING_MPS = 0.02  # [m/s] the robot counts as moving above this speed (ground truth)
+
+
+def classify_contact(pose: Tuple[float, float, float], v: float, w: float,
+                     point: Tuple[float, float]) -> ContactCause:
+    """Whose doing a contact with a person was: the robot at ``pose`` (x, y, yaw) [m, m, rad] driving at (``v``
+    [m/s], ``w`` [rad/s]) when it touched them at ``point`` (x, y) [m], both in the world frame
+    (:func:`flex_nav.nav.control.social_distance.contact_cause`, the point carried into the robot's base frame;
+    its direction from the base's centre is the footprint's outward normal of a round base)."""
+    x, y, yaw = pose
+    dx, dy = point[0] - x, point[1] - y
+    c, s = math.cos(yaw), math.sin(yaw)
+    local = (c * dx + s * dy, -s * dx + c * dy)
+    if math.hypot(*local) < 1e-9:
+        raise ValueError(f"contact point {point!r} at the robot's centre {pose!r}: no direction to classify it by")
+    return contact_cause(v, w, local, stopped_speed_mps=MOVING_MPS)
 
 
 def people_clearance(world: Any, trajectory: Sequence[Tuple[float, float, float]], goal_sim_s: float = 0.0,

@@ -1,7 +1,8 @@
 """The scenario table: every run as CSV, and a Markdown summary per scenario and behavior.
 
 Summary columns: runs, successes, mean time to goal over the successful runs [s], mean path length over
-the successful runs [m], pushes tried / succeeded (sums), contacts with people (sum) and the smallest
+the successful runs [m], pushes tried / succeeded (sums), contacts with people (sum; how many were the robot's
+doing, when they were classified) and the smallest
 clearance to a person over every run [m] ("-" without people).
 """
 
@@ -45,6 +46,15 @@ def _fmt(value: float, digits: int = 1) -> str:
     return "-" if not math.isfinite(value) else f"{value:.{digits}f}"
 
 
+def _contacts(runs: Sequence[RunResult]) -> str:
+    """The contacts with people (sum), and how many were the robot's doing when any were classified:
+    "3 (1 by the robot)"; just "3" for results recorded before contacts were classified."""
+    total = sum(r.people_contacts for r in runs)
+    robot = sum(r.people_contacts_robot_caused for r in runs)
+    classified = robot + sum(r.people_contacts_person_caused for r in runs)
+    return f"{total} ({robot} by the robot)" if total and classified else str(total)
+
+
 def summary_rows(results: Sequence[RunResult]) -> List[Dict[str, str]]:
     """One row per (world, behavior), in the order they first appear."""
     groups: Dict[Tuple[str, str], List[RunResult]] = {}
@@ -61,7 +71,7 @@ def summary_rows(results: Sequence[RunResult]) -> List[Dict[str, str]]:
             "time to goal [s]": _fmt(_mean([r.time_s for r in reached])),
             "path length [m]": _fmt(_mean([r.path_m for r in reached])),
             "pushes tried/succeeded": f"{sum(r.pushes_tried for r in runs)}/{sum(r.pushes_succeeded for r in runs)}",
-            "contacts with people": str(sum(r.people_contacts for r in runs)),
+            "contacts with people": _contacts(runs),
             "min distance to people [m]": _fmt(clearance, 2),
         })
     return rows
