@@ -5,7 +5,8 @@ flex_planner at autonomy Low, and the console node bound to 0.0.0.0 with a token
 follow one behavior's life: a wrong token is refused; the graph shows and the active state changes; a lock holds a
 state, whose userdata (the goal it wrote) the panel beside the graph shows, until the unlock; an outcome is forced;
 the approve button sends the plan on and the robot moves (ground-truth odometry); preempt stops it; starts with bad
-parameters show the console's and the runner's errors; a goal placed by clicking the map is reached. Every wait is
+parameters show the console's and the runner's errors; a goal placed by clicking the map is reached; a heavy obstacle
+marked in the robot's obstacle memory is drawn on the map and forgotten with the console's button. Every wait is
 bounded; the robot's motion is read from ROS, not from the page.
 """
 
@@ -342,3 +343,75 @@ def test_an_initial_pose_placed_on_the_map_reaches_the_localizer(stack: Stack) -
         assert received[-1].pose.covariance[0] == pytest.approx(0.25)
     finally:
         listener.unregister()
+
+
+MEMORY_RGB = (0x8B, 0x00, 0x00)  # the console's remembered obstacles: dashed dark red
+MEMORY_BOX_M = 0.4  # [m] side of the square footprint the test marks
+MEMORY_AWAY_M = 5.0  # [m] from the robot at least: beyond the memory's max_range_m (4 m), no scan judges it
+
+
+def test_a_remembered_obstacle_is_drawn_and_forgotten_from_the_console(stack: Stack) -> None:
+    """A heavy obstacle marked on the robot's obstacle_memory/mark (as push_or_avoid does; its profile, turtlebot2,
+    has the memory on) is drawn on the map with its text on hover and in the list; "Forget remembered obstacles"
+    calls the costmap's clear_obstacle_memory, shows its answer, and the drawing goes."""
+    import json  # noqa: PLC0415
+
+    import rospy  # noqa: PLC0415
+    from geometry_msgs.msg import Point32, PolygonStamped  # noqa: PLC0415
+    from selenium.webdriver.common.action_chains import ActionChains  # noqa: PLC0415
+    from selenium.webdriver.common.by import By  # noqa: PLC0415
+
+    from flex_nav.apps import nav_demo  # noqa: PLC0415
+    from flex_nav_sim.world import load_world  # noqa: PLC0415
+
+    driver = stack.browser.driver
+    driver.get(stack.url + "?token=" + TOKEN)  # a fresh page (and the cookie, when this test runs alone)
+    stack.wait(lambda: stack.text("connection") == "connected", "the page's websocket connected")
+    canvas = driver.find_element(By.ID, "map")
+
+    def drawn_memory() -> Any:
+        return json.loads(canvas.get_attribute("data-drawn") or "{}").get(ROBOT, {}).get("memory")
+
+    stack.wait(lambda: drawn_memory() == [0, []], "the robot's (empty) obstacle memory received by the page")
+    assert stack.text("memory") == "nothing remembered"
+    assert _colour_pixels(stack, MEMORY_RGB) < 5, "dark red on the map before anything is remembered"
+    here = stack.wait(stack.latest, "the robot's ground-truth odometry")
+    goals = [pose[:2] for pose in load_world(nav_demo.parse_args([]).world).goals.values()]
+    centre = max(goals, key=lambda p: math.dist(p, here[1:3]))  # free (a goal of the world), far from the robot
+    assert math.dist(centre, here[1:3]) > MEMORY_AWAY_M + MEMORY_BOX_M, (centre, here)
+    half = MEMORY_BOX_M / 2
+    mark = PolygonStamped()
+    mark.header.frame_id = "map"
+    mark.polygon.points = [Point32(x=centre[0] + dx, y=centre[1] + dy)
+                           for dx, dy in ((-half, -half), (half, -half), (half, half), (-half, half))]
+    marks = rospy.Publisher("/robot1/obstacle_memory/mark", PolygonStamped, queue_size=1)
+    try:
+        stack.wait(lambda: marks.get_num_connections() > 0, "the costmap subscribed to obstacle_memory/mark", 20.0)
+
+        def shown() -> Any:
+            if drawn_memory() and drawn_memory()[0] == 1:
+                return json.loads(canvas.get_attribute("data-remembered"))
+            mark.header.stamp = rospy.Time.now()
+            marks.publish(mark)  # again until shown (a mark of the same place replaces the one remembered)
+            time.sleep(1.0)
+            return None
+
+        (obstacle,) = stack.wait(shown, "the marked obstacle drawn on the map", 30.0)
+    finally:
+        marks.unregister()
+    text = obstacle["text"]
+    assert text.startswith("#") and f" heavy at ({centre[0]:.2f}, {centre[1]:.2f}) m, 0.40 x 0.40 m, found at " in text
+    corners = sorted((round(x, 2), round(y, 2)) for x, y in obstacle["footprint"])
+    assert corners == sorted((round(p.x, 2), round(p.y, 2)) for p in mark.polygon.points), corners
+    stack.wait(lambda: _colour_pixels(stack, MEMORY_RGB) > 20, "the footprint's dark red dashes on the canvas")
+    stack.wait(lambda: stack.text("memory") == text, "the obstacle listed under the map")
+    x, y = _on_canvas(stack, canvas, centre)
+    ActionChains(driver).move_to_element_with_offset(canvas, x, y).perform()  # hover: the text as the title
+    stack.wait(lambda: canvas.get_attribute("title") == text, "the obstacle's text on hover")
+    stack.click("#memory-forget")
+    stack.wait(lambda: stack.feedback("memory").startswith("ok:"), "the costmap's answer to forget", 20.0)
+    assert stack.feedback("memory") == "ok: 1 remembered obstacle(s) forgotten"
+    stack.wait(lambda: drawn_memory() == [0, []], "the forgotten obstacle gone from the page", 20.0)
+    stack.wait(lambda: _colour_pixels(stack, MEMORY_RGB) < 5, "no dark red left on the canvas")
+    assert stack.text("memory") == "nothing remembered"
+    assert "← forget remembered obstacles: ok: 1 remembered obstacle(s) forgotten" in stack.text("transitions")
