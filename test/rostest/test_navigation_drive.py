@@ -105,10 +105,12 @@ class TestNavigationDrive(unittest.TestCase):
     def test_0_rviz_config_shows_what_the_stack_publishes(self):
         with open(RVIZ) as f:
             config = yaml.safe_load(f)["Visualization Manager"]
-        shown = {d["Topic"] for d in config["Displays"] if "Topic" in d}
+        shown = {d.get("Topic") or d["Marker Topic"] for d in config["Displays"] if "Topic" in d or "Marker Topic" in d}
         published = {name for name, _ in rospy.get_published_topics()}
+        self.assertIn(NS + "get_path_server/global_costmap/obstacle_memory", published)  # the profile's memory is on
         not_here = {NS + "particlecloud", NS + "move_base_like/plan",  # no localizer or behavior in this test
                     NS + "bumper_hits",  # no bumper relay
+                    NS + "obstacle_class_marker",  # no obstacle classifier
                     NS + "pure_pursuit_path/people", NS + "pure_pursuit_topic/people"}  # yield_to_people is off
         self.assertEqual(sorted(shown - published - not_here), [])
         self.assertTrue(not_here <= shown)
