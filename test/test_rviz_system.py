@@ -118,12 +118,18 @@ MARKER_TOPICS = [  # (topic, type, message): what the new displays of flex_nav.r
     ("/robot1/obstacle_class_marker", "visualization_msgs/Marker",
      "{header: {frame_id: map}, ns: obstacle_class, type: 9, action: 0, pose: {position: {x: 2.0, y: 5.0}, "
      "orientation: {w: 1.0}}, scale: {z: 0.4}, color: {r: 0.35, g: 1.0, b: 0.35, a: 1.0}, text: 'movable 0.93 (5/5)'}"),
+    ("/robot1/get_path_server/global_costmap/obstacle_memory", "visualization_msgs/MarkerArray",  # as memory_markers
+     "{markers: [{header: {frame_id: map}, action: 3}, {header: {frame_id: map}, ns: footprint, id: 1, type: 4, "
+     "action: 0, pose: {orientation: {w: 1.0}}, scale: {x: 0.04}, color: {r: 0.55, a: 1.0}, points: [{x: 3.8, "
+     "y: 0.8}, {x: 4.2, y: 0.8}, {x: 4.2, y: 1.2}, {x: 3.8, y: 1.2}, {x: 3.8, y: 0.8}]}, {header: {frame_id: map}, "
+     "ns: text, id: 1, type: 9, action: 0, pose: {position: {x: 4.0, y: 1.0, z: 0.3}, orientation: {w: 1.0}}, "
+     "scale: {z: 0.15}, color: {r: 0.55, a: 1.0}, text: '#1 heavy at (4.00, 1.00) m'}]}"),
 ]
 
 
 def test_marker_displays_draw_their_topics(tmp_path: Path) -> None:
-    """RViz with flex_nav.rviz and no stack: a bumper contact, a tracked person and a class text published by
-    ``rostopic pub`` are drawn where they are, in their displays' colours."""
+    """RViz with flex_nav.rviz and no stack: a bumper contact, a tracked person, a class text and a remembered
+    obstacle published by ``rostopic pub`` are drawn where they are, in their displays' colours."""
     import time  # noqa: PLC0415
 
     from flex_nav.apps.rviz_screenshot import SCREEN, checked_setup, tinted, view_geometry  # noqa: PLC0415
@@ -134,7 +140,8 @@ def test_marker_displays_draw_their_topics(tmp_path: Path) -> None:
     config = checked_setup(REPO_ROOT / "rviz" / "flex_nav.rviz")
     scale, centre = view_geometry(config)
     wanted = {"bumper contact": ((2.0, 2.0), (255, 0, 255)), "person": ((6.0, 4.0), (255, 255, 0)),
-              "class text": ((2.0, 5.0), (89, 255, 89))}  # (map point [m], colour)
+              "class text": ((2.0, 5.0), (89, 255, 89)),
+              "remembered obstacle": ((4.0, 1.0), (140, 0, 0))}  # (map point [m], colour)
     found: Dict[str, int] = {}
     with PrivateMaster(ros_home=tmp_path / "ros_home") as master, \
             VirtualDisplay(*SCREEN, log_path=tmp_path / "xvfb.log") as display:
