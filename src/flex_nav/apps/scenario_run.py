@@ -114,7 +114,20 @@ class ScenarioMonitor(DemoMonitor):
         # the newest ground truth: (x, y, yaw) [m, m, rad] and the twist (v [m/s], w [rad/s]) in the base frame
         self._truth: Optional[Tuple[Tuple[float, float, float], float, float]] = None
         self._event_lock = threading.Lock()
+        from geometry_msgs.msg import Twist  # noqa: PLC0415
+
+        self.commands: List[Tuple[float, float]] = []  # (sim s, v [m/s]) of the robot's velocity commands
         self.subs.append(self.rospy.Subscriber(f"/{ROBOT}/sim_events", SimEvent, self._on_sim_event, queue_size=50))
+        self.subs.append(self.rospy.Subscriber(f"/{ROBOT}/cmd_vel", Twist, self._on_command, queue_size=50))
+
+    def _on_command(self, msg: Any) -> None:
+        with self._event_lock:
+            self.commands.append((self.sim_s(), msg.linear.x))
+
+    def command_log(self) -> List[Tuple[float, float]]:
+        """The robot's velocity commands so far, (sim s, v [m/s]) in time order."""
+        with self._event_lock:
+            return sorted(self.commands)
 
     def _on_odom(self, msg: Any, run: RobotRun) -> None:
         super()._on_odom(msg, run)
@@ -252,8 +265,10 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
             result.people_contacts_robot_caused = monitor.robot_caused_contacts
             result.people_contacts_person_caused = result.people_contacts - monitor.robot_caused_contacts
             trajectory = [(t, x, y) for t, x, y in monitor.timed_trajectory if t >= goal_sim_s]
+        commands = monitor.command_log()
         result.min_people_clearance_m = people_clearance(world, trajectory)
-        result.min_people_clearance_moving_m = people_clearance(world, trajectory, moving_only=True)
+        result.min_people_clearance_moving_m = people_clearance(world, trajectory, moving_only=True,
+                                                                commands=commands)
         if not result.note and not result.success:
             result.note = run.failed_reason or "goal given up"
     title = (f"{args.behavior} in {world.name} (seed {args.seed}): "

@@ -131,3 +131,19 @@ def test_the_table_says_how_many_contacts_were_the_robots_doing():
     assert "| s6 | push_or_avoid | 2/2 | 45.0 | 8.6 | 0/0 | 3 (1 by the robot) | - |" in lines
     unclassified = [RunResult("s6", "move_base_like", 0, success=True, time_s=58.0, path_m=9.0, people_contacts=4)]
     assert "| s6 | move_base_like | 1/1 | 58.0 | 9.0 | 0/0 | 4 | - |" in to_markdown(unclassified).splitlines()
+
+
+def test_a_standing_robot_shoved_by_a_walker_is_not_moving():
+    from flex_nav.apps.eval.metrics import commanded_at  # noqa: PLC0415
+
+    world = load_world("s3_person_in_door")  # the person stands at (5, 2) until 25 s
+    radius = world.people[0].radius
+    # driven to 1.0 m from the person's centre, stopped there at 6 s, then shoved 0.5 m toward them at 9-10 s
+    trajectory = [(0.0, 1.5, 2.0), (5.0, 3.5, 2.0), (6.0, 4.0, 2.0), (9.0, 4.0, 2.0), (10.0, 4.5, 2.0)]
+    commands = [(0.0, 0.3), (5.5, 0.2), (6.0, 0.0), (9.5, 0.0)]
+    shoved = people_clearance(world, trajectory, robot_radius_m=0.2, moving_only=True)
+    assert shoved == pytest.approx(0.5 - radius - 0.2)  # ground truth alone: it "moved" at 0.5 m
+    own = people_clearance(world, trajectory, robot_radius_m=0.2, moving_only=True, commands=commands)
+    assert own == pytest.approx(1.0 - radius - 0.2)  # it moved on its own only up to 1.0 m
+    assert commanded_at(commands, 6.0) and commanded_at(commands, 6.1)  # braking after its last moving command
+    assert not commanded_at(commands, 6.3) and not commanded_at(commands, 10.0) and not commanded_at([], 1.0)

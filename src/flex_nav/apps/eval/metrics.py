@@ -9,9 +9,10 @@ and the robot's radius (negative = overlap).
 
 from __future__ import annotations
 
+import bisect
 import math
 from dataclasses import asdict, dataclass, field
-from typing import Any, Dict, List, Sequence, Tuple
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 from flex_nav.nav.control.social_distance import ContactCause, contact_cause
 
@@ -118,15 +119,35 @@ def classify_contact(pose: Tuple[float, float, float], v: float, w: float,
     return contact_cause(v, w, local, stopped_speed_mps=MOVING_MPS)
 
 
+COMMAND_HOLD_S = 0.7  # [s] a robot moves of its own accord this long after its last moving command: twice its
+# braking from top speed (0.306 m/s at the simulated TurtleBot 4's 0.9 m/s^2: 0.34 s)
+
+
+def commanded_at(commands: Sequence[Tuple[float, float]], sim_s: float) -> bool:
+    """True when one of ``commands`` ((sim s, v [m/s]) in time order) faster than :data:`MOVING_MPS` was given
+    within :data:`COMMAND_HOLD_S` before ``sim_s``."""
+    index = bisect.bisect_right([t for t, _v in commands], sim_s)
+    for t, v in reversed(commands[:index]):
+        if sim_s - t > COMMAND_HOLD_S:
+            return False
+        if abs(v) > MOVING_MPS:
+            return True
+    return False
+
+
 def people_clearance(world: Any, trajectory: Sequence[Tuple[float, float, float]], goal_sim_s: float = 0.0,
-                     robot_radius_m: float = ROBOT_RADIUS_M, moving_only: bool = False) -> float:
+                     robot_radius_m: float = ROBOT_RADIUS_M, moving_only: bool = False, *,
+                     commands: Optional[Sequence[Tuple[float, float]]] = None) -> float:
     """Smallest gap [m] between the robot (trajectory of (sim s, x, y) from ``goal_sim_s`` on) and any person
     of ``world``; inf without people or samples. ``moving_only``: only at samples where the robot moved faster
-    than :data:`MOVING_MPS` since the previous sample."""
+    than :data:`MOVING_MPS` since the previous sample and, given its ``commands`` ((sim s, v [m/s]), the
+    velocity commands it received), where it was also told to move (:func:`commanded_at`): a standing robot
+    shoved by a walker moves, but not of its own accord (S6: a walker pushed a stopped robot at 0.8 m/s)."""
     moving = [True] * len(trajectory)
     if moving_only:
         moving = [False] + [
             t1 > t0 and math.hypot(x1 - x0, y1 - y0) / (t1 - t0) > MOVING_MPS
+            and (commands is None or commanded_at(commands, t1))
             for (t0, x0, y0), (t1, x1, y1) in zip(trajectory, trajectory[1:])]
     best = math.inf
     for person in world.people:
