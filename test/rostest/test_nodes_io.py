@@ -343,6 +343,32 @@ class TestNodesIO(unittest.TestCase):
         self.assertIsNotNone(cleared, "the operator's clear was not published as markers")
         self.assertEqual(cleared.markers[0].action, Marker.DELETEALL)
 
+        # marked again, then a scan sees through it (no return behind it): forgotten at once, and published so
+        marks = rospy.Publisher("obstacle_memory/mark", PolygonStamped, queue_size=1)
+        again = None
+        deadline = rospy.get_time() + WAIT_S
+        while again is None and rospy.get_time() < deadline:
+            footprint.header.stamp = rospy.Time.now() - rospy.Duration(0.1)
+            marks.publish(footprint)
+            again = remembered.wait_for(lambda m: len(m.markers) == 3, timeout_s=0.3, after=remembered.count())
+        self.assertIsNotNone(again, "the second mark was not published as markers")
+        marks.unregister()
+        scans = rospy.Publisher("io_scan", LaserScan, queue_size=1)
+        scan = LaserScan()
+        scan.header.frame_id = "io_base"
+        scan.angle_min, scan.angle_increment, scan.angle_max = -0.1, 0.01, 0.1  # 21 beams across the footprint
+        scan.range_min, scan.range_max = 0.05, 3.0
+        scan.ranges = [math.inf] * 21
+        seen_gone = None
+        deadline = rospy.get_time() + WAIT_S
+        while seen_gone is None and rospy.get_time() < deadline:
+            scan.header.stamp = rospy.Time.now() - rospy.Duration(0.1)
+            scans.publish(scan)
+            seen_gone = remembered.wait_for(lambda m: len(m.markers) == 1, timeout_s=0.3, after=remembered.count())
+        scans.unregister()
+        self.assertIsNotNone(seen_gone, "a scan through the remembered obstacle did not forget it (markers)")
+        self.assertEqual(seen_gone.markers[0].action, Marker.DELETEALL)
+
     def test_rolling_costmap_snapshot_matches_the_newest_scan(self):
         """A controller reads its local costmap through snapshot(): right after a scan, with no timer update in
         between, the obstacle must be in the copied costs where the geometry says (the window follows the base,
