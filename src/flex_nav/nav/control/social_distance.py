@@ -16,8 +16,8 @@ tracker's centre and radius, :class:`~flex_nav.perception.moving_obstacles.Track
   closing speed c is at most the root of ``c * L + c^2 / (2 a) + u * (L + c / a) = g``; nothing once
   ``g <= u * L`` (it stops early and never drives toward a person inside the distance);
 - a robot moving away from or along a person who comes closer at u, and who walking on would pass it if it
-  stood (:func:`standing_miss_m` > 0), must also stand before the gap is used up
-  (:meth:`SocialDistanceRule.leaving_scale`): it leaves a person who comes slower than it goes, and stands
+  stood (:func:`standing_miss_m` > ``escape_miss_m``, 0.1 m: the tracking error), must also stand before the gap
+  is used up (:meth:`SocialDistanceRule.leaving_scale`): it leaves a person who comes slower than it goes, and stands
   still for one who comes faster and passes by. Without this the robot backed away at 0.2 m/s from walkers
   passing at 0.9 m/s in S6 (a last-moment step back of the yield rule) and was within 0.08 m of them while
   moving (issue 28). Inside the distance the robot stands for anyone walking (``walking_speed_mps``) past
@@ -64,12 +64,16 @@ class SocialParams:
     stopped_speed_mps: float = 0.02  # [m/s] slower (at every footprint point) is standing still
     max_range_m: float = 4.0  # [m] people farther from the robot are ignored
     walking_speed_mps: float = 0.2  # [m/s] a person this fast walks: inside the distance the robot stands for them
+    # [m] a walker predicted to pass a standing robot closer than this (its tracking error: they may walk into
+    # it) may be stepped away from; one passing farther is waited for standing
+    escape_miss_m: float = 0.1
 
     def __post_init__(self) -> None:
         for name in ("min_distance_m", "slow_distance_m", "max_speed_mps", "decel_mps2", "stopped_speed_mps",
                      "max_range_m", "walking_speed_mps"):
             validation.number("social distance", name, getattr(self, name), positive=True)
         validation.number("social distance", "latency_s", self.latency_s, minimum=0.0, unit="[s]")
+        validation.number("social distance", "escape_miss_m", self.escape_miss_m, minimum=0.0, unit="[m]")
         if self.slow_distance_m <= self.min_distance_m:
             raise ConfigError(
                 f"social distance: slow_distance_m ({self.slow_distance_m!r}) must be > min_distance_m "
@@ -199,7 +203,7 @@ class SocialDistanceRule:
                 continue
             if distance < closest:
                 closest, closest_id = distance, person.track_id
-            passes = standing_miss_m(pose, reach_m, person) > 0.0
+            passes = standing_miss_m(pose, reach_m, person) > p.escape_miss_m
             if passes and distance < p.min_distance_m and person.speed >= p.walking_speed_mps and (v or w):
                 k, why = 0.0, (f"walking past {distance:.2f} m away ({person.speed:.2f} m/s), inside "
                                f"{p.min_distance_m:.2f} m: standing until they are past")
