@@ -50,9 +50,9 @@ def test_s6_with_the_social_distance_arrives_without_touching_anyone_by_its_own_
 
 @pytest.mark.ros
 @pytest.mark.xfail(strict=False, reason=(
-    "issue 28 not met yet: the yield rule still gets the robot caught in a walker's way (it crosses and waits 0.1 m "
-    "from walkers' predicted ways) and the robot then steps out of it within 0.3 m; S6 at rtf 2, seeds 0/1/2, "
-    "escape_miss_m 0.1: 0.10/0.37/-0.02 m (seed 2: 105 s, one person-caused contact), load 2.9-3.8"))
+    "issue 28 not met on every run: the yield rule still gets the robot caught in a walker's way (it crosses and "
+    "waits 0.1 m from walkers' predicted ways) and the robot then steps out of it within 0.3 m or is walked into; "
+    "S6 with escape_miss_m 0 kept >= 0.3 m in 4 of 9 runs (seeds 0-2, rtf 1 and 2, load 1.4-7)"))
 def test_s6_keeps_the_social_distance_while_moving(s6_run: dict) -> None:
     moving = s6_run["min_people_clearance_moving_m"]
     assert moving is not None and moving >= SOCIAL_DISTANCE_M, (moving, s6_run["output"][-5000:])

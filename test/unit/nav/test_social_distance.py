@@ -211,9 +211,9 @@ def test_standing_miss_is_the_gap_a_walker_keeps_to_a_standing_robot() -> None:
 
 
 def test_a_robot_backing_from_walkers_keeps_the_distance_while_it_moves() -> None:
-    """Closed loop: a robot asked to back up at 0.2 m/s the whole time while a walker passes 0.15-0.5 m beside it at
+    """Closed loop: a robot asked to back up at 0.2 m/s the whole time while a walker passes 0.1-0.5 m beside it at
     0.9 m/s: whenever it moves, everyone is >= 0.3 m from its footprint (it stands while they pass)."""
-    for lateral in (0.15, 0.3, 0.5):
+    for lateral in (0.1, 0.3, 0.5):
         x, speed, closest = 0.0, 0.0, math.inf
         y0 = 0.171 + 0.2 + lateral
         dt = 0.05
@@ -229,8 +229,8 @@ def test_a_robot_backing_from_walkers_keeps_the_distance_while_it_moves() -> Non
         assert closest >= 0.3 - 0.02, (lateral, closest)
 
 
-def test_a_walker_predicted_to_pass_within_the_tracking_error_may_be_stepped_away_from() -> None:
-    grazing = [person(0.6, 0.171 + 0.2 + 0.05, vx=-0.9)]  # to pass 0.05 m beside: within escape_miss_m (0.1 m)
-    assert RULE.limit((0.0, 0.0, 0.0), ROUND, -0.2, 0.0, grazing).scale == 1.0
-    strict = SocialDistanceRule(SocialParams(escape_miss_m=0.0))  # only those who would walk into it
-    assert strict.limit((0.0, 0.0, 0.0), ROUND, -0.2, 0.0, grazing).stopped
+def test_a_walker_predicted_to_pass_within_escape_miss_may_be_stepped_away_from() -> None:
+    grazing = [person(0.6, 0.171 + 0.2 + 0.05, vx=-0.9)]  # to pass 0.05 m beside
+    assert RULE.limit((0.0, 0.0, 0.0), ROUND, -0.2, 0.0, grazing).stopped  # default 0: it stands
+    lenient = SocialDistanceRule(SocialParams(escape_miss_m=0.1))  # within the tracking error: may step away
+    assert lenient.limit((0.0, 0.0, 0.0), ROUND, -0.2, 0.0, grazing).scale == 1.0
