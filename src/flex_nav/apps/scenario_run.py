@@ -47,6 +47,7 @@ from flex_nav.apps.nav_demo import (
     write_picture,
 )
 from flex_nav.exceptions import FlexNavError
+from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.testing.process import ManagedProcess
 
 PROFILE = "turtlebot4"
@@ -132,7 +133,7 @@ class ScenarioMonitor(DemoMonitor):
     def _on_odom(self, msg: Any, run: RobotRun) -> None:
         super()._on_odom(msg, run)
         p, q = msg.pose.pose.position, msg.pose.pose.orientation
-        yaw = math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
+        yaw = yaw_of_quaternion(q.x, q.y, q.z, q.w)
         with self._event_lock:
             self.timed_trajectory.append((msg.header.stamp.to_sec(), p.x, p.y))
             self._truth = ((p.x, p.y, yaw), msg.twist.twist.linear.x, msg.twist.twist.angular.z)
