@@ -441,8 +441,9 @@ def footprint_ahead(ranges: np.ndarray, angle_min: float, angle_increment: float
                     params: Optional[ShapeParams] = None) -> Optional[np.ndarray]:
     """The footprint (convex, counter-clockwise (N, 2) [m], the scan's frame) of the object ahead that
     :func:`cue_ahead` would classify: its hits and the same hits ``depth_m`` [m] farther along their beams (the
-    lidar sees only the near side; 0: as deep as it is wide, at most ``box_max_size_m``). None if the corridor is
-    empty or the object has fewer than 2 hits."""
+    lidar sees only the near side; 0: as deep as it is wide, at most ``box_max_size_m``). Its hits are the
+    cluster's from the nearest hit's range on and within ``box_max_size_m`` of it (a wall the object touches is
+    cut there). None if the corridor is empty or the object has fewer than 2 hits."""
     params = params if params is not None else ShapeParams()
     validation.number("lidar shape", "depth_m", depth_m, minimum=0.0, unit="[m]")
     xs, ys, nearest, wrap = _ahead(ranges, angle_min, angle_increment, range_min, range_max,
@@ -450,6 +451,11 @@ def footprint_ahead(ranges: np.ndarray, angle_min: float, angle_increment: float
     if nearest is None:
         return None
     run = next(c for c in clusters(xs, ys, (0.0, 0.0), params, wrap=wrap) if nearest in c)
+    # A box close to walls (S5: 0.15 m from each side of a 1 m passage) may be one cluster with them, and the
+    # walls run on beside and behind the robot: only the cluster's hits from the object's near face on and within
+    # box_max_size_m of its nearest hit are the object, so the footprint never reaches back to the robot.
+    nx, ny = xs[nearest], ys[nearest]
+    run = run[(xs[run] >= nx - params.gap_m) & (np.hypot(xs[run] - nx, ys[run] - ny) <= params.box_max_size_m)]
     if len(run) < 2:
         return None
     near = np.column_stack((xs[run], ys[run]))

@@ -241,3 +241,21 @@ def test_the_footprint_ahead_covers_the_box() -> None:
     shallow = footprint_ahead(ranges, -math.pi, math.radians(1.0), 0.1, 12.0, depth_m=0.1)
     assert shallow is not None and shallow[:, 0].max() < 0.7
     assert footprint_ahead(ranges, -math.pi, math.radians(1.0), 0.1, 12.0, reach_m=0.5) is None
+
+
+def test_a_box_one_cluster_with_the_walls_beside_the_robot_is_remembered_ahead_only() -> None:
+    """S5 after the back-off (seed 2 of the issue 28 table): the 0.6 x 0.7 m box 0.48 m ahead in a 1 m passage,
+    0.15 m from each wall, which the gap rule may join with the walls; the walls run past the robot. Before the cut
+    the footprint was the hull of box and walls, the robot's own cell inside it: every replan then failed with
+    START_BLOCKED and the goal was given up."""
+    angles = np.radians(np.arange(-180.0, 180.0, 1.0))
+    box = box_corners(0.78, 0.0, 0.6, 0.7, 0.0)  # x 0.48-1.08, y -0.35-0.35
+    right_wall = box_corners(1.0, -0.55, 6.0, 0.1, 0.0)  # y -0.6..-0.5, x -2..4: beside and behind the robot
+    left_wall = box_corners(1.0, 0.55, 6.0, 0.1, 0.0)
+    ranges = ranges_of(SENSOR, angles, [box, right_wall, left_wall])
+    params = ShapeParams(gap_m=0.25)  # joins the box with both walls, as a noisy scan at the S5 ranges did
+    footprint = footprint_ahead(ranges, -math.pi, math.radians(1.0), 0.1, 12.0, params=params)
+    assert footprint is not None
+    assert footprint[:, 0].min() > 0.48 - 0.25 - 1e-6  # nothing behind the box's face (less the gap)
+    assert footprint[:, 0].min() > 0.171  # the robot (radius 0.171 m) is outside it
+    assert np.hypot(footprint[:, 0] - 0.48, footprint[:, 1]).max() < 1.6 * 2.0  # within reach of the object
