@@ -52,13 +52,16 @@ class Latest(MessageLog):
         super().__init__(topic, msg_type, wait_s=WAIT_S)
 
 
-def publish_until_forwarded(pub, msg, out, condition):
+def publish_until_forwarded(pub, msg, out, condition, restamp=False):
     """Publish ``msg`` every RESEND_S until ``out`` has a message meeting ``condition`` since the first, and
     return that one (None after WAIT_S). A subscriber counts its connection before the publishing node does: a
-    relay that has just come up may forward the first copies to nobody."""
+    relay that has just come up may forward the first copies to nobody. ``restamp``: each copy stamped 0.1 s
+    before now (a stamp tf can transform at)."""
     mark = out.count()
     deadline = rospy.get_time() + WAIT_S
     while rospy.get_time() < deadline:
+        if restamp:
+            msg.header.stamp = rospy.Time.now() - rospy.Duration(0.1)
         pub.publish(msg)
         got = out.wait_for(condition, timeout_s=RESEND_S, after=mark)
         if got is not None:
@@ -345,12 +348,7 @@ class TestNodesIO(unittest.TestCase):
 
         # marked again, then a scan sees through it (no return behind it): forgotten at once, and published so
         marks = rospy.Publisher("obstacle_memory/mark", PolygonStamped, queue_size=1)
-        again = None
-        deadline = rospy.get_time() + WAIT_S
-        while again is None and rospy.get_time() < deadline:
-            footprint.header.stamp = rospy.Time.now() - rospy.Duration(0.1)
-            marks.publish(footprint)
-            again = remembered.wait_for(lambda m: len(m.markers) == 3, timeout_s=0.3, after=remembered.count())
+        again = publish_until_forwarded(marks, footprint, remembered, lambda m: len(m.markers) == 3, restamp=True)
         self.assertIsNotNone(again, "the second mark was not published as markers")
         marks.unregister()
         scans = rospy.Publisher("io_scan", LaserScan, queue_size=1)
@@ -359,12 +357,7 @@ class TestNodesIO(unittest.TestCase):
         scan.angle_min, scan.angle_increment, scan.angle_max = -0.1, 0.01, 0.1  # 21 beams across the footprint
         scan.range_min, scan.range_max = 0.05, 3.0
         scan.ranges = [math.inf] * 21
-        seen_gone = None
-        deadline = rospy.get_time() + WAIT_S
-        while seen_gone is None and rospy.get_time() < deadline:
-            scan.header.stamp = rospy.Time.now() - rospy.Duration(0.1)
-            scans.publish(scan)
-            seen_gone = remembered.wait_for(lambda m: len(m.markers) == 1, timeout_s=0.3, after=remembered.count())
+        seen_gone = publish_until_forwarded(scans, scan, remembered, lambda m: len(m.markers) == 1, restamp=True)
         scans.unregister()
         self.assertIsNotNone(seen_gone, "a scan through the remembered obstacle did not forget it (markers)")
         self.assertEqual(seen_gone.markers[0].action, Marker.DELETEALL)

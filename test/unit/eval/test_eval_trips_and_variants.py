@@ -14,6 +14,7 @@ from flex_nav.apps.eval import scenarios
 from flex_nav.apps.eval.metrics import RunResult
 from flex_nav.apps.eval.table import to_csv
 from flex_nav.apps.nav_demo import map_of_world, world_map
+from flex_nav_sim.world import load_world
 
 VARIANTS = Path(__file__).resolve().parents[2] / "data" / "issue28" / "variants"
 START, GOAL = (1.0, 0.5, 0.0), (9.0, 0.5, 0.0)
@@ -69,8 +70,6 @@ def test_a_world_file_is_navigated_on_its_own_static_map(tmp_path):
 
 
 def test_every_variant_loads_and_differs_from_its_scenario():
-    from flex_nav_sim.world import load_world
-
     names = sorted(p.stem for p in VARIANTS.glob("h*.yaml"))
     assert len(names) == 6
     for name, scenario in zip(names, scenarios.SCENARIOS):

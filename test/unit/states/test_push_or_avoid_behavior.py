@@ -153,7 +153,7 @@ def test_with_the_lidar_a_box_the_camera_calls_movable_is_pushed_at_once():
     assert any("fused movable (row 6" in t for t in scene.h.texts())
 
 
-def heavy_box_scene(**parameters: object) -> "Scene":
+def heavy_box_scene(**parameters: object) -> Scene:
     """A box 0.5 m ahead that stops the robot once it pushes at 0.3 m, until the push gave up."""
     scene = Scene("movable", BLOCKED_THEN_DONE, push_distance_m=1.0, push_speed_mps=0.2, backoff_m=-0.3,
                   **parameters)
@@ -236,7 +236,7 @@ def test_no_new_plan_after_a_failure_follows_the_plan_it_had_to_the_obstacle_and
     assert any("pushed 0.8" in t for t in scene.h.texts())
 
 
-def scripted_planner(scene: "Scene", answers: str) -> None:
+def scripted_planner(scene: Scene, answers: str) -> None:
     """The planner's answers in order: "p" a plan, "e" no path (EMPTY)."""
     for answer in answers:
         if answer == "p":
