@@ -290,8 +290,7 @@ class CostmapROS:
             if self.costmap is not None:
                 if base is not None:
                     self.costmap.recentre(base[0], base[1])
-                self.costmap.add_scan(scan)  # may forget a remembered obstacle the scan sees through
-                self._publish_memory()
+                self.costmap.add_scan(scan)  # may forget a remembered obstacle: the update timer publishes that
             # only a scan that reached the obstacle layer counts as fresh: one add_scan rejected keeps aging
             self.last_scan_time = msg.header.stamp
             self.last_scan_received_s = rospy.get_time()
