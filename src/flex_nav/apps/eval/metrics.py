@@ -123,10 +123,11 @@ COMMAND_HOLD_S = 0.7  # [s] a robot moves of its own accord this long after its 
 # braking from top speed (0.306 m/s at the simulated TurtleBot 4's 0.9 m/s^2: 0.34 s)
 
 
-def commanded_at(commands: Sequence[Tuple[float, float]], sim_s: float) -> bool:
+def commanded_at(commands: Sequence[Tuple[float, float]], sim_s: float,
+                 times: Optional[Sequence[float]] = None) -> bool:
     """True when one of ``commands`` ((sim s, v [m/s]) in time order) faster than :data:`MOVING_MPS` was given
-    within :data:`COMMAND_HOLD_S` before ``sim_s``."""
-    index = bisect.bisect_right([t for t, _v in commands], sim_s)
+    within :data:`COMMAND_HOLD_S` before ``sim_s``; ``times``: the commands' times, when the caller asks often."""
+    index = bisect.bisect_right(times if times is not None else [t for t, _v in commands], sim_s)
     for t, v in reversed(commands[:index]):
         if sim_s - t > COMMAND_HOLD_S:
             return False
@@ -144,10 +145,11 @@ def people_clearance(world: Any, trajectory: Sequence[Tuple[float, float, float]
     velocity commands it received), where it was also told to move (:func:`commanded_at`): a standing robot
     shoved by a walker moves, but not of its own accord (S6: a walker pushed a stopped robot at 0.8 m/s)."""
     moving = [True] * len(trajectory)
+    times = [t for t, _v in commands] if commands is not None else None
     if moving_only:
         moving = [False] + [
             t1 > t0 and math.hypot(x1 - x0, y1 - y0) / (t1 - t0) > MOVING_MPS
-            and (commands is None or commanded_at(commands, t1))
+            and (commands is None or commanded_at(commands, t1, times))
             for (t0, x0, y0), (t1, x1, y1) in zip(trajectory, trajectory[1:])]
     best = math.inf
     for person in world.people:
