@@ -47,7 +47,11 @@ class Subscription(Generic[MsgT]):
         self._buffer: Deque[MsgT] = collections.deque(maxlen=max(1, buffer_size))
         self._buffered = buffer_size > 0
         self._callbacks: List[Callable[[MsgT], None]] = []  # extra callbacks (FlexBE's subscribe(callback=...))
-        self._subscriber = rospy.Subscriber(topic, msg_type, self._callback, queue_size=max(1, buffer_size))
+        # rospy hands a subscriber only the newest ``queue_size`` messages of each read from a connection: a
+        # burst published back to back would reach the buffer and the callbacks as its last message alone
+        self._subscriber = rospy.Subscriber(
+            topic, msg_type, self._callback, queue_size=max(DEFAULT_BUFFER_SIZE, buffer_size)
+        )
 
     def _callback(self, msg: MsgT) -> None:
         with self._lock:
