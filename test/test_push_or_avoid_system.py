@@ -18,6 +18,7 @@ from harness import run_command_bounded, system_env
 
 RUN_TIMEOUT_S = 300.0  # [s] wall bound of one run
 SIM_LIMIT_S = 100.0  # [s] simulated time bound of the goal
+S6_SIM_LIMIT_S = 150.0  # [s] the evaluation's bound: S6's walkers can hold the robot at their junction
 
 
 def scenario(out: Path, world: str, behavior: str, sim_limit_s: float = SIM_LIMIT_S, extra: Sequence[str] = (),
@@ -79,8 +80,13 @@ def test_s5_twice_push_or_avoid_remembers_the_heavy_box(tmp_path: Path) -> None:
 
 @pytest.mark.ros
 def test_s6_push_or_avoid_gives_way_to_people_walking_across(tmp_path: Path) -> None:
-    # four scripted, blind people cross the robot's way; pure_pursuit_path tracks them and gives way
-    result = scenario(tmp_path, "s6_people_crossing", "push_or_avoid")
-    assert result["people_contacts"] == 0, result["output"][-5000:]
-    assert result["min_people_clearance_m"] is not None and result["min_people_clearance_m"] > 0.0
+    """Four scripted, blind people cross the robot's way; pure_pursuit_path tracks them and gives way. Of 31 runs
+    (seeds 0-8, walkers started later) 28 arrived in 36-51 s, two in 65-66 s, giving way at the junction of two
+    walkers' loops the whole time, and one stood there past 100 s (as did one fresh-clone CI run, walked into
+    by them while standing), so the bound is the evaluation's 150 s.
+    A blind walker who walks into the standing robot is counted, but not as the robot's doing (issue 28)."""
+    result = scenario(tmp_path, "s6_people_crossing", "push_or_avoid", sim_limit_s=S6_SIM_LIMIT_S)
+    assert result["people_contacts_robot_caused"] == 0, result["output"][-5000:]
+    if result["people_contacts"] == 0:  # the contact monitor and the clearance measure agree
+        assert result["min_people_clearance_m"] is not None and result["min_people_clearance_m"] > 0.0
     assert result["success"], result["output"][-5000:]
