@@ -71,6 +71,8 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     parser.add_argument("--timeout", type=float, default=600.0, help="[s] wall-time bound of the whole run")
     parser.add_argument("--out", type=Path, required=True, help="output directory")
     parser.add_argument("--bag", action="store_true", help="record run.bag (commands, odometry, plans, ...)")
+    parser.add_argument("--keep-ros-logs", action="store_true",
+                        help="keep the nodes' ROS logs (every level, rosout included) in OUT/ros_home/log")
     add_separate_processes_argument(parser)
     parser.add_argument("--social-distance", type=float, default=0.0, metavar="M",
                         help="[m] keep this distance from tracked people while moving (push_or_avoid's follower; "
@@ -276,7 +278,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
              f"{'reached' if result.success else 'NOT reached'}")
     picture = write_picture(args.out, map_of_world(args.world, args.out), [run], title)
     result.picture = str(picture)
-    shutil.rmtree(args.out / "ros_home", ignore_errors=True)
+    if not args.keep_ros_logs:
+        shutil.rmtree(args.out / "ros_home", ignore_errors=True)
     print("RESULT " + json.dumps(result.to_dict()), flush=True)
     return 0
 
