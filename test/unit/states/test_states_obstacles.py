@@ -149,6 +149,20 @@ def test_push_times_out_after_distance_over_speed_plus_margin():
     assert any("timed out" in t for t in h.texts(LogLevel.ERROR)), h.log_text()
 
 
+def test_a_push_that_times_out_after_most_of_the_distance_moved_the_object_and_is_done():
+    # a hidden-variant box (h1) was pushed 1.91 of 2 m in the time and was remembered as heavy
+    state = PushState(distance_m=0.5, speed_mps=0.25, margin_s=1.0, stall_distance_m=0.005, enough_fraction=0.75)
+    h = Harness(state)
+    robot = KinematicRobot(h)
+    robot.forced_velocity = (0.14, 0.0)  # 0.42 m of 0.5 m in the 3 s
+    result, took_s = run_timed(h, "movable", 10.0)
+    assert result.outcome == "done", h.log_text()
+    assert 3.0 <= took_s <= 3.1
+    assert 0.375 <= result.outputs["push_progress_m"] < 0.5
+    assert any("the object moved, counted as pushed" in t for t in h.texts(LogLevel.WARN)), h.log_text()
+    assert twists(h)[-1] == (0.0, 0.0)
+
+
 @pytest.mark.parametrize("label, frame_label", [("person", "person"), ("movable", "person"), (None, None)])
 def test_push_never_moves_towards_a_person_or_without_a_class(label, frame_label):
     h, robot = push_harness(distance_m=0.5)
@@ -178,7 +192,8 @@ def test_push_stops_when_the_classifier_goes_silent_mid_push():
 @pytest.mark.parametrize("params, field", [({"distance_m": 0.0}, "distance_m"), ({"distance_m": -0.3}, "distance_m"),
                                            ({"distance_m": 0.5, "speed_mps": 5.0}, "speed_mps"),
                                            ({"distance_m": 0.5, "speed_mps": 0.1, "stall_distance_m": 0.2},
-                                            "stall_distance_m")])
+                                            "stall_distance_m"),
+                                           ({"distance_m": 0.5, "enough_fraction": 1.5}, "enough_fraction")])
 def test_push_rejects_bad_parameters(params, field):
     with pytest.raises(ConfigError, match=field):
         PushState(**params)
