@@ -36,7 +36,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import threading
-from typing import Optional, Tuple
+from typing import Optional, Set, Tuple
 
 import actionlib
 import numpy as np
@@ -203,6 +203,7 @@ class CostmapROS:
                 min_free_beams=param_int(sub + "min_free_beams", d.min_free_beams),
                 min_hits=param_int(sub + "min_hits", d.min_hits),
                 max_range_m=param_float(sub + "max_range_m", d.max_range_m),
+                max_obstacles=param_int(sub + "max_obstacles", d.max_obstacles),
             )  # MemoryParams checks the ranges
         except ConfigError as err:
             raise ConfigError(f"{rospy.resolve_name(private_name(sub))}: {err}") from err
@@ -216,12 +217,21 @@ class CostmapROS:
             with self.lock:
                 if self.costmap is None:
                     raise NotReadyError("no map yet")
+                before = self._remembered_ids()
                 entry = self.costmap.remember_obstacle(footprint, msg.header.stamp.to_sec())
+                displaced = sorted(before - self._remembered_ids())
                 self._publish_memory()
         except (NotReadyError, ConfigError) as err:
             rospy.logwarn(f"{self.name}: obstacle memory: footprint ignored: {err}")
             return
-        rospy.loginfo(f"{self.name}: obstacle memory: {entry.describe()}")
+        replacing = (f" (replaces {', '.join(f'#{i}' for i in displaced)}: the same obstacle, or the oldest of a "
+                     "full memory)") if displaced else ""
+        rospy.loginfo(f"{self.name}: obstacle memory: {entry.describe()}{replacing}")
+
+    def _remembered_ids(self) -> Set[int]:
+        """Ids of the remembered obstacles (the caller holds :attr:`lock`)."""
+        layer = self.costmap.memory_layer if self.costmap is not None else None
+        return {o.obstacle_id for o in layer.obstacles} if layer is not None else set()
 
     def _on_clear_memory(self, _request: TriggerRequest) -> TriggerResponse:
         with self.lock:

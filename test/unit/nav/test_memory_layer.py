@@ -132,6 +132,25 @@ def test_remembering_the_same_obstacle_again_replaces_it() -> None:
     assert len(layer.obstacles) == 2
 
 
+def test_a_full_memory_forgets_the_oldest() -> None:
+    layer = ObstacleMemoryLayer(MemoryParams(memory_s=300.0, max_obstacles=2))
+    first = layer.remember(box_footprint(1.0, 1.0, 0.5, 0.5), 30.0)
+    layer.remember(box_footprint(3.0, 1.0, 0.5, 0.5), 10.0)  # found earlier (a mark that came late): the oldest
+    third = layer.remember(box_footprint(5.0, 1.0, 0.5, 0.5), 40.0)
+    assert [o.obstacle_id for o in layer.obstacles] == [first.obstacle_id, third.obstacle_id]
+
+
+def test_a_replaced_or_forgotten_footprint_is_no_longer_lethal_in_the_costmap() -> None:
+    cm = empty_costmap()
+    cm.remember_obstacle(box_footprint(3.0, 1.0, 1.6, 0.8), now_s=0.0)  # the first mark: a long footprint
+    cm.update()
+    assert cm.cost_at(3.75, 1.0) == LETHAL
+    cm.remember_obstacle(box_footprint(2.95, 1.0, 0.3, 0.3), now_s=5.0)  # the same box marked again, cut to it
+    cm.update()
+    assert remembered(cm) == 1
+    assert cm.cost_at(2.95, 1.0) == LETHAL and cm.cost_at(3.75, 1.0) < LETHAL  # the old far end is free again
+
+
 def corridor_map() -> GridMap:
     """8 x 4 m: a wall along y = 2 m from x = 1 to 7 m; the way along y = 1 m is short, around the wall long."""
     occ = np.zeros((80, 160), dtype=np.int8)
@@ -188,6 +207,7 @@ def test_footprints_are_checked_and_turned_counter_clockwise() -> None:
     ({"min_free_beams": 0}, "min_free_beams"),
     ({"min_hits": 0}, "min_hits"),
     ({"max_range_m": math.inf}, "max_range_m"),
+    ({"max_obstacles": 0}, "max_obstacles"),
 ])
 def test_parameters_are_validated(kwargs: dict, match: str) -> None:
     with pytest.raises(ConfigError, match=match):

@@ -157,10 +157,14 @@ class Costmap:
 
     def remember_obstacle(self, footprint: np.ndarray, now_s: float, what: str = "heavy") -> RememberedObstacle:
         """Remember an obstacle (convex ``footprint`` (N, 2) [m] in this costmap's frame) found at ``now_s`` [s]:
-        LETHAL until it expires, a scan sees it gone, or :meth:`clear_memory`; survives :meth:`reset`."""
+        LETHAL until it expires, a scan sees it gone, or :meth:`clear_memory`; survives :meth:`reset`. An obstacle
+        it replaces (or the oldest, when the memory is full) is no longer marked."""
         layer = self._memory("remember_obstacle")
+        before = layer.obstacles
         entry = layer.remember(footprint, now_s, what)
-        self._grow_dirty(layer.box(self.geometry, [entry]))
+        kept = {o.obstacle_id for o in layer.obstacles}
+        displaced = [o for o in before if o.obstacle_id not in kept]  # replaced, or the oldest when full
+        self._grow_dirty(layer.box(self.geometry, [entry, *displaced]))  # their cells are no longer LETHAL
         return entry
 
     def expire_memory(self, now_s: float) -> List[RememberedObstacle]:

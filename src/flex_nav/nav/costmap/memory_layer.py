@@ -15,7 +15,8 @@ It is forgotten
 - by the operator (:meth:`ObstacleMemoryLayer.clear`: one obstacle by id, or all).
 
 Remembering an obstacle whose centre lies in (or within ``tolerance_m`` of) one already remembered replaces that
-one (new footprint, new time) instead of adding a second.
+one (new footprint, new time) instead of adding a second. At most ``max_obstacles`` are remembered: a new one
+beyond that forgets the oldest (the memory stays bounded however long the robot runs).
 
 Times are arguments [s] (the caller's ROS time); no clock here. Pure numpy, no ROS.
 """
@@ -46,6 +47,7 @@ class MemoryParams:
     min_free_beams: int = 3  # beams through a footprint (without a hit on it) that show it gone
     min_hits: int = 2  # beams ending on a footprint that show it still there
     max_range_m: float = 4.0  # [m] footprints farther from the sensor are not judged from a scan
+    max_obstacles: int = 100  # remembered at most; a new one beyond forgets the oldest
 
     def __post_init__(self) -> None:
         validation.number("obstacle memory", "memory_s", self.memory_s, positive=True, unit="[s]")
@@ -53,6 +55,7 @@ class MemoryParams:
         validation.number("obstacle memory", "max_range_m", self.max_range_m, positive=True, unit="[m]")
         validation.integer("obstacle memory", "min_free_beams", self.min_free_beams, minimum=1)
         validation.integer("obstacle memory", "min_hits", self.min_hits, minimum=1)
+        validation.integer("obstacle memory", "max_obstacles", self.max_obstacles, minimum=1)
 
 
 @dataclass(frozen=True)
@@ -136,13 +139,16 @@ class ObstacleMemoryLayer:
 
     def remember(self, footprint: np.ndarray, now_s: float, what: str = "heavy") -> RememberedObstacle:
         """Remember an obstacle of convex ``footprint`` (N, 2) [m] found at ``now_s`` [s]; replaces a remembered
-        obstacle whose footprint (grown by ``tolerance_m``) holds the new one's centre."""
+        obstacle whose footprint (grown by ``tolerance_m``) holds the new one's centre, and forgets the oldest
+        when more than ``max_obstacles`` would be remembered."""
         validation.number("obstacle memory", "now_s", now_s, unit="[s]")
         poly = convex_footprint(footprint)
         centre = poly.mean(axis=0)
         kept = [o for o in self._obstacles if not self._holds(o.footprint, centre)]
         entry = RememberedObstacle(self._next_id, poly, float(now_s), validation.text("obstacle memory", "what", what))
         self._next_id += 1
+        while len(kept) >= self.params.max_obstacles:
+            kept.remove(min(kept, key=lambda o: o.found_s))
         self._obstacles = [*kept, entry]
         return entry
 
