@@ -347,6 +347,7 @@ def test_an_initial_pose_placed_on_the_map_reaches_the_localizer(stack: Stack) -
 
 MEMORY_RGB = (0x8B, 0x00, 0x00)  # the console's remembered obstacles: dashed dark red
 MEMORY_BOX_M = 0.4  # [m] side of the square footprint the test marks
+MEMORY_PIXELS = 20  # the footprint's dashes make more dark red pixels than this (a 0.4 m square)
 MEMORY_AWAY_M = 5.0  # [m] from the robot at least: beyond the memory's max_range_m (4 m), no scan judges it
 
 
@@ -374,7 +375,9 @@ def test_a_remembered_obstacle_is_drawn_and_forgotten_from_the_console(stack: St
 
     stack.wait(lambda: drawn_memory() == [0, []], "the robot's (empty) obstacle memory received by the page")
     assert stack.text("memory") == "nothing remembered"
-    assert _colour_pixels(stack, MEMORY_RGB) < 5, "dark red on the map before anything is remembered"
+    # other drawings' antialiased edges (a red bumper mark over a dark wall) can come near the memory's dark red:
+    # the footprint is judged against what the canvas had before it
+    before = _colour_pixels(stack, MEMORY_RGB)
     here = stack.wait(stack.latest, "the robot's ground-truth odometry")
     goals = [pose[:2] for pose in load_world(nav_demo.parse_args([]).world).goals.values()]
     centre = max(goals, key=lambda p: math.dist(p, here[1:3]))  # free (a goal of the world), far from the robot
@@ -403,7 +406,8 @@ def test_a_remembered_obstacle_is_drawn_and_forgotten_from_the_console(stack: St
     assert text.startswith("#") and f" heavy at ({centre[0]:.2f}, {centre[1]:.2f}) m, 0.40 x 0.40 m, found at " in text
     corners = sorted((round(x, 2), round(y, 2)) for x, y in obstacle["footprint"])
     assert corners == sorted((round(p.x, 2), round(p.y, 2)) for p in mark.polygon.points), corners
-    stack.wait(lambda: _colour_pixels(stack, MEMORY_RGB) > 20, "the footprint's dark red dashes on the canvas")
+    stack.wait(lambda: _colour_pixels(stack, MEMORY_RGB) > before + MEMORY_PIXELS,
+               "the footprint's dark red dashes on the canvas")
     stack.wait(lambda: stack.text("memory") == text, "the obstacle listed under the map")
     x, y = _on_canvas(stack, canvas, centre)
     ActionChains(driver).move_to_element_with_offset(canvas, x, y).perform()  # hover: the text as the title
@@ -412,6 +416,7 @@ def test_a_remembered_obstacle_is_drawn_and_forgotten_from_the_console(stack: St
     stack.wait(lambda: stack.feedback("memory").startswith("ok:"), "the costmap's answer to forget", 20.0)
     assert stack.feedback("memory") == "ok: 1 remembered obstacle(s) forgotten"
     stack.wait(lambda: drawn_memory() == [0, []], "the forgotten obstacle gone from the page", 20.0)
-    stack.wait(lambda: _colour_pixels(stack, MEMORY_RGB) < 5, "no dark red left on the canvas")
+    stack.wait(lambda: _colour_pixels(stack, MEMORY_RGB) <= before + MEMORY_PIXELS // 4,
+               "the footprint's dark red gone from the canvas")
     assert stack.text("memory") == "nothing remembered"
     assert "← forget remembered obstacles: ok: 1 remembered obstacle(s) forgotten" in stack.text("transitions")
