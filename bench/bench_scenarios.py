@@ -6,8 +6,10 @@ Runs ``python -m flex_nav.apps.eval.scenarios`` on the same plan (default: S1..S
 runs) several times in one bench run and compares them run by run:
 
 - ``--mode workers`` (default): ``--workers 1`` (the reference: one run after another) and ``--workers 2`` at
-  ``--rtf`` (default 2). Prints both wall times, their ratio (the speed-up; issue 28 asks >= 1.8x on a 2-core
-  machine) and, per run, the outcome and the time to goal of both, with the largest difference;
+  ``--rtf`` (default 2), the two workers starting the runs longest first by the serial run's times
+  (``--durations``; ``--plan-order``: in the plan's order). Prints both wall times, their ratio (the speed-up;
+  issue 28 asks >= 1.8x on a 2-core machine) and, per run, the outcome and the time to goal of both, with the
+  largest difference;
 - ``--mode rtf``: one run after another at each of ``--rtfs`` (default 1,2,4), and with ``--busy`` the last of
   them again with one core kept busy by a spinning process (``--busy`` adds that row). The reference is the
   first rtf; prints per run the times at each and the largest difference from the reference (issue 28 asks
@@ -48,11 +50,15 @@ def spin(stop_at: float) -> None:
         x = (x * 1103515245 + 12345) % 2147483648
 
 
-def evaluate(out: Path, rtf: float, workers: int, args: argparse.Namespace) -> Tuple[float, Dict[RunKey, Outcome]]:
-    """One evaluation; its wall time [s] and every run's outcome."""
+def evaluate(out: Path, rtf: float, workers: int, args: argparse.Namespace, durations: Optional[Path] = None,
+             ) -> Tuple[float, Dict[RunKey, Outcome]]:
+    """One evaluation (runs longest first by ``durations``, an earlier results.csv, if given); its wall time [s] and
+    every run's outcome."""
     command = [sys.executable, "-m", "flex_nav.apps.eval.scenarios", "--seeds", str(args.seeds), "--rtf", str(rtf),
                "--workers", str(workers), "--out", str(out), "--scenarios", args.scenarios, "--behaviors",
                args.behaviors]
+    if durations is not None:
+        command += ["--durations", str(durations)]
     for setting in args.behavior_param:
         command += ["--behavior-param", setting]
     print(f"  load average {load_average()} before: {' '.join(command[3:])}", flush=True)
@@ -113,13 +119,16 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     parser.add_argument("--behaviors", default="move_base_like,push_or_avoid")
     parser.add_argument("--behavior-param", action="append", default=[], metavar="BEHAVIOR:KEY=VALUE")
     parser.add_argument("--out", type=Path, default=None, help="where the evaluations write (default: a temp dir)")
+    parser.add_argument("--plan-order", action="store_true",
+                        help="--mode workers: the two workers take the runs in the plan's order, not longest first")
     args = parser.parse_args(argv)
     out = args.out or Path(tempfile.mkdtemp(prefix="bench_scenarios-"))
     print(f"bench_scenarios ({args.mode}) on {os.cpu_count()} cores; evaluations under {out}", flush=True)
     if args.mode == "workers":
         serial_s, serial = evaluate(out / "workers1", args.rtf, 1, args)
         print(f"  one after another: {serial_s:.0f} s wall for {len(serial)} runs", flush=True)
-        parallel_s, parallel = evaluate(out / "workers2", args.rtf, 2, args)
+        durations = None if args.plan_order else out / "workers1" / "results.csv"
+        parallel_s, parallel = evaluate(out / "workers2", args.rtf, 2, args, durations)
         print(f"  two workers: {parallel_s:.0f} s wall for {len(parallel)} runs", flush=True)
         print(f"speed-up two workers / one after another: {serial_s / parallel_s:.2f}x "
               f"({serial_s:.0f} s -> {parallel_s:.0f} s, rtf {args.rtf:g})")

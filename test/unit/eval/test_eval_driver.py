@@ -106,6 +106,32 @@ def test_workers_run_at_the_same_time_and_the_table_keeps_the_plan_order(tmp_pat
     assert "on 1 worker(s)" in capsys.readouterr().out  # threads of one process: one host:pid
 
 
+def test_durations_of_an_earlier_table_start_the_longest_runs_first(tmp_path, monkeypatch, capsys):
+    calls: List[Tuple[str, str, int]] = []
+    monkeypatch.setattr(scenarios, "run_one", fake_run_one(calls))
+    earlier = tmp_path / "earlier.csv"
+    earlier.write_text("world,behavior,seed,success,time_s,note\n"
+                       "s1_light_box_door,move_base_like,0,True,40.0,\n"
+                       "s1_light_box_door,push_or_avoid,0,True,45.0,\n"
+                       "s5_heavy_box_short_route,move_base_like,0,True,88.0,\n"
+                       "s5_heavy_box_short_route,push_or_avoid,0,False,,goal given up\n")  # ran to the limit
+    argv = ["--scenarios", "s1_light_box_door,s5_heavy_box_short_route,s6_people_crossing", "--seeds", "1",
+            "--workers", "1", "--out", str(tmp_path / "out"), "--durations", str(earlier)]
+    assert scenarios.main(argv) == 0
+    assert calls == [  # not arrived and unknown (s6) count as the 150 s limit, in the plan's order; then by time
+        ("s5_heavy_box_short_route", "push_or_avoid", 0), ("s6_people_crossing", "move_base_like", 0),
+        ("s6_people_crossing", "push_or_avoid", 0), ("s5_heavy_box_short_route", "move_base_like", 0),
+        ("s1_light_box_door", "push_or_avoid", 0), ("s1_light_box_door", "move_base_like", 0)]
+    worlds = [line.split(",")[0] for line in (tmp_path / "out" / "results.csv").read_text().splitlines()[1:]]
+    assert worlds[0] == "s1_light_box_door" and worlds[-1] == "s6_people_crossing"  # the table keeps plan order
+    not_a_table = tmp_path / "notes.csv"
+    not_a_table.write_text("a,b\n1,2\n")
+    assert scenarios.main([*argv[:-1], str(not_a_table)]) == 2
+    assert "no column" in capsys.readouterr().err
+    with pytest.raises(SystemExit):
+        scenarios.parse_args(["--durations", str(tmp_path / "missing.csv")])
+
+
 def test_an_unreachable_cluster_is_named_and_nothing_runs(tmp_path, monkeypatch, capsys):
     calls: List[Tuple[str, str, int]] = []
     monkeypatch.setattr(scenarios, "run_one", fake_run_one(calls))

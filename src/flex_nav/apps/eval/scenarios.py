@@ -12,13 +12,17 @@ more, and reported; one that fails twice is reported and fails the evaluation, n
 ends, and one ``<scenario>-<behavior>-<seed>/run.png`` per run to ``--out`` (on a cluster: on the worker's file
 system, at the same path), plus the run's own ``result.json``. ``--resume`` keeps the runs of ``--out`` that have a
 ``result.json`` (an interrupted evaluation goes on where it stopped; more behaviors or seeds can be added later).
+``--durations CSV`` (the ``results.csv`` of an earlier evaluation, e.g. docs/eval/results.csv) starts the runs
+longest first by the times it holds (a run it lacks or that did not arrive counts as the simulated-time limit), so
+that no long run is left to end alone on one worker while the others idle.
 Exit 0 when every run was recorded, 1 when a run could not start or crashed twice, 2 when the cluster cannot be
-reached.
+reached or ``--durations`` cannot be read.
 """
 
 from __future__ import annotations
 
 import argparse
+import csv
 import json
 import os
 import socket
@@ -65,6 +69,8 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     parser.add_argument("--sim-limit", type=float, default=150.0, help="[s] simulated time bound of one goal")
     parser.add_argument("--out", type=Path, default=None, help="output directory (default out/scenarios-<time>)")
     parser.add_argument("--resume", action="store_true", help="keep the runs in --out that have a result.json")
+    parser.add_argument("--durations", type=Path, default=None, metavar="CSV",
+                        help="an earlier results.csv: start the runs longest first by its times")
     parser.add_argument("--localization", choices=("localizer", "oracle"), default="localizer",
                         help="map -> odom from flex_nav's localizer (default) or the simulator's ground truth")
     parser.add_argument("--workers", type=int, default=os.cpu_count() or 1,
@@ -96,6 +102,8 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
         parser.error(f"--seeds {args.seeds} must be >= 1")
     if args.workers < 1:
         parser.error(f"--workers {args.workers} must be >= 1")
+    if args.durations is not None and not args.durations.is_file():
+        parser.error(f"--durations {str(args.durations)!r} is not a file (an earlier evaluation's results.csv)")
     return args
 
 
@@ -166,6 +174,24 @@ Submit = Callable[[PlannedRun, int], RunFuture]  # (run, attempt) -> the future 
 def run_on_worker(args: argparse.Namespace, run: PlannedRun, out: Path) -> Tuple[Optional[RunResult], str]:
     """One run where a worker executes it; with the worker's name (host:pid) for the report."""
     return run_one(args, run.world, run.behavior, run.seed, out), f"{socket.gethostname()}:{os.getpid()}"
+
+
+def longest_first(plan: Sequence[PlannedRun], results_csv: Path, limit_s: float) -> List[PlannedRun]:
+    """``plan`` ordered by the simulated times [s] of an earlier ``results_csv`` (world by name, behavior, seed),
+    longest first; a run it lacks or that did not arrive counts as ``limit_s`` (it may run to the limit). Stable:
+    equal times keep the plan's order. FlexNavError when the file is not a results.csv."""
+    with results_csv.open(newline="") as f:
+        rows = list(csv.DictReader(f))
+    missing = {"world", "behavior", "seed", "success", "time_s"} - set(rows[0] if rows else {})
+    if missing:
+        raise FlexNavError(f"{results_csv} is not a results.csv (no column {', '.join(sorted(missing))})")
+    known = {(r["world"], r["behavior"], r["seed"]): float(r["time_s"]) for r in rows
+             if r["success"] == "True" and r["time_s"]}
+
+    def expected_s(run: PlannedRun) -> float:
+        return known.get((Path(run.world).stem, run.behavior, str(run.seed)), limit_s)
+
+    return sorted(plan, key=expected_s, reverse=True)
 
 
 @dataclass
@@ -243,6 +269,12 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     plan = [PlannedRun(w, b, s) for w in args.scenario_list for b in args.behavior_list for s in range(args.seeds)]
     kept = {run: result for run in plan if args.resume and (result := recorded(out / run.directory)) is not None}
     todo = [run for run in plan if run not in kept]
+    if args.durations is not None:
+        try:
+            todo = longest_first(todo, args.durations, args.sim_limit)
+        except (FlexNavError, OSError, ValueError) as err:
+            print(f"scenarios: --durations: {err}", file=sys.stderr)
+            return 2
     started = time.monotonic()
 
     def on_result(evaluation: Evaluation, label: str) -> None:
