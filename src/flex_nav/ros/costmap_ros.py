@@ -36,7 +36,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import threading
-from typing import Optional, Set, Tuple
+from typing import Optional, Tuple
 
 import actionlib
 import numpy as np
@@ -217,21 +217,14 @@ class CostmapROS:
             with self.lock:
                 if self.costmap is None:
                     raise NotReadyError("no map yet")
-                before = self._remembered_ids()
                 entry = self.costmap.remember_obstacle(footprint, msg.header.stamp.to_sec())
-                displaced = sorted(before - self._remembered_ids())
+                layer = self.costmap.memory_layer
+                held = f"{len(layer.obstacles)} of at most {layer.params.max_obstacles}" if layer is not None else ""
                 self._publish_memory()
         except (NotReadyError, ConfigError) as err:
             rospy.logwarn(f"{self.name}: obstacle memory: footprint ignored: {err}")
             return
-        replacing = (f" (replaces {', '.join(f'#{i}' for i in displaced)}: the same obstacle, or the oldest of a "
-                     "full memory)") if displaced else ""
-        rospy.loginfo(f"{self.name}: obstacle memory: {entry.describe()}{replacing}")
-
-    def _remembered_ids(self) -> Set[int]:
-        """Ids of the remembered obstacles (the caller holds :attr:`lock`)."""
-        layer = self.costmap.memory_layer if self.costmap is not None else None
-        return {o.obstacle_id for o in layer.obstacles} if layer is not None else set()
+        rospy.loginfo(f"{self.name}: obstacle memory: {entry.describe()} ({held} remembered)")
 
     def _on_clear_memory(self, _request: TriggerRequest) -> TriggerResponse:
         with self.lock:
