@@ -74,6 +74,9 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     parser.add_argument("--keep-ros-logs", action="store_true",
                         help="keep the nodes' ROS logs (every level, rosout included) in OUT/ros_home/log")
     add_separate_processes_argument(parser)
+    parser.add_argument("--lockstep", action="store_true",
+                        help="the simulator waits for the nodes' work (flex_nav_sim.lockstep): the same run at any rtf "
+                             "and load")
     parser.add_argument("--social-distance", type=float, default=0.0, metavar="M",
                         help="[m] keep this distance from tracked people while moving (push_or_avoid's follower; "
                              "0: off, the default)")
@@ -178,6 +181,8 @@ def start(stack: contextlib.ExitStack, args: argparse.Namespace, run: RobotRun) 
     if args.social_distance > 0.0:
         params[f"/{ROBOT}/pure_pursuit_path/social_distance"] = {"enabled": True,
                                                                   "min_distance_m": args.social_distance}
+    if args.lockstep:
+        params["/lockstep"] = True
     if args.behavior_params:
         params[f"/{ROBOT}/behavior_runner/parameters"] = dict(args.behavior_params)
     for costmap in ("get_path_server/global_costmap", "pure_pursuit_path/local_costmap",

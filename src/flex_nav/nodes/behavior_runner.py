@@ -68,6 +68,7 @@ from flex_nav.compat.flexbe_core.behavior import build_behavior
 from flex_nav.exceptions import BehaviorError, BehaviorLoadError, ConfigError, FlexNavError, choices_message
 from flex_nav.msg import BehaviorCommand
 from flex_nav.resources import behaviors_dir
+from flex_nav.ros.lockstep import LockstepParticipant
 from flex_nav.ros.operator_interface import OperatorPublisher
 from flex_nav.ros.proxies import RosProxies
 from flex_nav.ros.ros_clock import RosClock
@@ -238,7 +239,9 @@ class BehaviorRunner:
         """Runs in the load's worker thread: the behavior and its executor, not started yet."""
         proxies = RosProxies()
         what = source if isinstance(source, str) else source.text
-        context = BehaviorContext(what, autonomy=level, supervised=self.supervised, clock=RosClock(), proxies=proxies)
+        # a running behavior's ticks hold a lockstep simulation (released in _run when it ends)
+        clock = RosClock(lockstep=LockstepParticipant("behavior"))
+        context = BehaviorContext(what, autonomy=level, supervised=self.supervised, clock=clock, proxies=proxies)
         try:
             if isinstance(source, str):  # py:package.module:Class, only ever from start_local
                 behavior = build_behavior(flexbe_behavior_class(source[len(PYTHON_PREFIX):]), parameters=parameters,
@@ -295,6 +298,9 @@ class BehaviorRunner:
             result = executor.run()
         finally:
             proxies.shutdown()
+            clock = executor.context.clock
+            if isinstance(clock, RosClock) and clock.lockstep is not None:
+                clock.lockstep.release()
         rospy.loginfo(f"behavior {self._name!r} ended: {result.status.name} {result.outcome or ''} {result.reason}")
         if self.on_done is not None:
             self.on_done(result)

@@ -50,6 +50,7 @@ from flex_nav.ros.conversions import path_msg
 from flex_nav.ros.costmap_ros import CostmapROS
 from flex_nav.ros.frames import TfSource, path_in_frame
 from flex_nav.ros.goal_server import GoalOutcome, GoalTicket
+from flex_nav.ros.lockstep import LockstepParticipant
 from flex_nav.ros.nav_params import planner_params
 from flex_nav.ros.params import param_float
 from flex_nav.ros.private_ns import private_name
@@ -85,6 +86,7 @@ class FollowServer(FollowNode):
         self.costmap = CostmapROS("local_costmap", self.tf_buffer, rolling_default=True, static_default=True)
         self.global_frame = self.costmap.global_frame
         self.clock = RosClock(poll_s=CLOCK_POLL_S)
+        self.lockstep = LockstepParticipant("replanning")  # a goal's replanning ticks hold a lockstep simulation
         self._topics = TopicPaths(self._wake, self.clock)
         # not latched: a stale local plan must not steer the controller of a new goal
         self.plan_publisher = rospy.Publisher(private_name("~plan"), Path, queue_size=1)
@@ -105,7 +107,10 @@ class FollowServer(FollowNode):
         except (ConfigError, NotReadyError) as err:
             self._end(ticket, GoalOutcome.ABORTED, bad_path(first.topic, err))
             return
-        self._follow(ticket, progress, first.topic, first.count)
+        try:
+            self._follow(ticket, progress, first.topic, first.count)
+        finally:
+            self.lockstep.release()
 
     def _follow(self, ticket: GoalTicket, progress: PathProgress, source: Optional[TopicPath], used: int) -> None:
         last_plan_s = self.clock.now()  # replanning is paced and failure_timeout counted on ROS time
@@ -114,6 +119,7 @@ class FollowServer(FollowNode):
         watch.observe(last_plan_s, time.monotonic())
         pose: Optional[Pose2D] = None
         while True:
+            self.lockstep.hold_clock(next_due_s)
             with self._wake:
                 while not ticket.cancelled.is_set() and not rospy.is_shutdown():
                     now_s = self.clock.now()

@@ -36,6 +36,7 @@ from flex_nav.ros.conversions import path_msg, pose_of_xy_yaw
 from flex_nav.ros.costmap_ros import CostmapROS
 from flex_nav.ros.frames import TfSource, goal_in_frame
 from flex_nav.ros.goal_server import GoalOutcome, GoalServer, GoalTicket
+from flex_nav.ros.lockstep import LockstepParticipant
 from flex_nav.ros.nav_params import planner_params
 from flex_nav.ros.params import param_float, reject_unknown
 from flex_nav.ros.private_ns import private_name, private_namespace
@@ -75,12 +76,20 @@ class GetPathServer:
         self.costmap = CostmapROS("global_costmap", self.tf_buffer)
         self.global_frame = self.costmap.global_frame
         self.plan_publisher = rospy.Publisher(private_name("~plan"), Path, queue_size=1, latch=True)
+        self.lockstep = LockstepParticipant("planning")  # a lockstep simulation stands while a goal is planned
         self.costmap.serve_clear_costmap(self.name + "/clear_costmap")
         self.server = GoalServer(self.name, action_type("GetPath"), self._run)
         self.server.start()
         rospy.loginfo(f"{self.name}: serving GetPath in frame '{self.global_frame}'")
 
     def _run(self, ticket: GoalTicket) -> None:
+        self.lockstep.hold_clock(rospy.get_time())
+        try:
+            self._answer(ticket)
+        finally:
+            self.lockstep.release()
+
+    def _answer(self, ticket: GoalTicket) -> None:
         started = time.monotonic()
         code, message, plan = self._plan(ticket)
         if ticket.cancelled.is_set():

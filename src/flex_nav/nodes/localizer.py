@@ -67,6 +67,7 @@ from flex_nav.nav.pose_checks import pose_problem, yaw_of_quaternion
 from flex_nav.ros.conversions import grid_map_of, pose_of_xy_yaw
 from flex_nav.ros.frames import TfSource
 from flex_nav.ros.latest_worker import LatestWorker
+from flex_nav.ros.lockstep import LockstepParticipant
 from flex_nav.ros.node import run_node
 from flex_nav.ros.params import param_bool, param_float, param_int, param_str, reject_unknown
 from flex_nav.ros.private_ns import private_name
@@ -145,7 +146,7 @@ class LocalizerNode:
                                             queue_size=1)
         # the filter runs on a thread of its own (LatestWorker's docstring says why)
         self.scan_worker: LatestWorker[LaserScan] = LatestWorker(self._process_scan, "localizer scans")
-        self.sub_scan = rospy.Subscriber("scan", LaserScan, self.scan_worker.offer, queue_size=1, buff_size=2**20)
+        self.sub_scan = self.scan_worker.subscribe("scan", LaserScan, LockstepParticipant("scan"), buff_size=2**20)
 
     # -- inputs -----------------------------------------------------------------------------------------------
     def _initial_pose_parameters(self) -> Optional[Tuple[Pose2D, np.ndarray]]:

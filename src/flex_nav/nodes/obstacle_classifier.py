@@ -2,7 +2,9 @@
 
 ``rosrun flex_nav obstacle_classifier`` in the robot's namespace (``ROS_NAMESPACE=robot1`` or a
 ``<group ns>``). Every received image (at most ``~max_rate`` per second) is classified
-(:mod:`flex_nav.perception`); the majority of the last ``~window`` frames is published.
+(:mod:`flex_nav.perception`); the majority of the last ``~window`` frames is published. In a lockstep simulation
+(``/lockstep``, :mod:`flex_nav.ros.lockstep`) the rate runs on the images' stamps, and the simulator waits at the
+next image to classify until its class is published.
 
 Subscribes ``camera/rgb/image_raw`` (sensor_msgs/Image: rgb8, bgr8, rgba8, bgra8 or mono8) and, for a
 model that takes depth (the shipped one does), ``camera/depth/image_raw`` (32FC1 [m] or 16UC1 [mm], REP
@@ -74,6 +76,7 @@ from flex_nav.perception.lidar_shape import UNSURE, ShapeCue, cue_ahead
 from flex_nav.perception.push_decision import describe, safe_to_push
 from flex_nav.perception.roi import Roi
 from flex_nav.perception.smoothing import MAX_WINDOW, MajorityVote, Vote
+from flex_nav.ros.lockstep import LockstepParticipant
 from flex_nav.ros.params import param_float, param_int, param_str, reject_unknown
 
 PARAMS = (
@@ -82,6 +85,7 @@ PARAMS = (
     "fresh_vote_timeout", "max_depth_lag", "scan_topic", "scan_max_age", "scan_reach", "scan_half_width",
     "camera_min_confidence", "lidar_min_confidence", "max_looks",
 )
+RATE_SLACK_S = 1e-6  # [s] an image this much early for the rate limit still counts (stamps are not exact sums)
 IMAGE_BUFFER = 1 << 24  # [bytes] socket buffer: a whole 640x480 image fits, so the queue of one holds the newest
 
 
@@ -157,6 +161,9 @@ class ObstacleClassifierNode:
         self.subscriber = rospy.Subscriber(
             "camera/rgb/image_raw", Image, self._on_image, queue_size=1, buff_size=IMAGE_BUFFER
         )
+        # lockstep: the simulation holds at the next image to classify until its class is out, and the rate limit
+        # runs on the images' stamps (the ROS time an image arrives at depends on the wall time it took)
+        self.lockstep = LockstepParticipant("classify")
         self.depth_subscriber: Optional[rospy.Subscriber] = None
         depth = ""
         if self.classifier.uses_depth:
@@ -169,14 +176,14 @@ class ObstacleClassifierNode:
 
     # -- images -------------------------------------------------------------------------------------
     def _on_image(self, msg: Image) -> None:
-        now = rospy.get_time()
+        now = msg.header.stamp.to_sec() if self.lockstep.enabled else rospy.get_time()
         unpaired: Optional[Tuple[str, float, int]] = None  # (depth topic, [s] since the last classification, dropped)
         with self._cond:
             if self._last_start is not None and now < self._last_start:
                 self._last_start = self._first_colour = None  # time went backwards (a simulation restarted)
                 self._pairing.clear()
             if (self.max_rate > 0.0 and self._last_start is not None
-                    and now - self._last_start < 1.0 / self.max_rate):
+                    and now - self._last_start < 1.0 / self.max_rate - RATE_SLACK_S):
                 return
             self._last_start = now
             if self._first_colour is None:
@@ -221,11 +228,15 @@ class ObstacleClassifierNode:
             self._last_frame = rospy.get_time()
             self._fresh_frames += 1
             self._cond.notify_all()
+            # [s] the stamp of the first image the rate limit lets through (every image: the next one)
+            next_s = (self._last_start or 0.0) + (1.0 / self.max_rate - RATE_SLACK_S if self.max_rate > 0.0
+                                                  else RATE_SLACK_S)
         message = self._message(vote, prediction, colour)
         self.publisher.publish(message)
         scan = self._scan
         self.class_marker.publish(message, scan[1].header.frame_id if scan is not None else None)
         self.fusion_publisher.publish(String(data=self.fused(vote).line()))
+        self.lockstep.hold_topic(self.subscriber.resolved_name, next_s)
 
     @staticmethod
     def _message(vote: Vote, prediction: Prediction, image: Image) -> ObstacleClass:

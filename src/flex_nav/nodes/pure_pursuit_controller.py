@@ -25,7 +25,9 @@ for ``~heartbeat_timeout`` [s of wall time] (0: off, the default; :mod:`flex_nav
 backwards (a restarted simulation: nothing computed on the old timeline is executed) -> zero twist and the goal
 aborted with the reason. ROS time standing still for ``~sensor_timeout`` of wall time (the simulator paused or
 crashed) -> one zero twist, then no command until ROS time moves again (the goal goes on then). Control is paced
-on ROS time (:class:`flex_nav.ros.ros_clock.RosClock`). A cancel publishes a zero twist from the cancel callback
+on ROS time (:class:`flex_nav.ros.ros_clock.RosClock`). In a lockstep simulation (``/lockstep``,
+:mod:`flex_nav.ros.lockstep`) a goal's ticks hold the simulator at the first odometry stamped a period after the
+previous tick, until the tick's command is out, and a standing ROS time is no stall. A cancel publishes a zero twist from the cancel callback
 itself (before it returns), and no later command of that goal can follow it; a newer goal replacing the current
 one also starts from a zero twist. A FollowTopic goal naming an illegal topic (empty, ``..``, blanks) aborts at once.
 At the end of a path the robot turns in place to the last pose's yaw (``pure_pursuit/use_final_heading``, within
@@ -73,6 +75,7 @@ from flex_nav.ros.costmap_ros import CostmapROS
 from flex_nav.ros.frames import TfSource, frame_pose, path_in_frame
 from flex_nav.ros.goal_server import GoalOutcome, GoalTicket
 from flex_nav.ros.heartbeat import HeartbeatListener
+from flex_nav.ros.lockstep import LockstepParticipant
 from flex_nav.ros.moving_obstacles_ros import MovingObstaclesROS, social_rule, yield_rule
 from flex_nav.ros.params import param_bool, param_float, param_str
 from flex_nav.ros.private_ns import private_name
@@ -87,6 +90,7 @@ PARAMETERS = (
     "localization_timeout", "heartbeat_timeout", "social_distance",
 )
 CLOCK_CHECK_PERIOD_S = 0.05  # [s] wall: longest wait in the control loop before ROS time is looked at again
+TICK_SLACK_S = 1e-6  # [s] lockstep: odometry this much before a tick is due still starts it
 
 
 class Wake(enum.Enum):
@@ -160,7 +164,10 @@ class PurePursuitController(FollowNode):
                     if yield_to_people else None)
         sensor_timeout_s = param_float("~sensor_timeout", 0.5, 0.01, 600.0)
         self.clock = RosClock(poll_s=min(self.period_s / 10.0, 0.005))
-        self.clock_watch = ClockWatch(stall_timeout_s=sensor_timeout_s)  # the node's: jumps between goals count
+        self.lockstep = LockstepParticipant("control")  # a goal's ticks hold a lockstep simulation
+        # the node's watch: jumps between goals count; in lockstep ROS time stands while the simulation waits for
+        # some node on purpose, and the simulation (the robot) stands with it
+        self.clock_watch = ClockWatch(stall_timeout_s=0.0 if self.lockstep.enabled else sensor_timeout_s)
         self.heartbeat = HeartbeatListener(param_float("~heartbeat_timeout", 0.0, 0.0, 3600.0))
         self.follower = SafeFollower(
             params,
@@ -179,6 +186,7 @@ class PurePursuitController(FollowNode):
         )
         self._odom: Optional[Odometry] = None
         self._odom_count = 0
+        self._odom_stamp_s = -math.inf  # [s] the newest odometry's stamp
         self._publish_lock = threading.Lock()
         self._topics = TopicPaths(self._wake, self.clock)
         self.cmd_publisher = rospy.Publisher("cmd_vel_stamped", TwistStamped, queue_size=1, tcp_nodelay=True)
@@ -205,6 +213,7 @@ class PurePursuitController(FollowNode):
         with self._wake:
             self._odom = msg
             self._odom_count += 1
+            self._odom_stamp_s = msg.header.stamp.to_sec()
             self.follower.watchdog.saw("odom", rospy.get_time())
             self._wake.notify_all()
 
@@ -283,12 +292,18 @@ class PurePursuitController(FollowNode):
             except (ConfigError, NotReadyError) as err:
                 self._end(ticket, GoalOutcome.ABORTED, bad_path(first.topic, err))
                 return
-        self._control(ticket, first.topic)
+        try:
+            self._control(ticket, first.topic)
+        finally:
+            self.lockstep.release()
 
     def _wait_for_tick(self, ticket: GoalTicket, next_due_s: float, used_odom: int) -> Wake:
         """Wait until a tick is due (``next_due_s`` [s ROS time] passed and new odometry, or one period later
-        without), the goal is cancelled, or ROS time or the operator link fails."""
+        without), the goal is cancelled, or ROS time or the operator link fails. In lockstep the simulation holds
+        at the first odometry stamped at or after ``next_due_s``, and the tick waits for that one."""
         latest_by_s = next_due_s + self.period_s
+        self.lockstep.hold_topic(self.odom_subscriber.resolved_name, next_due_s)
+        fresh_from_s = next_due_s if self.lockstep.enabled else -math.inf  # [s] the odometry a tick waits for
         with self._wake:
             while True:
                 if ticket.cancelled.is_set() or rospy.is_shutdown():
@@ -302,7 +317,8 @@ class PurePursuitController(FollowNode):
                 if self.heartbeat.lost():
                     return Wake.LINK_LOST
                 if not self.clock_watch.stalled and (
-                        (now_s >= next_due_s and self._odom_count != used_odom) or now_s >= latest_by_s):
+                        (now_s >= next_due_s and self._odom_count != used_odom
+                         and self._odom_stamp_s >= fresh_from_s) or now_s >= latest_by_s):
                     return Wake.TICK
                 deadline_s = next_due_s if now_s < next_due_s else latest_by_s
                 self._wake.wait(min(self.clock.wall_wait_s(deadline_s, now_s), CLOCK_CHECK_PERIOD_S))
@@ -342,7 +358,9 @@ class PurePursuitController(FollowNode):
                 if source is not None:
                     used_path = source.count
             now_s = self.clock.now()
-            next_due_s = now_s + self.period_s  # from the tick itself: odometry arriving later starts the next one
+            # from the tick itself: odometry arriving later starts the next one; in lockstep odometry stamped one
+            # period on is due (to within TICK_SLACK_S: a stamp is not an exact sum of periods)
+            next_due_s = now_s + self.period_s - (TICK_SLACK_S if self.lockstep.enabled else 0.0)
             if path_msg is not None:
                 try:
                     self.follower.set_path(path_in_frame(self.tf_buffer, path_msg, self.global_frame,

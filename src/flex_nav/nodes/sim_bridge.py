@@ -22,6 +22,10 @@ Private parameters:
   ~duration      float  0      [s] simulated time after which the node exits (0 = run until shutdown)
   ~publish_map_odom  bool  true  publish map -> NS/odom from ground truth (the oracle); false when a
                  localizer (``rosrun flex_nav localizer``) publishes it, as in every flex_nav launch file
+  ~lockstep_timeout  float  5.0  [s of wall time] with the global ``/lockstep`` true (lockstep mode, see
+                 :mod:`flex_nav_sim.lockstep`): the simulation steps no further than the nodes' holds on
+                 ``/lockstep/holds`` (flex_nav/LockstepHold) allow; a hold that keeps it waiting this long is dropped
+                 and logged
   ~publish_initial_pose  bool  (not ~publish_map_odom)  publish NS/initialpose once, latched: the spawn pose
                  with a standard deviation of INITIAL_STD_XY_M / INITIAL_STD_YAW_RAD, as an operator's
                  "2D Pose Estimate" would give the localizer
@@ -61,10 +65,12 @@ from sensor_msgs.msg import CameraInfo, Image, LaserScan
 from tf2_msgs.msg import TFMessage
 
 from flex_nav.exceptions import ConfigError
-from flex_nav.msg import BumperEvent, BumperState, CreateBumper, SimEvent
+from flex_nav.msg import BumperEvent, BumperState, CreateBumper, LockstepHold, SimEvent
+from flex_nav.ros.lockstep import HOLDS_QUEUE, HOLDS_TOPIC, lockstep_enabled
 from flex_nav.ros.node import init_node
 from flex_nav.ros.params import param_bool, param_float, param_int, param_str
 from flex_nav.srv import Teleport, TeleportRequest, TeleportResponse
+from flex_nav_sim.lockstep import CLOCK_TOPIC, LockstepBarrier
 from flex_nav_sim.profiles import RobotProfile
 from flex_nav_sim.readings import (
     BumperReading,
@@ -279,6 +285,8 @@ class BridgeOptions:
     duration: float = 0.0  # [s] simulated time to run (0 = until shutdown)
     publish_map_odom: bool = True  # map -> odom from ground truth (False: a localizer publishes it)
     publish_initial_pose: bool = False  # NS/initialpose once, latched, from the spawn pose
+    lockstep: bool = False  # wait for the participants' holds (global /lockstep)
+    lockstep_timeout_s: float = 5.0  # [s wall] longest wait for one hold
 
 
 class SimBridge:
@@ -316,10 +324,28 @@ class SimBridge:
             CommandNotice: self._on_notice,
         }
         self._clock = Clock()
+        self._clock_s = -math.inf  # [s] the newest /clock published
         self._tf = TFMessage()
+        self.lockstep: Optional[LockstepBarrier] = None
+        # lockstep: a scan goes out with the first odometry at or after its stamp (the same step or a later one), so
+        # whoever holds the simulation for it finds tf at its stamp without waiting for a step that cannot come
+        self._odom_stamp_s: Dict[str, float] = {}  # robot -> [s] newest odometry published
+        self._scans_waiting: Dict[str, List[ScanReading]] = {}  # robot -> scans not published yet
+        if options.lockstep:
+            self.lockstep = LockstepBarrier(options.lockstep_timeout_s)
+            self._holds_subscriber = rospy.Subscriber(HOLDS_TOPIC, LockstepHold, self._on_hold,
+                                                      queue_size=HOLDS_QUEUE, tcp_nodelay=True)
         self.teleport_service = rospy.Service("~teleport", Teleport, self._on_teleport)
 
-    # -- commands (ROS threads) -------------------------------------------------------------------
+    # -- commands and holds (ROS threads) ----------------------------------------------------------
+    def _on_hold(self, msg: LockstepHold) -> None:
+        if self.lockstep is None:
+            return
+        try:
+            self.lockstep.update(msg.participant, msg.holding, msg.topic, msg.stamp_s)
+        except ConfigError as err:
+            rospy.logwarn_throttle(5.0, f"sim: lockstep hold ignored: {err}")
+
     def _queue_command(self, robot: str, msg: Twist) -> None:
         with self._lock:
             self._pending[robot] = (msg.linear.x, msg.angular.z)
@@ -396,6 +422,8 @@ class SimBridge:
             for reading in readings:
                 self._handlers[type(reading)](reading)
             self.publish_cost += time.perf_counter() - start
+            if self.lockstep is not None and self._wait_for_participants(t):
+                anchor_wall, anchor_sim = time.monotonic(), t  # waiting is the point: pace on from here
             if self.duration and t >= self.duration - 1e-9:
                 break
             now = time.monotonic()
@@ -417,11 +445,29 @@ class SimBridge:
         parts = ", ".join(f"{k} {v:.2f} s" for k, v in costs.items())
         rtf = self.sim.time / wall if wall > 0 else 0.0
         behind = f"; fell behind the requested rtf {self.lag_resets} times" if self.lag_resets else ""
-        return f"sim: t = {self.sim.time:.1f} s in {wall:.1f} s wall, real-time factor {rtf:.2f}; cost: {parts}{behind}"
+        lockstep = f"; {self.lockstep.stats.line()}" if self.lockstep is not None else ""
+        return (f"sim: t = {self.sim.time:.1f} s in {wall:.1f} s wall, real-time factor {rtf:.2f}; cost: {parts}"
+                f"{behind}{lockstep}")
+
+    def _wait_for_participants(self, t: float) -> bool:
+        """Lockstep: once a hold has come, publish /clock at ``t`` (so its node sees the time of what it waits for)
+        and wait until every such hold is replaced; True if it waited."""
+        barrier = self.lockstep
+        assert barrier is not None
+        barrier.published(CLOCK_TOPIC, stamp_of(t).to_sec())  # as the nodes will read it
+        if not barrier.blocking():
+            return False
+        if self._clock_s < t:
+            self._publish_clock(t)
+        for hold in barrier.wait(rospy.is_shutdown):
+            rospy.logwarn(f"sim: t = {t:.3f} s: lockstep hold of {hold.describe()} not replaced within "
+                          f"{barrier.timeout_s:g} s of wall time: dropped, the simulation goes on")
+        return True
 
     # -- publishing ---------------------------------------------------------------------------------
     def _publish_clock(self, t: float) -> None:
         self._clock.clock = stamp_of(t)
+        self._clock_s = t
         self.pub_clock.publish(self._clock)
 
     def _on_odometry(self, r: OdometryReading) -> None:
@@ -433,6 +479,8 @@ class SimBridge:
         odom.twist.twist.linear.x = r.linear
         odom.twist.twist.angular.z = r.angular
         io.pub_odom.publish(odom)
+        if self.lockstep is not None:
+            self.lockstep.published(io.pub_odom.resolved_name, stamp.to_sec())
         truth = io.truth
         truth.header.stamp = stamp
         _set_pose(truth.pose.pose, r.truth_pose)
@@ -448,14 +496,26 @@ class SimBridge:
             set_yaw(tf.transform.rotation, pose.yaw)
         self._tf.transforms = [tf for tf, _ in frames]
         self.pub_tf.publish(self._tf)
+        if self.lockstep is not None:
+            self._odom_stamp_s[r.robot] = r.stamp
+            for scan in self._scans_waiting.pop(r.robot, []):
+                self._publish_scan(scan)
 
     def _on_scan(self, r: ScanReading) -> None:
+        if self.lockstep is not None and self._odom_stamp_s.get(r.robot, -math.inf) < r.stamp:
+            self._scans_waiting.setdefault(r.robot, []).append(r)
+            return
+        self._publish_scan(r)
+
+    def _publish_scan(self, r: ScanReading) -> None:
         io = self.robots[r.robot]
         if io.pub_scan is None:
             return
         io.scan.header.stamp = stamp_of(r.stamp)
         io.scan.ranges = r.ranges.tolist()
         io.pub_scan.publish(io.scan)
+        if self.lockstep is not None:
+            self.lockstep.published(io.pub_scan.resolved_name, io.scan.header.stamp.to_sec())
 
     def _on_image(self, r: ImageReading) -> None:
         io = self.robots[r.robot]
@@ -469,6 +529,9 @@ class SimBridge:
         io.image.data = r.rgb.tobytes()
         io.pub_image.publish(io.image)
         io.pub_info.publish(io.info)
+        if self.lockstep is not None:
+            self.lockstep.published(io.pub_image.resolved_name, stamp.to_sec())
+            self.lockstep.published(io.pub_depth.resolved_name, stamp.to_sec())
 
     def _on_bumper(self, r: BumperReading) -> None:
         io = self.robots[r.robot]
@@ -551,6 +614,8 @@ def build_simulation() -> Tuple[Simulation, BridgeOptions]:
         map_frame=param_str("~map_frame", "map"),
         duration=param_float("~duration", 0.0, 0.0, 1e9),
         publish_map_odom=param_bool("~publish_map_odom", True),
+        lockstep=lockstep_enabled(),
+        lockstep_timeout_s=param_float("~lockstep_timeout", 5.0, 0.01, 3600.0),
     )
     options = replace(options, publish_initial_pose=param_bool("~publish_initial_pose", not options.publish_map_odom))
     if not options.map_frame:
@@ -584,7 +649,8 @@ def main() -> int:
     try:
         bridge = SimBridge(sim, options)
         names = ", ".join(f"{n or '(global)'} ({sim.robot(n).profile.name})" for n in sim.robot_names)
-        rospy.loginfo("sim: world %s, robots %s, seed %d, rtf %s", sim.world.name, names, sim.seed, options.rtf)
+        rospy.loginfo("sim: world %s, robots %s, seed %d, rtf %s%s", sim.world.name, names, sim.seed, options.rtf,
+                      ", lockstep" if options.lockstep else "")
         bridge.run()
     finally:
         sim.close()

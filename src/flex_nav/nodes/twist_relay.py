@@ -13,7 +13,8 @@ looped bag) a zero Twist goes out and the order starts afresh, so the new timeli
 command stamped more than 1 s ahead of this node's clock (the old timeline's, sent by a node that has not seen
 the jump yet) is dropped, so it cannot block them again. When ROS time stops advancing for longer than
 ``~timeout`` of wall time (the simulator paused or crashed: every timeout on ROS time stands still with it), one
-zero Twist goes out and nothing is forwarded until ROS time moves again. ``~heartbeat_timeout`` [s of wall time]
+zero Twist goes out and nothing is forwarded until ROS time moves again (not in a lockstep simulation,
+``/lockstep``: there ROS time stands while the simulator waits for a node, and the robot stands with it). ``~heartbeat_timeout`` [s of wall time]
 (0 = off, the default; see :mod:`flex_nav.ros.heartbeat`): when set, no heartbeat from the operator side for that
 long -- the link to the computer running the behavior dropped -- sends one zero Twist and forwards nothing until
 heartbeats come again (nothing at all before the first one). When the node shuts down (Ctrl-C, the launch
@@ -33,6 +34,7 @@ from geometry_msgs.msg import Twist, TwistStamped
 from flex_nav.nav.control.clock_watch import ClockChange, ClockWatch
 from flex_nav.nav.control.safety import CommandOrder, CommandTimeout, twist_problem
 from flex_nav.ros.heartbeat import HeartbeatListener
+from flex_nav.ros.lockstep import lockstep_enabled
 from flex_nav.ros.params import param_float, reject_unknown
 from flex_nav.ros.proxies import SHUTDOWN_DRAIN_S, drain_publisher
 
@@ -49,7 +51,8 @@ class TwistRelay:
         self._timeout = CommandTimeout(timeout_s)
         self._order = CommandOrder()
         self._lock = threading.Lock()
-        self._clock = ClockWatch(stall_timeout_s=timeout_s)
+        # in a lockstep simulation ROS time stands while it waits for some node on purpose (and the robot with it)
+        self._clock = ClockWatch(stall_timeout_s=0.0 if lockstep_enabled() else timeout_s)
         self.publisher = rospy.Publisher("cmd_vel", Twist, queue_size=1)
         self._heartbeat = HeartbeatListener(param_float("~heartbeat_timeout", 0.0, 0.0, 3600.0))
         self._link_lost = self._heartbeat.link.enabled  # nothing is forwarded before the first heartbeat

@@ -59,7 +59,9 @@ from flex_nav.nav.costmap.obstacle_layer import LaserScan, ObstacleLayerParams
 from flex_nav.nav.planar import transform_poses
 from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.ros.conversions import grid_map_of, occupancy_grid_msg
+from flex_nav.ros.frames import lookup_bounded
 from flex_nav.ros.latest_worker import LatestWorker
+from flex_nav.ros.lockstep import LockstepParticipant
 from flex_nav.ros.memory_markers import memory_markers
 from flex_nav.ros.params import param_bool, param_float, param_int, param_str, reject_unknown
 from flex_nav.ros.private_ns import private_name
@@ -68,6 +70,7 @@ from flex_nav.ros.robot_pose import RobotPoseSource
 MEMORY_MARK_TOPIC = "obstacle_memory/mark"  # heavy obstacles' footprints (states/remember_obstacle_state.py)
 MEMORY_TOPIC = "obstacle_memory"  # ~<name>/obstacle_memory: what is remembered, as latched markers
 MAP_WAIT_S = 30.0  # [s] default bound on waiting for the first map
+TF_WAIT_S = 0.1  # [s] wait for the transform of a scan or a bumper hit at its stamp
 PARAMETERS = (
     "global_frame", "robot_base_frame", "rolling_window", "static_map", "map_topic", "width", "height",
     "resolution", "scan_topic", "bumper_topic", "obstacle_range", "raytrace_range", "track_unknown_space",
@@ -149,7 +152,8 @@ class CostmapROS:
         if scan_topic:
             # scans are placed (tf at their stamp) and added on a thread of the costmap's own (see LatestWorker)
             self.scan_worker: LatestWorker[LaserScanMsg] = LatestWorker(self._on_scan, f"{name} scans")
-            self._subscribers.append(rospy.Subscriber(scan_topic, LaserScanMsg, self.scan_worker.offer, queue_size=1))
+            self._subscribers.append(self.scan_worker.subscribe(scan_topic, LaserScanMsg,
+                                                                LockstepParticipant(f"{name}/scan")))
         if bumper_topic:
             self._subscribers.append(rospy.Subscriber(bumper_topic, PointStamped, self._on_bumper_hit, queue_size=10))
         # reset=True: a timer whose ROS time jumps back (a restarted simulator, a looped bag) goes on
@@ -268,7 +272,7 @@ class CostmapROS:
 
     def _frame_pose_at(self, frame_id: str, stamp: rospy.Time) -> tuple[float, float, float]:
         try:
-            tf = self.tf_buffer.lookup_transform(self.global_frame, frame_id, stamp, rospy.Duration(0.1))
+            tf = lookup_bounded(self.tf_buffer, self.global_frame, frame_id, stamp, TF_WAIT_S)
         except (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.ExtrapolationException) as err:
             raise NotReadyError(f"no transform {self.global_frame} -> {frame_id}: {err}") from err
         t, q = tf.transform.translation, tf.transform.rotation
@@ -300,8 +304,7 @@ class CostmapROS:
 
     def _on_bumper_hit(self, msg: PointStamped) -> None:
         try:
-            tf = self.tf_buffer.lookup_transform(self.global_frame, msg.header.frame_id, msg.header.stamp,
-                                                 rospy.Duration(0.1))
+            tf = lookup_bounded(self.tf_buffer, self.global_frame, msg.header.frame_id, msg.header.stamp, TF_WAIT_S)
         except (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.ExtrapolationException) as err:
             rospy.logwarn(f"{self.name}: bumper hit ignored, no transform: {err}")
             return

@@ -2,17 +2,38 @@
 
 from __future__ import annotations
 
+import time
 from typing import Optional
 
 import numpy as np
 import rospy
 import tf2_ros
-from geometry_msgs.msg import PoseStamped, Quaternion
+from geometry_msgs.msg import PoseStamped, Quaternion, TransformStamped
 from nav_msgs.msg import Path
 
 from flex_nav.exceptions import ConfigError, NotReadyError
 from flex_nav.nav.planar import heading_along, transform_poses
 from flex_nav.nav.pose_checks import pose_problem, yaw_of_quaternion
+
+TF_POLL_S = 0.002  # [s] wall: how often a bounded transform lookup looks again
+TF_ERRORS = (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.ExtrapolationException)
+
+
+def lookup_bounded(buffer: tf2_ros.Buffer, target_frame: str, source_frame: str, stamp: rospy.Time,
+                   timeout_s: float) -> TransformStamped:
+    """``buffer.lookup_transform`` waiting at most ``timeout_s`` [s] of ROS time and as much wall time.
+
+    tf2's own wait sleeps on ROS time alone, which does not pass while a lockstep simulation waits for this very
+    node (:mod:`flex_nav.ros.lockstep`); the wall bound ends it. Raises tf2's exception of the last try."""
+    ros_deadline_s = rospy.get_time() + timeout_s
+    wall_deadline_s = time.monotonic() + timeout_s
+    while True:
+        try:
+            return buffer.lookup_transform(target_frame, source_frame, stamp)
+        except TF_ERRORS:
+            if rospy.get_time() >= ros_deadline_s or time.monotonic() >= wall_deadline_s or rospy.is_shutdown():
+                raise
+        time.sleep(TF_POLL_S)
 
 
 class TfSource:
@@ -40,9 +61,8 @@ def frame_pose(
     if source_frame.lstrip("/") == target_frame.lstrip("/"):
         return (0.0, 0.0, 0.0)
     try:
-        tf = buffer.lookup_transform(target_frame.lstrip("/"), source_frame.lstrip("/"), rospy.Time(0),
-                                     rospy.Duration(timeout_s))
-    except (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.ExtrapolationException) as err:
+        tf = lookup_bounded(buffer, target_frame.lstrip("/"), source_frame.lstrip("/"), rospy.Time(0), timeout_s)
+    except TF_ERRORS as err:
         raise NotReadyError(f"frame '{source_frame}' cannot be transformed into '{target_frame}' "
                             f"within {timeout_s:.2f} s: {err}") from err
     if max_age_s > 0.0 and not tf.header.stamp.is_zero():

@@ -39,7 +39,9 @@ from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.perception.moving_obstacles import MovingObstacleTracker, Track, TrackerParams
 from flex_nav.perception.static_mask import StaticMask
 from flex_nav.ros.conversions import grid_map_of
+from flex_nav.ros.frames import lookup_bounded
 from flex_nav.ros.latest_worker import LatestWorker
+from flex_nav.ros.lockstep import LockstepParticipant
 from flex_nav.ros.params import param_float, param_str, reject_unknown
 from flex_nav.ros.private_ns import private_name, private_namespace
 
@@ -134,7 +136,8 @@ class MovingObstaclesROS:
         scan_topic = param_str(TRACKER_NS + "scan_topic", "scan")
         map_topic = param_str(TRACKER_NS + "map_topic", "map")
         self.scan_worker: LatestWorker[LaserScanMsg] = LatestWorker(self._on_scan, "people tracker scans")
-        self._subscribers = [rospy.Subscriber(scan_topic, LaserScanMsg, self.scan_worker.offer, queue_size=1)]
+        tracker_scans = LockstepParticipant("people_tracker/scan")
+        self._subscribers = [self.scan_worker.subscribe(scan_topic, LaserScanMsg, tracker_scans)]
         if map_topic:
             self._subscribers.append(rospy.Subscriber(map_topic, OccupancyGrid, self._on_map, queue_size=1))
 
@@ -186,7 +189,7 @@ class MovingObstaclesROS:
     def _planar(self, target: str, source: str, stamp: rospy.Time) -> Tuple[float, float, float]:
         if target == source.lstrip("/"):
             return (0.0, 0.0, 0.0)
-        tf = self.tf_buffer.lookup_transform(target, source, stamp, rospy.Duration(TF_WAIT_S))
+        tf = lookup_bounded(self.tf_buffer, target, source, stamp, TF_WAIT_S)
         t, q = tf.transform.translation, tf.transform.rotation
         return (t.x, t.y, yaw_of_quaternion(q.x, q.y, q.z, q.w))
 

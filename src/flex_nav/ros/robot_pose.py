@@ -9,6 +9,7 @@ import tf2_ros
 
 from flex_nav.exceptions import NotReadyError
 from flex_nav.nav.pose_checks import yaw_of_quaternion
+from flex_nav.ros.frames import TF_ERRORS, lookup_bounded
 
 
 class RobotPoseSource:
@@ -32,10 +33,8 @@ class RobotPoseSource:
     def pose(self, timeout_s: float = 0.2) -> tuple[float, float, float]:
         """(x [m], y [m], yaw [rad]) of the robot base in the global frame; waits at most ``timeout_s`` [s]."""
         try:
-            stamped = self.buffer.lookup_transform(
-                self.global_frame, self.robot_base_frame, rospy.Time(0), rospy.Duration(timeout_s)
-            )
-        except (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.ExtrapolationException) as err:
+            stamped = lookup_bounded(self.buffer, self.global_frame, self.robot_base_frame, rospy.Time(0), timeout_s)
+        except TF_ERRORS as err:
             raise NotReadyError(
                 f"no transform {self.global_frame} -> {self.robot_base_frame} within {timeout_s:.2f} s: {err}"
             ) from err

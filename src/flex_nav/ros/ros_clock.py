@@ -9,8 +9,11 @@ from __future__ import annotations
 
 import math
 import threading
+from typing import Optional
 
 import rospy
+
+from flex_nav.ros.lockstep import LockstepParticipant
 
 SIM_TIME_POLL_S = 0.002  # [s] wall period at which a wait on simulated time re-reads the clock
 IDLE_WAIT_S = 0.1  # [s] wall bound of a wait with no finite deadline
@@ -19,12 +22,15 @@ IDLE_WAIT_S = 0.1  # [s] wall bound of a wait with no finite deadline
 class RosClock:
     """``now()`` is ``rospy.get_time()``; waits end at the deadline, on a wake-up, or on shutdown.
 
-    ``poll_s`` [s]: on simulated time, the longest wall-time wait before ROS time is read again.
+    ``poll_s`` [s]: on simulated time, the longest wall-time wait before ROS time is read again. ``lockstep``: a
+    participant that holds a lockstep simulation at every deadline :meth:`wait_until` waits for (its owner
+    releases it when the loop ends).
     """
 
-    def __init__(self, poll_s: float = SIM_TIME_POLL_S) -> None:
+    def __init__(self, poll_s: float = SIM_TIME_POLL_S, lockstep: Optional[LockstepParticipant] = None) -> None:
         self._sim_time = bool(rospy.get_param("/use_sim_time", False))
         self._poll_s = poll_s
+        self.lockstep = lockstep
 
     def now(self) -> float:
         return float(rospy.get_time())
@@ -39,6 +45,8 @@ class RosClock:
         return min(remaining_s, self._poll_s) if self._sim_time else remaining_s
 
     def wait_until(self, deadline_s: float, wake: threading.Event) -> None:
+        if self.lockstep is not None:
+            self.lockstep.hold_clock(deadline_s)
         wait_s = self.wall_wait_s(deadline_s, self.now())
         if wait_s > 0.0:
             wake.wait(wait_s)

@@ -1,0 +1,138 @@
+"""Lockstep: the simulator waits for the nodes that compute on its time (pure logic; ROS side in sim_bridge).
+
+Without it the simulator steps at its real-time factor whatever the nodes do, so a node's wall-time latency
+becomes simulated latency scaled by the rtf (one wall millisecond of planning is four simulated ones at rtf 4)
+and a run's outcome depends on the rtf and the machine's load. With it, each *participant* (a controller, a
+costmap, the localizer, the classifier, the behavior runner ...) holds the simulation at the point where it has
+work to do, and lets it go on once that work is done:
+
+- a **clock hold** ``(topic "", stamp)``: step no further once simulated time has reached ``stamp`` (a loop paced on
+  ROS time holds at its next tick; a server holds at "now" while it plans);
+- a **topic hold** ``(topic, stamp)``: step no further once a message on ``topic`` stamped at or after ``stamp`` has
+  been published (a scan consumer holds on the next scan, the classifier on the next image it will classify).
+
+A participant replaces its hold by sending the next one (or lets go). Every wait is bounded: a hold that keeps the
+simulation waiting ``timeout_s`` [s of wall time] is dropped, reported, and counted (a participant that died or
+lost a message must not stop the world); its next hold counts again.
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+import time
+from dataclasses import dataclass
+from typing import Callable, Dict, List, Optional
+
+from flex_nav.exceptions import ConfigError
+
+CLOCK_TOPIC = ""  # a hold on simulated time itself
+POLL_S = 0.05  # [s] wall: longest wait before the stop condition is looked at again
+
+
+@dataclass(frozen=True)
+class Hold:
+    """What one participant waits for: simulated time (``topic`` empty) or a message on ``topic``, at ``stamp_s``."""
+
+    participant: str
+    topic: str
+    stamp_s: float  # [s] simulated time
+
+    def describe(self) -> str:
+        what = "simulated time" if self.topic == CLOCK_TOPIC else f"a message on {self.topic} stamped"
+        return f"{self.participant} (waiting for {what} >= {self.stamp_s:.3f} s)"
+
+
+@dataclass
+class LockstepStats:
+    """What the waiting cost: waits that blocked, their wall time, holds dropped on timeout."""
+
+    waits: int = 0
+    wait_s: float = 0.0  # [s] wall
+    dropped: int = 0
+
+    def line(self) -> str:
+        return f"lockstep: {self.waits} waits, {self.wait_s:.1f} s wall waiting, {self.dropped} holds dropped"
+
+
+class LockstepBarrier:
+    """The holds of every participant and what the simulator has published; :meth:`wait` blocks the stepping thread.
+
+    ``timeout_s`` [s wall] bounds how long one hold may keep the simulation waiting. Thread-safe: holds arrive on
+    ROS threads (:meth:`update`), the stepping thread reports what it published and waits.
+    """
+
+    def __init__(self, timeout_s: float, wall_clock: Callable[[], float] = time.monotonic) -> None:
+        if not (math.isfinite(timeout_s) and timeout_s > 0.0):
+            raise ConfigError(f"lockstep timeout {timeout_s!r} s: must be a positive number of seconds")
+        self.timeout_s = timeout_s
+        self._wall = wall_clock
+        self._cond = threading.Condition()
+        self._holds: Dict[str, Hold] = {}
+        self._published: Dict[str, float] = {CLOCK_TOPIC: -math.inf}  # topic -> newest stamp [s]
+        self.stats = LockstepStats()
+
+    def update(self, participant: str, holding: bool, topic: str, stamp_s: float) -> None:
+        """A participant's new hold replaces its old one (``holding`` False: it lets go)."""
+        if not participant:
+            raise ConfigError("a lockstep hold must name its participant")
+        if holding and not math.isfinite(stamp_s):
+            raise ConfigError(f"lockstep hold of {participant}: stamp {stamp_s!r} is not a finite time")
+        with self._cond:
+            if holding:
+                self._holds[participant] = Hold(participant, topic, stamp_s)
+            else:
+                self._holds.pop(participant, None)
+            self._cond.notify_all()
+
+    def published(self, topic: str, stamp_s: float) -> None:
+        """The stepping thread published a message on ``topic`` (:data:`CLOCK_TOPIC`: reached time) at ``stamp_s``."""
+        with self._cond:
+            if stamp_s > self._published.get(topic, -math.inf):
+                self._published[topic] = stamp_s
+
+    def holds(self) -> List[Hold]:
+        with self._cond:
+            return list(self._holds.values())
+
+    def _reached(self, hold: Hold) -> bool:
+        return self._published.get(hold.topic, -math.inf) >= hold.stamp_s  # exactly: as the participant compares
+
+    def blocking(self) -> List[Hold]:
+        """The holds whose wait has come: the simulation must not step on while any is left."""
+        with self._cond:
+            return [h for h in self._holds.values() if self._reached(h)]
+
+    def wait(self, stop: Callable[[], bool] = lambda: False) -> List[Hold]:
+        """Block until no hold has come (or ``stop()``); returns the holds dropped after ``timeout_s`` each."""
+        dropped: List[Hold] = []
+        started = self._wall()
+        first_blocked: Dict[Hold, float] = {}
+        with self._cond:
+            while not stop():
+                now = self._wall()
+                blocking = [h for h in self._holds.values() if self._reached(h)]
+                if not blocking:
+                    break
+                for hold in blocking:
+                    since = first_blocked.setdefault(hold, now)
+                    if now - since >= self.timeout_s and self._holds.get(hold.participant) == hold:
+                        del self._holds[hold.participant]
+                        dropped.append(hold)
+                oldest = min(first_blocked.get(h, now) for h in blocking)
+                self._cond.wait(max(0.0, min(POLL_S, oldest + self.timeout_s - now)))
+            waited = self._wall() - started
+            if first_blocked:
+                self.stats.waits += 1
+                self.stats.wait_s += waited
+            self.stats.dropped += len(dropped)
+        return dropped
+
+    def forget(self, participant: Optional[str] = None) -> None:
+        """Drop one participant's hold (None: every hold), e.g. when the simulation restarts its time."""
+        with self._cond:
+            if participant is None:
+                self._holds.clear()
+            else:
+                self._holds.pop(participant, None)
+            self._cond.notify_all()

@@ -1,0 +1,65 @@
+"""A node's side of the simulator's lockstep mode (the barrier: :mod:`flex_nav_sim.lockstep`).
+
+With ``/lockstep`` true (and ``/use_sim_time``), the simulator steps no further than its participants allow: each
+sends :class:`flex_nav.msg.LockstepHold` on ``/lockstep/holds`` saying what it waits for next -- simulated time
+reaching its next tick, or the next message on a sensor topic -- and replaces that hold once the work it held
+for is done. So a node's compute time costs no simulated time, whatever the real-time factor or the machine's load.
+Without ``/lockstep`` (every real robot) a :class:`LockstepParticipant` does nothing.
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+from typing import Optional, Tuple
+
+import rospy
+
+from flex_nav.msg import LockstepHold
+from flex_nav.ros.params import param_bool
+from flex_nav.ros.private_ns import private_namespace
+
+HOLDS_TOPIC = "/lockstep/holds"
+HOLDS_QUEUE = 100  # holds of one process in flight (several participants answer every scan)
+
+
+def lockstep_enabled() -> bool:
+    """``/lockstep`` (bool, false by default) on simulated time."""
+    return param_bool("/lockstep", False) and param_bool("/use_sim_time", False)
+
+
+class LockstepParticipant:
+    """One participant's holds, named ``<private namespace>/<what>`` (build it in the component's constructor, see
+    :mod:`flex_nav.ros.private_ns`); every method is a no-op when lockstep is off."""
+
+    def __init__(self, what: str, enabled: Optional[bool] = None) -> None:
+        self.name = f"{private_namespace()}/{what}"
+        self.enabled = lockstep_enabled() if enabled is None else enabled
+        self._lock = threading.Lock()
+        self._last: Optional[Tuple[bool, str, float]] = None
+        self._publisher = rospy.Publisher(HOLDS_TOPIC, LockstepHold, queue_size=HOLDS_QUEUE) if self.enabled else None
+
+    def hold_clock(self, stamp_s: float) -> None:
+        """Wait for me once simulated time reaches ``stamp_s`` [s] (a finite time; now: freeze it until I go on)."""
+        self._send(True, "", stamp_s)
+
+    def hold_topic(self, topic: str, stamp_s: float) -> None:
+        """Wait for me once a message on ``topic`` (resolved) stamped at or after ``stamp_s`` [s] is published."""
+        self._send(True, topic, stamp_s)
+
+    def release(self) -> None:
+        """I wait for nothing now."""
+        self._send(False, "", 0.0)
+
+    def _send(self, holding: bool, topic: str, stamp_s: float) -> None:
+        if self._publisher is None:
+            return
+        if holding and not math.isfinite(stamp_s):
+            holding, topic, stamp_s = False, "", 0.0  # no finite next tick: nothing to wait for
+        with self._lock:
+            key = (holding, topic, stamp_s)
+            if key == self._last:
+                return
+            self._last = key
+            msg = LockstepHold(participant=self.name, holding=holding, topic=topic, stamp_s=stamp_s)
+            self._publisher.publish(msg)

@@ -1,0 +1,129 @@
+"""The simulator's lockstep barrier (pure): when holds block, how a replaced hold lets the stepping thread go on,
+and the bounded wait that drops a hold nobody replaces."""
+
+from __future__ import annotations
+
+import threading
+import time
+from typing import List
+
+import pytest
+
+from flex_nav.exceptions import ConfigError
+from flex_nav_sim.lockstep import CLOCK_TOPIC, Hold, LockstepBarrier
+
+SCAN = "/robot1/scan"
+
+
+class ManualWall:
+    """A wall clock the test moves; each read advances it by ``step_s`` so a waiting loop makes progress."""
+
+    def __init__(self, step_s: float = 0.0) -> None:
+        self.now_s = 0.0
+        self.step_s = step_s
+
+    def __call__(self) -> float:
+        self.now_s += self.step_s
+        return self.now_s
+
+
+def test_a_clock_hold_blocks_once_simulated_time_reaches_it() -> None:
+    barrier = LockstepBarrier(1.0)
+    barrier.update("/robot1/pure_pursuit_path/control", True, CLOCK_TOPIC, 2.0)
+    barrier.published(CLOCK_TOPIC, 1.99)
+    assert barrier.blocking() == []
+    barrier.published(CLOCK_TOPIC, 2.0)
+    assert barrier.blocking() == [Hold("/robot1/pure_pursuit_path/control", CLOCK_TOPIC, 2.0)]
+
+
+def test_a_topic_hold_blocks_only_after_a_message_on_its_topic_stamped_at_or_after_it() -> None:
+    barrier = LockstepBarrier(1.0)
+    barrier.update("/robot1/localizer/scan", True, SCAN, 1.0)
+    barrier.published(CLOCK_TOPIC, 5.0)  # time alone does not reach a topic hold
+    barrier.published("/robot1/odom", 5.0)  # nor a message on another topic
+    barrier.published(SCAN, 0.9)
+    assert barrier.blocking() == []
+    barrier.published(SCAN, 1.0)
+    assert [h.participant for h in barrier.blocking()] == ["/robot1/localizer/scan"]
+    barrier.published(SCAN, 0.5)  # an older stamp does not move the topic back
+    assert len(barrier.blocking()) == 1
+
+
+def test_a_new_hold_or_a_release_replaces_the_participants_old_one() -> None:
+    barrier = LockstepBarrier(1.0)
+    barrier.update("a", True, CLOCK_TOPIC, 1.0)
+    barrier.update("b", True, CLOCK_TOPIC, 1.0)
+    barrier.published(CLOCK_TOPIC, 1.0)
+    assert {h.participant for h in barrier.blocking()} == {"a", "b"}
+    barrier.update("a", True, CLOCK_TOPIC, 1.05)
+    barrier.update("b", False, "", 0.0)
+    assert barrier.blocking() == []
+    assert barrier.holds() == [Hold("a", CLOCK_TOPIC, 1.05)]
+
+
+def test_wait_returns_when_the_blocking_hold_is_replaced_from_another_thread() -> None:
+    barrier = LockstepBarrier(5.0)
+    barrier.update("control", True, CLOCK_TOPIC, 1.0)
+    barrier.published(CLOCK_TOPIC, 1.0)
+    order: List[str] = []
+
+    def participant() -> None:
+        time.sleep(0.05)
+        order.append("replaced")
+        barrier.update("control", True, CLOCK_TOPIC, 1.05)
+
+    thread = threading.Thread(target=participant)
+    thread.start()
+    dropped = barrier.wait()
+    order.append("stepping on")
+    thread.join(2.0)
+    assert dropped == []
+    assert order == ["replaced", "stepping on"]
+    assert barrier.stats.waits == 1 and barrier.stats.dropped == 0
+    assert barrier.stats.wait_s > 0.0
+
+
+def test_a_hold_not_replaced_within_the_timeout_is_dropped_and_counted() -> None:
+    wall = ManualWall(step_s=0.3)
+    barrier = LockstepBarrier(1.0, wall_clock=wall)
+    barrier.update("dead", True, CLOCK_TOPIC, 1.0)
+    barrier.update("alive", True, CLOCK_TOPIC, 9.0)
+    barrier.published(CLOCK_TOPIC, 1.0)
+    dropped = barrier.wait()
+    assert dropped == [Hold("dead", CLOCK_TOPIC, 1.0)]
+    assert barrier.holds() == [Hold("alive", CLOCK_TOPIC, 9.0)]
+    assert barrier.stats.dropped == 1
+    assert wall.now_s >= 1.0  # it waited the timeout first
+    barrier.update("dead", True, CLOCK_TOPIC, 1.0)  # its next hold counts again
+    assert len(barrier.blocking()) == 1
+
+
+def test_wait_without_a_blocking_hold_returns_at_once_and_counts_no_wait() -> None:
+    barrier = LockstepBarrier(1.0)
+    barrier.update("later", True, CLOCK_TOPIC, 3.0)
+    barrier.published(CLOCK_TOPIC, 1.0)
+    assert barrier.wait() == []
+    assert barrier.stats.waits == 0
+
+
+def test_wait_ends_when_asked_to_stop() -> None:
+    barrier = LockstepBarrier(60.0)
+    barrier.update("slow", True, CLOCK_TOPIC, 0.0)
+    barrier.published(CLOCK_TOPIC, 0.0)
+    started = time.monotonic()
+    assert barrier.wait(stop=lambda: time.monotonic() - started > 0.1) == []
+    assert barrier.blocking() != []  # nothing dropped: the simulation is stopping
+
+
+@pytest.mark.parametrize("timeout_s", [0.0, -1.0, float("nan"), float("inf")])
+def test_a_timeout_that_is_not_a_positive_number_is_refused(timeout_s: float) -> None:
+    with pytest.raises(ConfigError, match="lockstep timeout"):
+        LockstepBarrier(timeout_s)
+
+
+def test_a_hold_without_a_participant_or_a_finite_stamp_is_refused() -> None:
+    barrier = LockstepBarrier(1.0)
+    with pytest.raises(ConfigError, match="name its participant"):
+        barrier.update("", True, CLOCK_TOPIC, 1.0)
+    with pytest.raises(ConfigError, match="not a finite time"):
+        barrier.update("x", True, CLOCK_TOPIC, float("nan"))
