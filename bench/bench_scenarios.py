@@ -56,7 +56,7 @@ def evaluate(out: Path, rtf: float, workers: int, args: argparse.Namespace, dura
     every run's outcome."""
     command = [sys.executable, "-m", "flex_nav.apps.eval.scenarios", "--seeds", str(args.seeds), "--rtf", str(rtf),
                "--workers", str(workers), "--out", str(out), "--scenarios", args.scenarios, "--behaviors",
-               args.behaviors]
+               args.behaviors, "--lockstep" if args.lockstep else "--no-lockstep"]
     if durations is not None:
         command += ["--durations", str(durations)]
     for setting in args.behavior_param:
@@ -119,6 +119,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     parser.add_argument("--behaviors", default="move_base_like,push_or_avoid")
     parser.add_argument("--behavior-param", action="append", default=[], metavar="BEHAVIOR:KEY=VALUE")
     parser.add_argument("--out", type=Path, default=None, help="where the evaluations write (default: a temp dir)")
+    parser.add_argument("--lockstep", action=argparse.BooleanOptionalAction, default=True,
+                        help="the evaluations' simulator in lockstep with the nodes (the default)")
     parser.add_argument("--plan-order", action="store_true",
                         help="--mode workers: the two workers take the runs in the plan's order, not longest first")
     args = parser.parse_args(argv)

@@ -121,6 +121,7 @@ class Simulation:
         sensors: SensorOptions = SensorOptions(),
         drift: Optional[LocalizationDrift] = None,
         gui: bool = False,
+        world_started: bool = True,
     ) -> None:
         if not (math.isfinite(physics_rate) and 30.0 <= physics_rate <= 5000.0):
             raise ConfigError(f"physics_rate must be 30..5000 Hz, got {physics_rate!r}")
@@ -138,6 +139,8 @@ class Simulation:
         self.steps = 0
         self.seed = seed
         self.rng = np.random.default_rng(seed)
+        # [s] when the world's script (people's walks, world events) started; None: not yet (start_world)
+        self.world_start_s: Optional[float] = 0.0 if world_started else None
         self.sensors = sensors
         self.drift = drift
         self.costs: Dict[str, float] = dict.fromkeys(COST_KEYS, 0.0)  # [s] wall time spent, by part
@@ -298,10 +301,28 @@ class Simulation:
     def __exit__(self, *exc: object) -> None:
         self.close()
 
+    def start_world(self) -> None:
+        """Start the world's script now: people start walking and world events happen that many seconds after
+        this step, and every noise generator starts afresh from the seed. A run that begins here is the same
+        run whenever it begins (a simulation built with ``world_started=False`` waits for this)."""
+        if self.world_start_s is not None:
+            raise ConfigError(f"the world's script started already, at t = {self.world_start_s:.3f} s")
+        self.world_start_s = self.time
+        fresh = np.random.default_rng(self.seed)
+        for slot in self._slots.values():
+            odometry, lidar, drift = fresh.spawn(3)
+            slot.robot.rng = slot.robot.odometry.rng = odometry
+            if slot.lidar is not None:
+                slot.lidar.rng = lidar
+            slot.drift_rng = drift
+
     # -- internals --------------------------------------------------------------------------------
     def _apply_events(self, out: List[Reading]) -> None:
+        if self.world_start_s is None:
+            return
         events = self.world.events
-        while self._event_index < len(events) and events[self._event_index].time <= self.time + _EPS:
+        while (self._event_index < len(events)
+               and events[self._event_index].time + self.world_start_s <= self.time + _EPS):
             ev = events[self._event_index]
             self._event_index += 1
             out.append(WorldEventReading(self.time, ev.action, ev.target, self._apply(ev)))
@@ -359,8 +380,9 @@ class Simulation:
                 if (
                     person.walks
                     and person.start_time is not None
+                    and self.world_start_s is not None
                     and not state.walked
-                    and self.time >= person.start_time
+                    and self.time - self.world_start_s >= person.start_time
                 ):
                     state.walking = True
                 else:

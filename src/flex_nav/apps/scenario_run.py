@@ -57,6 +57,10 @@ STARTUP_TIMEOUT_S = 90.0  # [s] wall
 HURRY_SPEED_MPS = 0.3  # [m/s] giving way: cross a walker's way at this speed when only that clears (max 0.306)
 BUMPER_MEMORY_S = 5.0  # [s] bumper marks (both behaviors): a pushed box's contacts must not close the door
 SETTLE_S = 2.0  # [s] simulated time between the behavior waiting for a goal and sending it
+# lockstep: the goal goes out, and the world's script starts, at a multiple of this [s] of simulated time (every
+# sensor's period divides it: 20 Hz odometry, 5 Hz camera, 5.5 Hz lidar), with the simulation held there
+START_GRID_S = 2.0
+START_WALL_WAIT_S = 0.2  # [s] wall: the simulation stays held this long after the goal, so the behavior has it
 CLEAR_COSTMAPS = ("get_path_server/clear_costmap", "pure_pursuit_path/clear_costmap")  # --clear-between-trips
 CLEAR_TIMEOUT_S = 10.0  # [s] wall, per ClearCostmap action
 
@@ -74,9 +78,9 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     parser.add_argument("--keep-ros-logs", action="store_true",
                         help="keep the nodes' ROS logs (every level, rosout included) in OUT/ros_home/log")
     add_separate_processes_argument(parser)
-    parser.add_argument("--lockstep", action="store_true",
-                        help="the simulator waits for the nodes' work (flex_nav_sim.lockstep): the same run at any rtf "
-                             "and load")
+    parser.add_argument("--lockstep", action=argparse.BooleanOptionalAction, default=True,
+                        help="the simulator waits for the nodes' work (flex_nav_sim.lockstep), so a run ends the same "
+                             "at any rtf and load (default); --no-lockstep: it keeps its rtf whatever the nodes do")
     parser.add_argument("--social-distance", type=float, default=0.0, metavar="M",
                         help="[m] keep this distance from tracked people while moving (push_or_avoid's follower; "
                              "0: off, the default)")
@@ -183,6 +187,7 @@ def start(stack: contextlib.ExitStack, args: argparse.Namespace, run: RobotRun) 
                                                                   "min_distance_m": args.social_distance}
     if args.lockstep:
         params["/lockstep"] = True
+        params["/sim/world_start"] = "on_request"  # start_at_grid starts the world's script with the goal
     if args.behavior_params:
         params[f"/{ROBOT}/behavior_runner/parameters"] = dict(args.behavior_params)
     for costmap in ("get_path_server/global_costmap", "pure_pursuit_path/local_costmap",
@@ -196,6 +201,53 @@ def start(stack: contextlib.ExitStack, args: argparse.Namespace, run: RobotRun) 
                                 env=env, log_path=args.out / "logs" / "classifier.log")
     stack.callback(classifier.stop)
     return [*processes, classifier]
+
+
+def send_first_goal(monitor: ScenarioMonitor, lockstep: bool, wall_deadline: float) -> Optional[str]:
+    """After SETTLE_S [s] of simulated time (odometry, scans and the first class votes flow), in lockstep at the
+    next start of the grid; the reason if it failed, else None."""
+    settle_until = monitor.sim_s() + SETTLE_S
+    if lockstep:
+        return start_at_grid(monitor, settle_until, wall_deadline)
+    while monitor.sim_s() < settle_until and time.monotonic() < wall_deadline:
+        time.sleep(0.1)
+    monitor.send_due_goals()
+    return None
+
+
+def start_at_grid(monitor: ScenarioMonitor, not_before_s: float, wall_deadline: float) -> Optional[str]:
+    """Lockstep: hold the simulation at the first multiple of START_GRID_S [s] from ``not_before_s`` on, start the
+    world's script there (``/sim/start_world``), send the goal, let go; the reason if it failed, else None. So the
+    run, its walkers and its noise begin at the same point of every sensor's schedule whatever the rtf or load."""
+    import rospy  # noqa: PLC0415
+    from std_srvs.srv import Trigger  # noqa: PLC0415
+
+    from flex_nav.ros.lockstep import LockstepParticipant  # noqa: PLC0415
+
+    start_s = math.ceil(not_before_s / START_GRID_S) * START_GRID_S
+    hold = LockstepParticipant("start", enabled=True)
+    try:
+        if not hold.wait_connected(max(0.0, wall_deadline - time.monotonic())):
+            return "the simulator did not subscribe to the lockstep holds"
+        hold.hold_clock(start_s)
+        while monitor.sim_s() < start_s:
+            if time.monotonic() > wall_deadline or rospy.is_shutdown():
+                return f"simulated time did not reach the start at {start_s:g} s"
+            time.sleep(0.01)
+        if monitor.sim_s() > start_s + START_GRID_S / 2.0:
+            return f"the simulation passed the start at {start_s:g} s before holding there (at {monitor.sim_s():.2f} s)"
+        try:
+            rospy.wait_for_service("/sim/start_world", timeout=CLEAR_TIMEOUT_S)
+            answer = rospy.ServiceProxy("/sim/start_world", Trigger)()
+        except (rospy.ROSException, rospy.ServiceException) as err:
+            return f"/sim/start_world failed: {err}"
+        if not answer.success:
+            return f"/sim/start_world refused: {answer.message}"
+        monitor.send_due_goals()
+        time.sleep(START_WALL_WAIT_S)
+    finally:
+        hold.release()
+    return None
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one linear script of a run
@@ -228,10 +280,10 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
             print(f"scenario_run: startup failed: {problem}; logs in {args.out / 'logs'}", file=sys.stderr)
             return 2
         wall_deadline = started + args.timeout
-        settle_until = monitor.sim_s() + SETTLE_S  # odometry, scans and the first class votes flow
-        while monitor.sim_s() < settle_until and time.monotonic() < wall_deadline:
-            time.sleep(0.1)
-        monitor.send_due_goals()
+        problem = send_first_goal(monitor, args.lockstep, wall_deadline)
+        if problem is not None:
+            print(f"scenario_run: {problem}; logs in {args.out / 'logs'}", file=sys.stderr)
+            return 2
         goal_sim_s = monitor.sim_s()
         cleared_before: Set[int] = set()  # goal indices before which the costmaps were cleared
         while not monitor.done() and not rospy.is_shutdown():

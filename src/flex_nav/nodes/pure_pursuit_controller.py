@@ -15,23 +15,24 @@ carried into ``~global_frame`` by tf (``global_frame -> odom frame``); the path 
 ``~global_frame`` when it arrives. The local costmap ``~local_costmap/`` (rolling window from ``scan`` by
 default, see :mod:`flex_nav.ros.costmap_ros`) feeds pure pursuit's obstacle regulation and collision check.
 
-Safety (see :class:`flex_nav.nav.control.controller.SafeFollower`): empty path, path in an unknown frame, bad
-pose, stale ``odom`` or scan (``~sensor_timeout`` [s]; a zero twist at once, the goal aborted only if the sensor is
-not fresh again within ``~sensor_grace`` [s] more, 0 by default), a global-frame transform older than
+Safety (see :class:`flex_nav.nav.control.controller.SafeFollower`): empty path, path in an unknown frame, bad pose,
+stale ``odom`` or scan (``~sensor_timeout`` [s]; a zero twist at once, the goal aborted only if the sensor is not
+fresh again within ``~sensor_grace`` [s] more, 0 by default), a global-frame transform older than
 ``~localization_timeout`` [s] (1.0; 0: off; static transforms have no age), an obstacle ahead for
 ``~collision_timeout`` [s], any exception in the control loop, the node that sent the goal gone for
-``~client_timeout`` [s] (2.0; 0: off; see :mod:`flex_nav.ros.goal_server`), no heartbeat from the operator side
-for ``~heartbeat_timeout`` [s of wall time] (0: off, the default; :mod:`flex_nav.ros.heartbeat`), ROS time moving
+``~client_timeout`` [s] (2.0; 0: off; see :mod:`flex_nav.ros.goal_server`), no heartbeat from the operator side for
+``~heartbeat_timeout`` [s of wall time] (0: off, the default; :mod:`flex_nav.ros.heartbeat`), ROS time moving
 backwards (a restarted simulation: nothing computed on the old timeline is executed) -> zero twist and the goal
 aborted with the reason. ROS time standing still for ``~sensor_timeout`` of wall time (the simulator paused or
-crashed) -> one zero twist, then no command until ROS time moves again (the goal goes on then). Control is paced
-on ROS time (:class:`flex_nav.ros.ros_clock.RosClock`). In a lockstep simulation (``/lockstep``,
+crashed) -> one zero twist, then no command until ROS time moves again (the goal goes on then). Control is paced on
+ROS time (:class:`flex_nav.ros.ros_clock.RosClock`). In a lockstep simulation (``/lockstep``,
 :mod:`flex_nav.ros.lockstep`) a goal's ticks hold the simulator at the first odometry stamped a period after the
-previous tick, until the tick's command is out, and a standing ROS time is no stall. A cancel publishes a zero twist from the cancel callback
-itself (before it returns), and no later command of that goal can follow it; a newer goal replacing the current
-one also starts from a zero twist. A FollowTopic goal naming an illegal topic (empty, ``..``, blanks) aborts at once.
-At the end of a path the robot turns in place to the last pose's yaw (``pure_pursuit/use_final_heading``, within
-``pure_pursuit/yaw_goal_tolerance`` [rad]) unless the goal sets ``ignore_final_heading``.
+previous tick, until the tick's command is out, and a standing ROS time is no stall. A cancel publishes a zero
+twist from the cancel callback itself (before it returns), and no later command of that goal can follow it; a newer
+goal replacing the current one also starts from a zero twist. A FollowTopic goal naming an illegal topic (empty,
+``..``, blanks) aborts at once. At the end of a path the robot turns in place to the last pose's yaw
+(``pure_pursuit/use_final_heading``, within ``pure_pursuit/yaw_goal_tolerance`` [rad]) unless the goal sets
+``ignore_final_heading``.
 
 Parameters (private): ``global_frame`` ("map"), ``robot_base_frame`` ("base_footprint"),
 ``controller_frequency`` [Hz] (20), ``sensor_timeout`` [s] (0.5), ``sensor_grace`` [s] (0),

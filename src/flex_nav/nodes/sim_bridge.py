@@ -25,7 +25,13 @@ Private parameters:
   ~lockstep_timeout  float  5.0  [s of wall time] with the global ``/lockstep`` true (lockstep mode, see
                  :mod:`flex_nav_sim.lockstep`): the simulation steps no further than the nodes' holds on
                  ``/lockstep/holds`` (flex_nav/LockstepHold) allow; a hold that keeps it waiting this long is dropped
-                 and logged
+                 and logged; after each wait it pauses ``~lockstep_settle`` [s of wall time] (0.002) more, so
+                 what a node sent just before it let go (a velocity command through twist_relay, a plan, a class)
+                 arrives before the next step; a scan goes out after the step of the first odometry at or
+                 after its stamp
+  ~world_start  str  at_once  at_once: people walk and world events happen on the world's times from t = 0;
+                 on_request: from the step after a call of ~start_world (a scenario's run starts there, the
+                 same run at whatever time it starts)
   ~publish_initial_pose  bool  (not ~publish_map_odom)  publish NS/initialpose once, latched: the spawn pose
                  with a standard deviation of INITIAL_STD_XY_M / INITIAL_STD_YAW_RAD, as an operator's
                  "2D Pose Estimate" would give the localizer
@@ -42,8 +48,10 @@ Per robot ``NS`` (its name; frames are prefixed ``NS/``; an empty name is allowe
   subscribes NS/cmd_vel (geometry_msgs/Twist)
   with ~publish_initial_pose: NS/initialpose (geometry_msgs/PoseWithCovarianceStamped, map frame, latched)
 Global: /clock (rosgraph_msgs/Clock; run every other node with use_sim_time), sim_events (world events).
-Service ~teleport (flex_nav/Teleport): move a robot to a map pose at once, at rest, without its odometry
-seeing it (the kidnapped robot); answered after the stepping thread has done it.
+Service ~start_world (std_srvs/Trigger, with ~world_start on_request): the world's script and fresh noise from the
+seed start before the next step (the answer comes at once). Service ~teleport (flex_nav/Teleport): move a robot to
+a map pose at once, at rest, without its odometry seeing it (the kidnapped robot); answered after the stepping
+thread has done it.
 """
 
 from __future__ import annotations
@@ -62,6 +70,7 @@ from geometry_msgs.msg import PoseWithCovarianceStamped, TransformStamped, Twist
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import CameraInfo, Image, LaserScan
+from std_srvs.srv import Trigger, TriggerRequest, TriggerResponse
 from tf2_msgs.msg import TFMessage
 
 from flex_nav.exceptions import ConfigError
@@ -287,6 +296,7 @@ class BridgeOptions:
     publish_initial_pose: bool = False  # NS/initialpose once, latched, from the spawn pose
     lockstep: bool = False  # wait for the participants' holds (global /lockstep)
     lockstep_timeout_s: float = 5.0  # [s wall] longest wait for one hold
+    lockstep_settle_s: float = 0.002  # [s wall] pause after a wait, for messages sent before a hold was replaced
 
 
 class SimBridge:
@@ -327,15 +337,20 @@ class SimBridge:
         self._clock_s = -math.inf  # [s] the newest /clock published
         self._tf = TFMessage()
         self.lockstep: Optional[LockstepBarrier] = None
-        # lockstep: a scan goes out with the first odometry at or after its stamp (the same step or a later one), so
-        # whoever holds the simulation for it finds tf at its stamp without waiting for a step that cannot come
+        # lockstep: a scan goes out once the first odometry at or after its stamp is out and the nodes are done with
+        # that step (the controllers' ticks on it), so its consumers find tf at its stamp without waiting for a step
+        # that cannot come, and every controller tick sees the scans of the steps before its own, none of its own
         self._odom_stamp_s: Dict[str, float] = {}  # robot -> [s] newest odometry published
-        self._scans_waiting: Dict[str, List[ScanReading]] = {}  # robot -> scans not published yet
+        self._scans_waiting: Dict[str, List[ScanReading]] = {}  # robot -> scans newer than its odometry
+        self._scans_ready: List[ScanReading] = []  # to go out after this step's holds
+        self.settle_s = options.lockstep_settle_s
         if options.lockstep:
             self.lockstep = LockstepBarrier(options.lockstep_timeout_s)
             self._holds_subscriber = rospy.Subscriber(HOLDS_TOPIC, LockstepHold, self._on_hold,
                                                       queue_size=HOLDS_QUEUE, tcp_nodelay=True)
         self.teleport_service = rospy.Service("~teleport", Teleport, self._on_teleport)
+        self._start_world_requested = False  # from the service thread to the stepping thread
+        self.start_world_service = rospy.Service("~start_world", Trigger, self._on_start_world)
 
     # -- commands and holds (ROS threads) ----------------------------------------------------------
     def _on_hold(self, msg: LockstepHold) -> None:
@@ -363,6 +378,14 @@ class SimBridge:
             rospy.logwarn("sim: teleport refused: %s", job.message)
         return TeleportResponse(ok=job.ok, message=job.message)
 
+    def _on_start_world(self, _request: TriggerRequest) -> TriggerResponse:
+        """Service thread: the stepping thread starts the world's script before its next step."""
+        with self._lock:
+            if self.sim.world_start_s is not None or self._start_world_requested:
+                return TriggerResponse(success=False, message="the world's script has started already")
+            self._start_world_requested = True
+        return TriggerResponse(success=True, message=f"the world's script starts after t = {self.sim.time:.3f} s")
+
     def _apply_teleports(self) -> None:
         with self._lock:
             jobs, self._teleports = self._teleports, []
@@ -374,6 +397,11 @@ class SimBridge:
             job.done.set()
 
     def _apply_commands(self) -> None:
+        if self._start_world_requested:
+            with self._lock:
+                self._start_world_requested = False
+            self.sim.start_world()
+            rospy.loginfo(f"sim: t = {self.sim.time:.3f} s: the world's script starts (people, events, fresh noise)")
         if self._teleports:
             self._apply_teleports()
         if not self._pending:
@@ -450,11 +478,22 @@ class SimBridge:
                 f"{behind}{lockstep}")
 
     def _wait_for_participants(self, t: float) -> bool:
-        """Lockstep: once a hold has come, publish /clock at ``t`` (so its node sees the time of what it waits for)
-        and wait until every such hold is replaced; True if it waited."""
+        """Lockstep, after a step's readings: wait for the holds that have come, then publish the scans that are
+        ready and wait for their holds; True if it waited."""
         barrier = self.lockstep
         assert barrier is not None
         barrier.published(CLOCK_TOPIC, stamp_of(t).to_sec())  # as the nodes will read it
+        waited = self._wait_for_holds(barrier, t)
+        if self._scans_ready:
+            scans, self._scans_ready = self._scans_ready, []
+            for scan in scans:
+                self._publish_scan(scan)
+            waited = self._wait_for_holds(barrier, t) or waited
+        return waited
+
+    def _wait_for_holds(self, barrier: LockstepBarrier, t: float) -> bool:
+        """Once a hold has come, publish /clock at ``t`` (its node sees the time of what it waits for), wait until
+        every such hold is replaced, then ``settle_s`` more (what the nodes sent before letting go lands first)."""
         if not barrier.blocking():
             return False
         if self._clock_s < t:
@@ -462,6 +501,8 @@ class SimBridge:
         for hold in barrier.wait(rospy.is_shutdown):
             rospy.logwarn(f"sim: t = {t:.3f} s: lockstep hold of {hold.describe()} not replaced within "
                           f"{barrier.timeout_s:g} s of wall time: dropped, the simulation goes on")
+        if self.settle_s > 0.0:
+            time.sleep(self.settle_s)
         return True
 
     # -- publishing ---------------------------------------------------------------------------------
@@ -498,14 +539,15 @@ class SimBridge:
         self.pub_tf.publish(self._tf)
         if self.lockstep is not None:
             self._odom_stamp_s[r.robot] = r.stamp
-            for scan in self._scans_waiting.pop(r.robot, []):
-                self._publish_scan(scan)
+            self._scans_ready.extend(self._scans_waiting.pop(r.robot, []))
 
     def _on_scan(self, r: ScanReading) -> None:
-        if self.lockstep is not None and self._odom_stamp_s.get(r.robot, -math.inf) < r.stamp:
+        if self.lockstep is None:
+            self._publish_scan(r)
+        elif self._odom_stamp_s.get(r.robot, -math.inf) < r.stamp:
             self._scans_waiting.setdefault(r.robot, []).append(r)
-            return
-        self._publish_scan(r)
+        else:
+            self._scans_ready.append(r)
 
     def _publish_scan(self, r: ScanReading) -> None:
         io = self.robots[r.robot]
@@ -616,6 +658,7 @@ def build_simulation() -> Tuple[Simulation, BridgeOptions]:
         publish_map_odom=param_bool("~publish_map_odom", True),
         lockstep=lockstep_enabled(),
         lockstep_timeout_s=param_float("~lockstep_timeout", 5.0, 0.01, 3600.0),
+        lockstep_settle_s=param_float("~lockstep_settle", 0.002, 0.0, 1.0),
     )
     options = replace(options, publish_initial_pose=param_bool("~publish_initial_pose", not options.publish_map_odom))
     if not options.map_frame:
@@ -624,6 +667,7 @@ def build_simulation() -> Tuple[Simulation, BridgeOptions]:
         lidar=param_bool("~lidar", True), camera=param_bool("~camera", True), bumpers=param_bool("~bumpers", True)
     )
     gui = param_bool("~gui", False)
+    world_start = param_str("~world_start", "at_once", choices=("at_once", "on_request"))
     sim = Simulation(
         world,
         spawns,
@@ -632,6 +676,7 @@ def build_simulation() -> Tuple[Simulation, BridgeOptions]:
         sensors=sensors,
         drift=drift,
         gui=gui,
+        world_started=world_start == "at_once",
     )
     if gui and not sim.gui_active:
         rospy.logwarn("sim: ~gui requested but no display (DISPLAY unset): running headless")

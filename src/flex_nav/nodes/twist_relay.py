@@ -1,23 +1,23 @@
 """``twist_relay``: geometry_msgs/TwistStamped on ``cmd_vel_stamped`` -> geometry_msgs/Twist on ``cmd_vel``.
 
-Flexible Navigation's controllers publish stamped commands (for logging); ordinary base drivers take a
-Twist. A non-finite command is never forwarded: it is logged and a zero Twist goes out instead (a broken
-controller stops the robot). Parameter ``~timeout`` [s] (0 = off, with a warning: then the base driver's own
-command timeout must stop the robot; default 0.5): when no command arrived for this long after the last one
-and that one was moving, one zero Twist is published (with a warning), so a crashed controller cannot leave the
-base driving on its last command; silence after a stop (a controller's last word at its goal) is no fault.
-Controllers and behavior states publish to the same topic from different nodes, whose messages have no order
-between them: a command stamped before one already forwarded is dropped, and at equal stamps a stop wins
+Flexible Navigation's controllers publish stamped commands (for logging); ordinary base drivers take a Twist. A
+non-finite command is never forwarded: it is logged and a zero Twist goes out instead (a broken controller stops
+the robot). Parameter ``~timeout`` [s] (0 = off, with a warning: then the base driver's own command timeout must
+stop the robot; default 0.5): when no command arrived for this long after the last one and that one was moving, one
+zero Twist is published (with a warning), so a crashed controller cannot leave the base driving on its last
+command; silence after a stop (a controller's last word at its goal) is no fault. Controllers and behavior states
+publish to the same topic from different nodes, whose messages have no order between them: a command stamped before
+one already forwarded is dropped, and at equal stamps a stop wins
 (:class:`~flex_nav.nav.control.safety.CommandOrder`). When ROS time moves backwards (a restarted simulation, a
 looped bag) a zero Twist goes out and the order starts afresh, so the new timeline's commands get through; a
-command stamped more than 1 s ahead of this node's clock (the old timeline's, sent by a node that has not seen
-the jump yet) is dropped, so it cannot block them again. When ROS time stops advancing for longer than
-``~timeout`` of wall time (the simulator paused or crashed: every timeout on ROS time stands still with it), one
-zero Twist goes out and nothing is forwarded until ROS time moves again (not in a lockstep simulation,
-``/lockstep``: there ROS time stands while the simulator waits for a node, and the robot stands with it). ``~heartbeat_timeout`` [s of wall time]
-(0 = off, the default; see :mod:`flex_nav.ros.heartbeat`): when set, no heartbeat from the operator side for that
-long -- the link to the computer running the behavior dropped -- sends one zero Twist and forwards nothing until
-heartbeats come again (nothing at all before the first one). When the node shuts down (Ctrl-C, the launch
+command stamped more than 1 s ahead of this node's clock (the old timeline's, sent by a node that has not seen the
+jump yet) is dropped, so it cannot block them again. When ROS time stops advancing for longer than ``~timeout`` of
+wall time (the simulator paused or crashed: every timeout on ROS time stands still with it), one zero Twist goes
+out and nothing is forwarded until ROS time moves again (not in a lockstep simulation, ``/lockstep``: there ROS
+time stands while the simulator waits for a node, and the robot stands with it). ``~heartbeat_timeout`` [s of wall
+time] (0 = off, the default; see :mod:`flex_nav.ros.heartbeat`): when set, no heartbeat from the operator side for
+that long -- the link to the computer running the behavior dropped -- sends one zero Twist and forwards nothing
+until heartbeats come again (nothing at all before the first one). When the node shuts down (Ctrl-C, the launch
 ending, ``rosnode kill``) it publishes a last zero Twist and forwards nothing after it. The checks run on a
 wall-time thread, so they work while ROS time stands still.
 """

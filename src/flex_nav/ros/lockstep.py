@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 import threading
+import time
 from typing import Optional, Tuple
 
 import rospy
@@ -20,6 +21,7 @@ from flex_nav.ros.params import param_bool
 from flex_nav.ros.private_ns import private_namespace
 
 HOLDS_TOPIC = "/lockstep/holds"
+CONNECT_POLL_S = 0.01  # [s] wall
 HOLDS_QUEUE = 100  # holds of one process in flight (several participants answer every scan)
 
 
@@ -38,6 +40,16 @@ class LockstepParticipant:
         self._lock = threading.Lock()
         self._last: Optional[Tuple[bool, str, float]] = None
         self._publisher = rospy.Publisher(HOLDS_TOPIC, LockstepHold, queue_size=HOLDS_QUEUE) if self.enabled else None
+
+    def wait_connected(self, timeout_s: float) -> bool:
+        """Wait at most ``timeout_s`` [s wall] until the simulator listens to this participant's holds (a hold sent
+        before would be lost); True at once when lockstep is off."""
+        deadline = time.monotonic() + timeout_s
+        while self._publisher is not None and self._publisher.get_num_connections() == 0:
+            if time.monotonic() >= deadline or rospy.is_shutdown():
+                return False
+            time.sleep(CONNECT_POLL_S)
+        return True
 
     def hold_clock(self, stamp_s: float) -> None:
         """Wait for me once simulated time reaches ``stamp_s`` [s] (a finite time; now: freeze it until I go on)."""

@@ -305,6 +305,55 @@ def test_scripted_events_remove_and_start(tmp_path: Path) -> None:
         assert present(sim, "ann").x == pytest.approx(-1.5 + 1.0, abs=0.02)  # walked 1 s
 
 
+def test_a_world_started_on_request_runs_its_script_from_then(tmp_path: Path) -> None:
+    """With ``world_started=False`` nobody walks and no event happens until start_world; then the world's times
+    count from the start, and a second start is refused."""
+    world = make_world(
+        tmp_path,
+        "obstacles:\n  - {name: wall_piece, shape: box, size: [0.2, 1.0, 0.5], pose: [1.0, 0.0]}\n"
+        "people:\n  - {name: ann, waypoints: [[-1.5, 1.5], [1.5, 1.5]], speed: 1.0, start: 0.5}\n"
+        "events:\n  - {at: 0.5, action: remove, target: wall_piece}\n",
+    )
+    with Simulation(world, [spawn()], seed=0, sensors=NO_CAMERA, world_started=False) as sim:
+        waited = sim.run(2.0)
+        assert not any(isinstance(r, WorldEventReading) for r in waited)
+        assert present(sim, "ann")[:2] == pytest.approx((-1.5, 1.5), abs=1e-6)
+        assert sim.object_pose("wall_piece") is not None
+        sim.start_world()
+        assert sim.world_start_s == pytest.approx(2.0)
+        out = sim.run(1.5)
+        events = [e for e in out if isinstance(e, WorldEventReading)]
+        assert [(e.action, e.target) for e in events] == [("remove", "wall_piece")]
+        assert events[0].stamp == pytest.approx(2.5, abs=0.005)
+        assert present(sim, "ann").x == pytest.approx(-1.5 + 1.0, abs=0.02)  # walked from 2.5 s to 3.5 s
+        with pytest.raises(ConfigError, match="started already"):
+            sim.start_world()
+
+
+def _scans_after_start(world: WorldSpec, waited_steps: int) -> List[np.ndarray]:
+    with Simulation(world, [spawn()], seed=3, sensors=NO_CAMERA, world_started=False) as sim:
+        for _ in range(waited_steps):
+            sim.step()
+        sim.start_world()
+        return [r.ranges for r in sim.run(1.0) if isinstance(r, ScanReading)]
+
+
+def test_noise_starts_afresh_from_the_seed_when_the_world_starts(tmp_path: Path) -> None:
+    """Two runs started after different waits draw the same lidar noise from the start on (a scan period of the
+    kobuki's lidar apart, so the scans fall on the same steps after the start)."""
+    world = make_world(tmp_path)
+    with Simulation(world, [spawn()], sensors=NO_CAMERA) as sim:
+        lidar = sim.lidar_spec_of("r1")
+        step_hz = round(1.0 / sim.dt)
+    assert lidar is not None and step_hz % round(lidar.rate) == 0, "the test needs a lidar rate dividing the steps'"
+    period_steps = step_hz // round(lidar.rate)
+    early = _scans_after_start(world, period_steps * 2)
+    late = _scans_after_start(world, period_steps * 7)
+    assert len(early) == len(late) > 2
+    for a, b in zip(early, late):
+        np.testing.assert_array_equal(a, b)
+
+
 # -- bad commands -----------------------------------------------------------------------------------------
 def test_non_finite_commands_ignored_and_robot_stops(tmp_path: Path) -> None:
     with Simulation(make_world(tmp_path), [spawn()], seed=0, sensors=NO_CAMERA) as sim:

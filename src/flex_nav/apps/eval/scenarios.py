@@ -67,6 +67,8 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     parser.add_argument("--seeds", type=int, default=3, help="seeds 0..N-1 per scenario and behavior")
     parser.add_argument("--rtf", type=float, default=1.0, help="simulation real-time factor")
     parser.add_argument("--sim-limit", type=float, default=150.0, help="[s] simulated time bound of one goal")
+    parser.add_argument("--lockstep", action=argparse.BooleanOptionalAction, default=True,
+                        help="run the simulator in lockstep with the nodes (scenario_run --lockstep, the default)")
     parser.add_argument("--out", type=Path, default=None, help="output directory (default out/scenarios-<time>)")
     parser.add_argument("--resume", action="store_true", help="keep the runs in --out that have a result.json")
     parser.add_argument("--durations", type=Path, default=None, metavar="CSV",
@@ -120,7 +122,7 @@ def progress(done: int, total: int, started: float, label: str) -> None:
 def run_one(args: argparse.Namespace, world: str, behavior: str, seed: int, out: Path) -> Optional[RunResult]:
     command = [sys.executable, "-m", "flex_nav.apps.scenario_run", "--world", world, "--behavior", behavior,
                "--seed", str(seed), "--rtf", str(args.rtf), "--sim-limit", str(args.sim_limit), "--out", str(out),
-               "--localization", args.localization]
+               "--localization", args.localization, "--lockstep" if args.lockstep else "--no-lockstep"]
     for setting in args.behavior_params.get(behavior, []):
         command += ["--behavior-param", setting]
     out.mkdir(parents=True, exist_ok=True)
