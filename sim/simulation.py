@@ -187,7 +187,9 @@ class Simulation:
         self._people: Dict[str, _PersonState] = {}
         for person in self.world.people:
             body = create_person(c, person, person.pose_after(0.0))
-            self._people[person.name] = _PersonState(person, body)
+            state = _PersonState(person, body)
+            state.walking = state.walking and self.world_start_s is not None  # else from start_world on
+            self._people[person.name] = state
             self._names[body] = (person.name, "person")
         self._slots: Dict[str, _RobotSlot] = {}
         for i, spawn in enumerate(spawns):

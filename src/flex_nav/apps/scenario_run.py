@@ -57,9 +57,10 @@ STARTUP_TIMEOUT_S = 90.0  # [s] wall
 HURRY_SPEED_MPS = 0.3  # [m/s] giving way: cross a walker's way at this speed when only that clears (max 0.306)
 BUMPER_MEMORY_S = 5.0  # [s] bumper marks (both behaviors): a pushed box's contacts must not close the door
 SETTLE_S = 2.0  # [s] simulated time between the behavior waiting for a goal and sending it
-# lockstep: the goal goes out, and the world's script starts, at a multiple of this [s] of simulated time (every
+# lockstep: the world's script starts, and the goal goes out, at multiples of this [s] of simulated time (every
 # sensor's period divides it: 20 Hz odometry, 5 Hz camera, 5.5 Hz lidar), with the simulation held there
 START_GRID_S = 2.0
+WORLD_LEAD_S = 4.0  # [s] lockstep: from the world's start to the goal (a multiple of START_GRID_S)
 START_WALL_WAIT_S = 0.2  # [s] wall: the simulation stays held this long after the goal, so the behavior has it
 CLEAR_COSTMAPS = ("get_path_server/clear_costmap", "pure_pursuit_path/clear_costmap")  # --clear-between-trips
 CLEAR_TIMEOUT_S = 10.0  # [s] wall, per ClearCostmap action
@@ -203,51 +204,65 @@ def start(stack: contextlib.ExitStack, args: argparse.Namespace, run: RobotRun) 
     return [*processes, classifier]
 
 
-def send_first_goal(monitor: ScenarioMonitor, lockstep: bool, wall_deadline: float) -> Optional[str]:
-    """After SETTLE_S [s] of simulated time (odometry, scans and the first class votes flow), in lockstep at the
-    next start of the grid; the reason if it failed, else None."""
-    settle_until = monitor.sim_s() + SETTLE_S
+def send_first_goal(monitor: ScenarioMonitor, lockstep: bool, wall_deadline: float) -> Tuple[Optional[str], float]:
+    """Send the first goal SETTLE_S [s] of simulated time after the system is ready (odometry, scans and the first
+    class votes flow); in lockstep by :func:`start_at_grid`. (The reason if it failed, else None; the simulated
+    time [s] the world's script started at.)"""
     if lockstep:
-        return start_at_grid(monitor, settle_until, wall_deadline)
+        return start_at_grid(monitor, monitor.sim_s(), wall_deadline)
+    settle_until = monitor.sim_s() + SETTLE_S
     while monitor.sim_s() < settle_until and time.monotonic() < wall_deadline:
         time.sleep(0.1)
     monitor.send_due_goals()
-    return None
+    return None, 0.0
 
 
-def start_at_grid(monitor: ScenarioMonitor, not_before_s: float, wall_deadline: float) -> Optional[str]:
-    """Lockstep: hold the simulation at the first multiple of START_GRID_S [s] from ``not_before_s`` on, start the
-    world's script there (``/sim/start_world``), send the goal, let go; the reason if it failed, else None. So the
-    run, its walkers and its noise begin at the same point of every sensor's schedule whatever the rtf or load."""
+def start_at_grid(monitor: ScenarioMonitor, not_before_s: float, wall_deadline: float) -> Tuple[Optional[str], float]:
+    """Lockstep: hold the simulation at the first multiple of START_GRID_S [s] from ``not_before_s`` on and start the
+    world's script there (``/sim/start_world``); hold it again WORLD_LEAD_S later, send the goal, let go. So the
+    run, its walkers and its noise begin at the same point of every sensor's schedule whatever the rtf or load, and
+    the goal comes as long after the world's start as it did after t = 0 when the world started with the
+    simulation (events such as "the person leaves at 25 s" keep their meaning). (The reason if it failed, else
+    None; the simulated time [s] the world's script started at.)"""
     import rospy  # noqa: PLC0415
     from std_srvs.srv import Trigger  # noqa: PLC0415
 
     from flex_nav.ros.lockstep import LockstepParticipant  # noqa: PLC0415
 
-    start_s = math.ceil(not_before_s / START_GRID_S) * START_GRID_S
+    world_s = math.ceil(not_before_s / START_GRID_S) * START_GRID_S
     hold = LockstepParticipant("start", enabled=True)
+
+    def held_at(stamp_s: float) -> Optional[str]:
+        hold.hold_clock(stamp_s)
+        while monitor.sim_s() < stamp_s:
+            if time.monotonic() > wall_deadline or rospy.is_shutdown():
+                return f"simulated time did not reach {stamp_s:g} s"
+            time.sleep(0.01)
+        if monitor.sim_s() > stamp_s + START_GRID_S / 2.0:
+            return f"the simulation passed {stamp_s:g} s before holding there (at {monitor.sim_s():.2f} s)"
+        return None
+
     try:
         if not hold.wait_connected(max(0.0, wall_deadline - time.monotonic())):
-            return "the simulator did not subscribe to the lockstep holds"
-        hold.hold_clock(start_s)
-        while monitor.sim_s() < start_s:
-            if time.monotonic() > wall_deadline or rospy.is_shutdown():
-                return f"simulated time did not reach the start at {start_s:g} s"
-            time.sleep(0.01)
-        if monitor.sim_s() > start_s + START_GRID_S / 2.0:
-            return f"the simulation passed the start at {start_s:g} s before holding there (at {monitor.sim_s():.2f} s)"
+            return "the simulator did not subscribe to the lockstep holds", world_s
+        problem = held_at(world_s)
+        if problem is not None:
+            return problem, world_s
         try:
             rospy.wait_for_service("/sim/start_world", timeout=CLEAR_TIMEOUT_S)
             answer = rospy.ServiceProxy("/sim/start_world", Trigger)()
         except (rospy.ROSException, rospy.ServiceException) as err:
-            return f"/sim/start_world failed: {err}"
+            return f"/sim/start_world failed: {err}", world_s
         if not answer.success:
-            return f"/sim/start_world refused: {answer.message}"
+            return f"/sim/start_world refused: {answer.message}", world_s
+        problem = held_at(world_s + WORLD_LEAD_S)
+        if problem is not None:
+            return problem, world_s
         monitor.send_due_goals()
         time.sleep(START_WALL_WAIT_S)
     finally:
         hold.release()
-    return None
+    return None, world_s
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one linear script of a run
@@ -280,7 +295,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
             print(f"scenario_run: startup failed: {problem}; logs in {args.out / 'logs'}", file=sys.stderr)
             return 2
         wall_deadline = started + args.timeout
-        problem = send_first_goal(monitor, args.lockstep, wall_deadline)
+        problem, world_start_s = send_first_goal(monitor, args.lockstep, wall_deadline)
         if problem is not None:
             print(f"scenario_run: {problem}; logs in {args.out / 'logs'}", file=sys.stderr)
             return 2
@@ -326,9 +341,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:  # noqa: PLR0915 - one li
             result.people_contacts_person_caused = result.people_contacts - monitor.robot_caused_contacts
             trajectory = [(t, x, y) for t, x, y in monitor.timed_trajectory if t >= goal_sim_s]
         commands = monitor.command_log()
-        result.min_people_clearance_m = people_clearance(world, trajectory)
+        result.min_people_clearance_m = people_clearance(world, trajectory, world_start_s=world_start_s)
         result.min_people_clearance_moving_m = people_clearance(world, trajectory, moving_only=True,
-                                                                commands=commands)
+                                                                commands=commands, world_start_s=world_start_s)
         if not result.note and not result.success:
             result.note = run.failed_reason or "goal given up"
     title = (f"{args.behavior} in {world.name} (seed {args.seed}): "

@@ -36,7 +36,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import threading
-from typing import Optional, Tuple
+from typing import Optional, Tuple, Union
 
 import actionlib
 import numpy as np
@@ -61,11 +61,12 @@ from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.ros.conversions import grid_map_of, occupancy_grid_msg
 from flex_nav.ros.frames import lookup_bounded
 from flex_nav.ros.latest_worker import LatestWorker
-from flex_nav.ros.lockstep import LockstepParticipant
+from flex_nav.ros.lockstep import LockstepParticipant, lockstep_enabled
 from flex_nav.ros.memory_markers import memory_markers
 from flex_nav.ros.params import param_bool, param_float, param_int, param_str, reject_unknown
 from flex_nav.ros.private_ns import private_name
 from flex_nav.ros.robot_pose import RobotPoseSource
+from flex_nav.ros.ros_clock import LockstepTimer
 
 MEMORY_MARK_TOPIC = "obstacle_memory/mark"  # heavy obstacles' footprints (states/remember_obstacle_state.py)
 MEMORY_TOPIC = "obstacle_memory"  # ~<name>/obstacle_memory: what is remembered, as latched markers
@@ -166,7 +167,7 @@ class CostmapROS:
                                                       queue_size=10))
             self._memory_service = rospy.Service(private_name(f"~{name}/clear_obstacle_memory"), Trigger,
                                                  self._on_clear_memory)
-        self._update_timer = rospy.Timer(rospy.Duration(1.0 / update_hz), self._on_update_timer, reset=True)
+        self._update_timer = self._start_update_timer(name, 1.0 / update_hz)
         self._clear_server: Optional[actionlib.SimpleActionServer] = None
 
     # ------------------------------------------------------------------ inputs
@@ -320,12 +321,21 @@ class CostmapROS:
         rospy.loginfo(f"{self.name}: bumper hit marked at ({x:.2f}, {y:.2f}) in {self.global_frame}")
 
     # ------------------------------------------------------------------ upkeep
-    def _on_update_timer(self, event: rospy.timer.TimerEvent) -> None:
+    def _start_update_timer(self, name: str, period_s: float) -> Union[rospy.Timer, LockstepTimer]:
+        """A rospy.Timer; in a lockstep simulation one that holds it for each update (so the rolling window moves
+        at the same steps in every run)."""
+        if lockstep_enabled():
+            return LockstepTimer(period_s, self._on_update_timer, LockstepParticipant(f"{name}/update"),
+                                 f"{name} updates")
+        return rospy.Timer(rospy.Duration(period_s), lambda event: self._on_update_timer(event.current_real.to_sec()),
+                           reset=True)
+
+    def _on_update_timer(self, now_s: float) -> None:
+        """Update at ROS time ``now_s`` [s]; publish if due."""
         try:
             self._update()
         except Exception as err:  # an exception would end rospy's timer thread: the costmap would freeze
             rospy.logerr_throttle(5.0, f"{self.name}: costmap update failed: {err!r}")
-        now_s = event.current_real.to_sec()
         if now_s < self._published_s:  # ROS time went back (a restarted simulation): publish on the new timeline
             self._published_s = -math.inf
         if now_s - self._published_s < self._publish_period_s - 1e-6:

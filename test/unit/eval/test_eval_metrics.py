@@ -147,3 +147,14 @@ def test_a_standing_robot_shoved_by_a_walker_is_not_moving():
     assert own == pytest.approx(1.0 - radius - 0.2)  # it moved on its own only up to 1.0 m
     assert commanded_at(commands, 6.0) and commanded_at(commands, 6.1)  # braking after its last moving command
     assert not commanded_at(commands, 6.3) and not commanded_at(commands, 10.0) and not commanded_at([], 1.0)
+
+
+def test_clearance_counts_the_peoples_walks_from_the_worlds_start():
+    """A world whose script started at 4 s (lockstep, /sim/start_world): the person leaves the door at 25 s of the
+    world's time, i.e. 29 s of simulated time; the same passage 4 s later gives the same clearance."""
+    world = load_world("s3_person_in_door")
+    passing = [(26.0, 5.0, 3.0), (27.0, 5.5, 3.0)]  # the person walks from (5, 2) from 25 s on
+    shifted = [(t + 4.0, x, y) for t, x, y in passing]
+    at_zero = people_clearance(world, passing)
+    assert people_clearance(world, shifted, world_start_s=4.0) == pytest.approx(at_zero)
+    assert people_clearance(world, shifted) != pytest.approx(at_zero)  # counted from 0 the person is elsewhere

@@ -312,12 +312,14 @@ def test_a_world_started_on_request_runs_its_script_from_then(tmp_path: Path) ->
         tmp_path,
         "obstacles:\n  - {name: wall_piece, shape: box, size: [0.2, 1.0, 0.5], pose: [1.0, 0.0]}\n"
         "people:\n  - {name: ann, waypoints: [[-1.5, 1.5], [1.5, 1.5]], speed: 1.0, start: 0.5}\n"
+        "  - {name: bob, waypoints: [[-1.5, -1.5], [1.5, -1.5]], speed: 1.0}\n"
         "events:\n  - {at: 0.5, action: remove, target: wall_piece}\n",
     )
     with Simulation(world, [spawn()], seed=0, sensors=NO_CAMERA, world_started=False) as sim:
         waited = sim.run(2.0)
         assert not any(isinstance(r, WorldEventReading) for r in waited)
         assert present(sim, "ann")[:2] == pytest.approx((-1.5, 1.5), abs=1e-6)
+        assert present(sim, "bob")[:2] == pytest.approx((-1.5, -1.5), abs=1e-6)  # walks "from the start": not yet
         assert sim.object_pose("wall_piece") is not None
         sim.start_world()
         assert sim.world_start_s == pytest.approx(2.0)
@@ -326,6 +328,7 @@ def test_a_world_started_on_request_runs_its_script_from_then(tmp_path: Path) ->
         assert [(e.action, e.target) for e in events] == [("remove", "wall_piece")]
         assert events[0].stamp == pytest.approx(2.5, abs=0.005)
         assert present(sim, "ann").x == pytest.approx(-1.5 + 1.0, abs=0.02)  # walked from 2.5 s to 3.5 s
+        assert present(sim, "bob").x == pytest.approx(-1.5 + 1.5, abs=0.02)  # from 2.0 s
         with pytest.raises(ConfigError, match="started already"):
             sim.start_world()
 

@@ -138,12 +138,13 @@ def commanded_at(commands: Sequence[Tuple[float, float]], sim_s: float,
 
 def people_clearance(world: Any, trajectory: Sequence[Tuple[float, float, float]], goal_sim_s: float = 0.0,
                      robot_radius_m: float = ROBOT_RADIUS_M, moving_only: bool = False, *,
-                     commands: Optional[Sequence[Tuple[float, float]]] = None) -> float:
+                     commands: Optional[Sequence[Tuple[float, float]]] = None, world_start_s: float = 0.0) -> float:
     """Smallest gap [m] between the robot (trajectory of (sim s, x, y) from ``goal_sim_s`` on) and any person
     of ``world``; inf without people or samples. ``moving_only``: only at samples where the robot moved faster
     than :data:`MOVING_MPS` since the previous sample and, given its ``commands`` ((sim s, v [m/s]), the
     velocity commands it received), where it was also told to move (:func:`commanded_at`): a standing robot
-    shoved by a walker moves, but not of its own accord (S6: a walker pushed a stopped robot at 0.8 m/s)."""
+    shoved by a walker moves, but not of its own accord (S6: a walker pushed a stopped robot at 0.8 m/s).
+    ``world_start_s`` [s]: the simulated time the world's script started at (people walk from there on)."""
     moving = [True] * len(trajectory)
     times = [t for t, _v in commands] if commands is not None else None
     if moving_only:
@@ -157,6 +158,6 @@ def people_clearance(world: Any, trajectory: Sequence[Tuple[float, float, float]
         for (t, x, y), counted in zip(trajectory, moving):
             if t < goal_sim_s or not counted:
                 continue
-            px, py = person_position(person, intervals, t)
+            px, py = person_position(person, intervals, t - world_start_s)
             best = min(best, math.hypot(x - px, y - py) - person.radius - robot_radius_m)
     return best
