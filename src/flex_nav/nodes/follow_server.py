@@ -118,6 +118,8 @@ class FollowServer(FollowNode):
         watch = ClockWatch(stall_timeout_s=0.0)  # a stopped clock just stops the replanning; a jump back ends it
         watch.observe(last_plan_s, time.monotonic())
         pose: Optional[Pose2D] = None
+        self.lockstep.hold_clock(next_due_s)
+        self.server.lockstep_accept.release()  # the goal holds on its own now
         while True:
             self.lockstep.hold_clock(next_due_s)
             with self._wake:

@@ -450,8 +450,8 @@ class SimBridge:
             for reading in readings:
                 self._handlers[type(reading)](reading)
             self.publish_cost += time.perf_counter() - start
-            if self.lockstep is not None and self._wait_for_participants(t):
-                anchor_wall, anchor_sim = time.monotonic(), t  # waiting is the point: pace on from here
+            if self.lockstep is not None:
+                self._wait_for_participants(t)  # the schedule catches up after a wait (up to MAX_LAG_S behind)
             if self.duration and t >= self.duration - 1e-9:
                 break
             now = time.monotonic()

@@ -61,7 +61,7 @@ from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.ros.conversions import grid_map_of, occupancy_grid_msg
 from flex_nav.ros.frames import lookup_bounded
 from flex_nav.ros.latest_worker import LatestWorker
-from flex_nav.ros.lockstep import LockstepParticipant, lockstep_enabled
+from flex_nav.ros.lockstep import LockstepParticipant, accept_hold_name, accept_hold_param, lockstep_enabled
 from flex_nav.ros.memory_markers import memory_markers
 from flex_nav.ros.params import param_bool, param_float, param_int, param_str, reject_unknown
 from flex_nav.ros.private_ns import private_name
@@ -405,17 +405,25 @@ class CostmapROS:
     def serve_clear_costmap(self, action_name: str) -> None:
         """Serve ClearCostmap on ``action_name`` (a node's ``<node>/clear_costmap``)."""
         server = actionlib.SimpleActionServer(action_name, ClearCostmapAction, auto_start=False)
+        # lockstep: a client's hold stands from its send until the costmap is cleared (accept_hold_name)
+        resolved = rospy.resolve_name(action_name)
+        accept = LockstepParticipant("", name=accept_hold_name(resolved), dedupe=False)
+        if accept.enabled:
+            rospy.set_param(accept_hold_param(resolved), True)
 
         def on_goal() -> None:
             server.accept_new_goal()
             result = ClearCostmapResult()
-            if self.costmap is None:
-                result.code, result.message = ClearCostmapResult.FAILURE, f"{self.name} has no map yet"
-                server.set_aborted(result, result.message)
-                return
-            self.clear()
-            result.code, result.message = ClearCostmapResult.SUCCESS, f"{self.name} cleared"
-            server.set_succeeded(result, result.message)
+            try:
+                if self.costmap is None:
+                    result.code, result.message = ClearCostmapResult.FAILURE, f"{self.name} has no map yet"
+                    server.set_aborted(result, result.message)
+                    return
+                self.clear()
+                result.code, result.message = ClearCostmapResult.SUCCESS, f"{self.name} cleared"
+                server.set_succeeded(result, result.message)
+            finally:
+                accept.release()
 
         server.register_goal_callback(on_goal)
         server.start()

@@ -51,6 +51,7 @@ import rospy
 from flex_nav.action_types import ActionType
 from flex_nav.exceptions import ConfigError
 from flex_nav.ros.actionlib_internals import RememberedGoal, SimpleServerInternals
+from flex_nav.ros.lockstep import LockstepParticipant, accept_hold_name, accept_hold_param
 
 CLIENT_CHECK_PERIOD_S = 0.1  # [s] how often the client of the running goal is looked for
 OLD_TIMELINE_TOLERANCE_S = 1.0  # [s] a goal stamped this far ahead of the node's clock is from before a jump back
@@ -113,6 +114,10 @@ class GoalServer:
         self.server.register_goal_callback(self._on_goal)
         self._internals.intercept_goals(self._on_goal_arrival)
         self.server.register_preempt_callback(self._on_preempt)
+        # lockstep: a client's hold from its send to this server's first hold of the goal (accept_hold_name)
+        self.lockstep_accept = LockstepParticipant("", name=accept_hold_name(rospy.resolve_name(name)), dedupe=False)
+        if self.lockstep_accept.enabled:
+            rospy.set_param(accept_hold_param(rospy.resolve_name(name)), True)
         self._worker = threading.Thread(target=self._work, name=f"goals:{name}", daemon=True)
         self._client_watch = threading.Thread(target=self._watch_clients, name=f"clients:{name}", daemon=True)
 
@@ -275,7 +280,7 @@ class GoalServer:
                 ticket, self._pending = self._pending, None
             assert ticket is not None
             try:
-                self._run(ticket)
+                self._run(ticket)  # releases lockstep_accept once the goal holds on its own, else it ends here
             except Exception as err:
                 rospy.logerr(f"{self.name}: goal #{ticket.number} failed: {err}\n{traceback.format_exc()}")
                 if self._on_error is not None:
@@ -284,5 +289,6 @@ class GoalServer:
                     except Exception as inner:
                         rospy.logerr(f"{self.name}: error handler failed too: {inner}")
                 self.finish(ticket, GoalOutcome.ABORTED, self.result("FAILURE", f"internal error: {err!r}"))
+            self.lockstep_accept.release()
             if self.finish(ticket, GoalOutcome.ABORTED, self.result("FAILURE", "the server ended without a result")):
                 rospy.logerr(f"{self.name}: goal #{ticket.number} ended without a result (a bug); aborted it")

@@ -30,12 +30,26 @@ def lockstep_enabled() -> bool:
     return param_bool("/lockstep", False) and param_bool("/use_sim_time", False)
 
 
+def accept_hold_name(server: str) -> str:
+    """The hold a client of action server ``server`` (resolved) places when it sends a goal, and the server lets go
+    of once the goal holds on its own: the simulation stands from the send to the server's first hold."""
+    return f"{server}/accept"
+
+
+def accept_hold_param(server: str) -> str:
+    """Set true by a server that lets go of :func:`accept_hold_name` (a client holds only for such a server)."""
+    return f"{server}/lockstep_accepts"
+
+
 class LockstepParticipant:
     """One participant's holds, named ``<private namespace>/<what>`` (build it in the component's constructor, see
-    :mod:`flex_nav.ros.private_ns`); every method is a no-op when lockstep is off."""
+    :mod:`flex_nav.ros.private_ns`) or ``name``; every method is a no-op when lockstep is off. ``dedupe``: a hold
+    equal to the last one sent is not sent again (False where another node replaces this participant's holds)."""
 
-    def __init__(self, what: str, enabled: Optional[bool] = None) -> None:
-        self.name = f"{private_namespace()}/{what}"
+    def __init__(self, what: str, enabled: Optional[bool] = None, *, name: Optional[str] = None,
+                 dedupe: bool = True) -> None:
+        self.name = name if name is not None else f"{private_namespace()}/{what}"
+        self.dedupe = dedupe
         self.enabled = lockstep_enabled() if enabled is None else enabled
         self._lock = threading.Lock()
         self._last: Optional[Tuple[bool, str, float]] = None
@@ -70,7 +84,7 @@ class LockstepParticipant:
             holding, topic, stamp_s = False, "", 0.0  # no finite next tick: nothing to wait for
         with self._lock:
             key = (holding, topic, stamp_s)
-            if key == self._last:
+            if key == self._last and self.dedupe:
                 return
             self._last = key
             msg = LockstepHold(participant=self.name, holding=holding, topic=topic, stamp_s=stamp_s)

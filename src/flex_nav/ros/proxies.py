@@ -23,6 +23,7 @@ from actionlib_msgs.msg import GoalStatus
 
 from flex_nav.behavior.proxies import Connections
 from flex_nav.exceptions import NotReadyError, TimedOutError
+from flex_nav.ros.lockstep import LockstepParticipant, accept_hold_name, accept_hold_param
 
 if TYPE_CHECKING:
     from flex_nav.behavior.proxies import Proxies
@@ -142,6 +143,10 @@ class ActionClientProxy:
         self.name = name
         self.action_type = action_type
         self._client = actionlib.ActionClient(name, action_type)
+        server = rospy.resolve_name(name)
+        self._accept = LockstepParticipant("", name=accept_hold_name(server), dedupe=False)
+        self._accept_param = accept_hold_param(server)
+        self._server_accepts: Optional[bool] = None  # lockstep: the server lets go of the accept hold (cached)
         self._lock = threading.Condition()  # guards the fields below; notified when a goal is done
         self._goal_number = 0  # sequence number of the goal the fields below describe
         self._handle: Optional[ClientGoalHandle] = None
@@ -191,6 +196,11 @@ class ActionClientProxy:
             self._handle = None
             self._result, self._feedback, self._done, self._active = None, None, False, True
             self._state = GoalStatus.PENDING
+        if self._accept.enabled:
+            if self._server_accepts is None:
+                self._server_accepts = bool(rospy.get_param(self._accept_param, False))
+            if self._server_accepts:
+                self._accept.hold_clock(rospy.get_time())  # the simulation stands until the server holds
         handle = self._client.send_goal(
             goal,
             transition_cb=lambda gh: self._on_transition(number, gh),
