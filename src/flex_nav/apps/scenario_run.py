@@ -189,6 +189,7 @@ def start(stack: contextlib.ExitStack, args: argparse.Namespace, run: RobotRun) 
     if args.lockstep:
         params["/lockstep"] = True
         params["/sim/world_start"] = "on_request"  # start_at_grid starts the world's script with the goal
+        params[f"/{ROBOT}/localizer/seed"] = args.seed  # and the initial pose then restarts the filter's generator
     if args.behavior_params:
         params[f"/{ROBOT}/behavior_runner/parameters"] = dict(args.behavior_params)
     for costmap in ("get_path_server/global_costmap", "pure_pursuit_path/local_costmap",

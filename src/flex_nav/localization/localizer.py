@@ -111,6 +111,10 @@ class Localizer:
         self._recovery.reset()
         self._matches.clear()  # fractions measured on the old map
 
+    def reseed(self, seed: int) -> None:
+        """Draw every later random number from a generator started afresh from ``seed``."""
+        self._rng = np.random.default_rng(seed)
+
     def set_pose(self, pose: Pose2D, covariance: np.ndarray) -> None:
         """Start from a Gaussian cloud around ``pose`` (map frame) for the robot where the latest odometry given to
         :meth:`update` has it: KLD-sampling picks the count (at least min_particles; a wide cloud gets up to

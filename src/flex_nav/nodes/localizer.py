@@ -33,7 +33,9 @@ the filter's (:class:`flex_nav.localization.FilterParams`: ``min_particles``, ``
   ~initial_cov_xx, ~initial_cov_yy [m^2], ~initial_cov_aa [rad^2]  (0.25, 0.25, (pi/12)^2)
   ~laser_min_range, ~laser_max_range  float  -1 [m]  (-1: the scan's own limits)
   ~lost_recovery     str    global          global | none
-  ~seed              int    -1              random seed (-1: a fresh one each run)
+  ~seed              int    -1              random seed (-1: a fresh one each run); with a seed, every initial pose
+                                             restarts the filter's generator from it (a run that starts from an
+                                             initial pose is the same run whenever it starts)
   ~transform_timeout float  0.1 [s]         bound on waiting for the odometry and laser transforms
 
 Bad input is logged (throttled) with the field that is wrong and nothing wrong is published: beams that are NaN,
@@ -221,6 +223,8 @@ class LocalizerNode:
         if self._pending_pose is not None:
             pose, cov = self._pending_pose
             self._pending_pose = None
+            if self.seed is not None:
+                self._filter.reseed(self.seed)
             try:
                 self._filter.set_pose(pose, cov)
             except ConfigError as err:

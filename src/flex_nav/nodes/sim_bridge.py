@@ -49,7 +49,8 @@ Per robot ``NS`` (its name; frames are prefixed ``NS/``; an empty name is allowe
   with ~publish_initial_pose: NS/initialpose (geometry_msgs/PoseWithCovarianceStamped, map frame, latched)
 Global: /clock (rosgraph_msgs/Clock; run every other node with use_sim_time), sim_events (world events).
 Service ~start_world (std_srvs/Trigger, with ~world_start on_request): the world's script and fresh noise from the
-seed start before the next step (the answer comes at once). Service ~teleport (flex_nav/Teleport): move a robot to
+seed start before the next step, and with ~publish_initial_pose every robot's initial pose goes out again (the
+answer comes at once). Service ~teleport (flex_nav/Teleport): move a robot to
 a map pose at once, at rest, without its odometry seeing it (the kidnapped robot); answered after the stepping
 thread has done it.
 """
@@ -402,6 +403,9 @@ class SimBridge:
                 self._start_world_requested = False
             self.sim.start_world()
             rospy.loginfo(f"sim: t = {self.sim.time:.3f} s: the world's script starts (people, events, fresh noise)")
+            if self.publish_initial_pose:  # the robots' initial poses again, as an operator gives them at a start
+                for name, io in self.robots.items():
+                    io.publish_initial_pose(self.sim.truth_pose(name))
         if self._teleports:
             self._apply_teleports()
         if not self._pending:

@@ -337,3 +337,19 @@ def test_set_map_forgets_the_match_fractions(grid):
     assert localizer.match_fraction_mean == pytest.approx(1.0)
     localizer.set_map(grid)
     assert math.isnan(localizer.match_fraction_mean)
+
+
+def test_reseed_restarts_the_draws_whatever_was_drawn_before(grid):
+    """A localizer that has drawn more (a longer wait before a run) starts from the same cloud after reseed."""
+    cov = np.diag([0.01, 0.01, 0.01])
+    fresh = Localizer(FilterParams(min_particles=100, max_particles=500), grid, seed=7)
+    used = Localizer(FilterParams(min_particles=100, max_particles=500), grid, seed=7)
+    used.set_pose((1.0, 1.0, 0.0), cov)  # draws that fresh has not made
+    used.reseed(7)
+    fresh.reseed(7)
+    used.set_pose((1.5, 1.0, 0.2), cov)
+    fresh.set_pose((1.5, 1.0, 0.2), cov)
+    np.testing.assert_array_equal(used.particles, fresh.particles)
+    other = Localizer(FilterParams(min_particles=100, max_particles=500), grid, seed=8)
+    other.set_pose((1.5, 1.0, 0.2), cov)
+    assert not np.array_equal(other.particles, fresh.particles)
