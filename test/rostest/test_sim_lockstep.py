@@ -2,13 +2,13 @@
 """rostest node: the simulator's lockstep mode through a real master (see sim_lockstep.test)."""
 
 import sys
-import threading
 import time
 import unittest
 
 import rospy
 import rostest
 import tf2_ros
+from message_log import MessageLog
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 from std_srvs.srv import Trigger
@@ -23,28 +23,14 @@ STEP_S = 1.0 / 240.0  # [s] one physics step
 LATE_WALKER_AT_S = 10.0  # [s] open_room's start_walking event, in the world's time
 
 
-class Newest:
-    """The newest message of a topic (and all of them, for events)."""
+class WallLog(MessageLog):
+    """A topic's messages, waited on in wall time (simulated time stands while the test holds it)."""
 
     def __init__(self, topic, msg_type):
-        self.messages = []
-        self._lock = threading.Lock()
-        self.sub = rospy.Subscriber(topic, msg_type, self._on, queue_size=100)
+        super().__init__(topic, msg_type, queue_size=None, wait_s=WAIT_S, poll_s=0.005)
 
-    def _on(self, msg):
-        with self._lock:
-            self.messages.append(msg)
-            del self.messages[:-200]
-
-    def wait_for(self, predicate, what):
-        deadline = time.monotonic() + WAIT_S
-        while time.monotonic() < deadline:
-            with self._lock:
-                found = [m for m in self.messages if predicate(m)]
-            if found:
-                return found[-1]
-            time.sleep(0.005)
-        raise AssertionError(f"no {what} within {WAIT_S} s")
+    def now_s(self):
+        return time.monotonic()
 
 
 def clock_s(msg):
@@ -55,19 +41,19 @@ class TestSimLockstep(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         init_node("test_sim_lockstep")
-        cls.clock = Newest("/clock", Clock)
-        cls.scan = Newest("/robot1/scan", LaserScan)
-        cls.events = Newest("/sim_events", SimEvent)
+        cls.clock = WallLog("/clock", Clock)
+        cls.scan = WallLog("/robot1/scan", LaserScan)
+        cls.events = WallLog("/sim_events", SimEvent)
         cls.tf_buffer = tf2_ros.Buffer()
         cls.tf_listener = tf2_ros.TransformListener(cls.tf_buffer)
-        cls.clock.wait_for(lambda m: clock_s(m) > 0.5, "clock past 0.5 s")
+        cls.clock.newest(lambda m: clock_s(m) > 0.5)
 
     def now(self):
-        return clock_s(self.clock.wait_for(lambda m: True, "clock"))
+        return clock_s(self.clock.newest(lambda m: True))
 
     def stands_at(self, stamp_s, wall_s):
         """Simulated time reaches ``stamp_s`` and stays within a step of it for ``wall_s`` of wall time."""
-        self.clock.wait_for(lambda m: clock_s(m) >= stamp_s, f"clock at {stamp_s:.3f} s")
+        self.clock.newest(lambda m: clock_s(m) >= stamp_s)
         time.sleep(wall_s)
         self.assertLess(self.now(), stamp_s + STEP_S + 1e-6)
 
@@ -80,36 +66,36 @@ class TestSimLockstep(unittest.TestCase):
         hold.hold_clock(stop_s + 1.0)  # replaced: on to the next
         self.stands_at(stop_s + 1.0, TIMEOUT_S / 2.0)
         hold.release()
-        self.clock.wait_for(lambda m: clock_s(m) > stop_s + 3.0, "clock moving on after the release")
+        self.clock.newest(lambda m: clock_s(m) > stop_s + 3.0)
 
     def test_2_a_topic_hold_stops_after_the_scan_and_its_transform_is_there(self):
         hold = LockstepParticipant("scan_hold", enabled=True)
         self.assertTrue(hold.wait_connected(WAIT_S))
         after_s = self.now() + 1.0
         hold.hold_topic("/robot1/scan", after_s)
-        scan = self.scan.wait_for(lambda m: m.header.stamp.to_sec() >= after_s, "the held scan")
+        scan = self.scan.newest(lambda m: m.header.stamp.to_sec() >= after_s)
         time.sleep(TIMEOUT_S / 2.0)
-        newest = self.scan.wait_for(lambda m: True, "scan")
+        newest = self.scan.newest(lambda m: True)
         self.assertEqual(newest.header.stamp, scan.header.stamp)  # nothing after it while held
         # the scan went out with the odometry at (or after) its stamp: tf places it without a later step
         self.assertTrue(self.tf_buffer.can_transform("robot1/odom", "robot1/base_footprint", scan.header.stamp))
         hold.release()
-        self.scan.wait_for(lambda m: m.header.stamp > scan.header.stamp, "a scan after the release")
+        self.scan.newest(lambda m: m.header.stamp > scan.header.stamp)
 
     def test_3_a_hold_nobody_replaces_is_dropped_after_the_timeout(self):
         hold = LockstepParticipant("forgotten_hold", enabled=True)
         self.assertTrue(hold.wait_connected(WAIT_S))
         stop_s = self.now() + 1.0
         hold.hold_clock(stop_s)
-        self.clock.wait_for(lambda m: clock_s(m) >= stop_s, "clock at the hold")
+        self.clock.newest(lambda m: clock_s(m) >= stop_s)
         held_from = time.monotonic()
-        moved = self.clock.wait_for(lambda m: clock_s(m) > stop_s + 0.5, "clock moving on after the timeout")
+        moved = self.clock.newest(lambda m: clock_s(m) > stop_s + 0.5)
         held_wall_s = time.monotonic() - held_from
         self.assertGreater(held_wall_s, TIMEOUT_S * 0.7)
         self.assertGreater(clock_s(moved), stop_s)
 
     def test_4_the_worlds_script_starts_on_request_and_only_once(self):
-        self.assertEqual([e for e in self.events.messages if e.kind == SimEvent.WORLD_EVENT], [])
+        self.assertEqual([e for e in self.events.since(0) if e.kind == SimEvent.WORLD_EVENT], [])
         rospy.wait_for_service("/sim/start_world", timeout=WAIT_S)
         start = rospy.ServiceProxy("/sim/start_world", Trigger)
         hold = LockstepParticipant("world_start", enabled=True)
@@ -121,7 +107,7 @@ class TestSimLockstep(unittest.TestCase):
         self.assertTrue(answer.success, answer.message)
         held_at_s = self.now()
         hold.release()
-        event = self.events.wait_for(lambda e: e.kind == SimEvent.WORLD_EVENT, "the world's first event")
+        event = self.events.newest(lambda e: e.kind == SimEvent.WORLD_EVENT)
         self.assertEqual(event.other, "late_walker")
         self.assertAlmostEqual(event.header.stamp.to_sec(), held_at_s + LATE_WALKER_AT_S, delta=2 * STEP_S)
         again = start()

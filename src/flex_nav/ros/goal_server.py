@@ -32,6 +32,10 @@ timeline's last goal is remembered. A goal stamped more than ``OLD_TIMELINE_TOLE
 clock is taken for the old timeline's: a newer-but-earlier goal ends it (aborted with the reason, if still
 running) and is taken.
 
+In a lockstep simulation (:mod:`flex_nav.ros.lockstep`) a flex_nav client holds the simulation from sending a goal
+until the server lets go of that hold (``lockstep_accept``): ``run`` does once its goal holds the simulation on its
+own, and the worker does when ``run`` returns, so no simulated time passes between a goal's send and its start.
+
 What of actionlib this needs beyond its public API (holding its two locks, a goal's sender, the status topic's
 connections, the goal handles SimpleActionServer remembers, a hook ahead of its stamp check) is gathered in
 :mod:`flex_nav.ros.actionlib_internals`, each item with the reason no public API serves.
