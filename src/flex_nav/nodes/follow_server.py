@@ -135,7 +135,7 @@ class FollowServer(FollowNode):
             if ticket.cancelled.is_set() or rospy.is_shutdown():
                 return
             next_due_s = max(next_due_s + self.period_s, self.clock.now())
-            if source is not None and source.count != used and source.msg is not None:
+            if source is not None and source.new_for_tick(used, self.clock.now(), self.lockstep.enabled):
                 used = source.count
                 try:
                     progress = self._progress_of(source.msg, not ticket.goal.ignore_final_heading)

@@ -355,12 +355,12 @@ class PurePursuitController(FollowNode):
             if wake is Wake.LINK_LOST:
                 self._end(ticket, GoalOutcome.ABORTED, self.heartbeat.why_lost())
                 return
+            now_s = self.clock.now()
             with self._wake:
                 used_odom = self._odom_count
-                path_msg = source.msg if source is not None and source.count != used_path else None
-                if source is not None:
-                    used_path = source.count
-            now_s = self.clock.now()
+                path_msg = None
+                if source is not None and source.new_for_tick(used_path, now_s, self.lockstep.enabled):
+                    path_msg, used_path = source.msg, source.count
             # from the tick itself: odometry arriving later starts the next one; in lockstep odometry stamped one
             # period on is due (to within TICK_SLACK_S: a stamp is not an exact sum of periods)
             next_due_s = now_s + self.period_s - (TICK_SLACK_S if self.lockstep.enabled else 0.0)

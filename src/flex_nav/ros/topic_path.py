@@ -14,6 +14,7 @@ server does not wait again for one newer than the goal.
 
 from __future__ import annotations
 
+import math
 import threading
 from typing import Optional
 
@@ -33,13 +34,22 @@ class TopicPath:
         self._wake = wake
         self.msg: Optional[Path] = None
         self.count = 0
+        self.arrived_s = -math.inf  # [s] ROS time the newest Path arrived at
         self.subscriber = rospy.Subscriber(topic, Path, self._on_path, queue_size=1)
 
     def _on_path(self, msg: Path) -> None:
         with self._wake:
             self.msg = msg
             self.count += 1
+            self.arrived_s = rospy.get_time()
             self._wake.notify_all()
+
+    def new_for_tick(self, used: int, tick_s: float, lockstep: bool) -> bool:
+        """(``wake`` held) Whether a loop that used Path number ``used`` takes the newest at its tick at ROS time
+        ``tick_s`` [s]. In lockstep only a Path that arrived before the tick's simulated time: one sent at the same
+        step may arrive before or after the tick, so it waits for the next tick either way."""
+        return (self.msg is not None and self.count != used
+                and not (lockstep and self.arrived_s >= tick_s))
 
     def close(self) -> None:
         self.subscriber.unregister()
