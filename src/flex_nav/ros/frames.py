@@ -21,17 +21,21 @@ TF_ERRORS = (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.Ext
 
 def lookup_bounded(buffer: tf2_ros.Buffer, target_frame: str, source_frame: str, stamp: rospy.Time,
                    timeout_s: float) -> TransformStamped:
-    """``buffer.lookup_transform`` waiting at most ``timeout_s`` [s] of ROS time and as much wall time.
-
-    tf2's own wait sleeps on ROS time alone, which does not pass while a lockstep simulation waits for this very
-    node (:mod:`flex_nav.ros.lockstep`); the wall bound ends it. Raises tf2's exception of the last try."""
-    ros_deadline_s = rospy.get_time() + timeout_s
-    wall_deadline_s = time.monotonic() + timeout_s
+    """``buffer.lookup_transform`` waiting at most ``timeout_s`` [s] of ROS time, as tf2's own wait does -- or, while
+    ROS time stands still, as much wall time since it last moved: tf2's wait would sleep forever when a lockstep
+    simulation waits for this very node (:mod:`flex_nav.ros.lockstep`). Raises tf2's exception of the last try."""
+    start_s = rospy.get_time()
+    ros_deadline_s = start_s + timeout_s
+    seen_s, seen_wall_s = start_s, time.monotonic()  # ROS time, and the wall time it was last seen to change
     while True:
         try:
             return buffer.lookup_transform(target_frame, source_frame, stamp)
         except TF_ERRORS:
-            if rospy.get_time() >= ros_deadline_s or time.monotonic() >= wall_deadline_s or rospy.is_shutdown():
+            now_s, wall_s = rospy.get_time(), time.monotonic()
+            if now_s != seen_s:
+                seen_s, seen_wall_s = now_s, wall_s
+            if (now_s >= ros_deadline_s or now_s < start_s  # the deadline, or time went back (a restarted sim)
+                    or wall_s - seen_wall_s >= timeout_s or rospy.is_shutdown()):
                 raise
         time.sleep(TF_POLL_S)
 
