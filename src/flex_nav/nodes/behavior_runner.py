@@ -240,7 +240,8 @@ class BehaviorRunner:
         proxies = RosProxies()
         what = source if isinstance(source, str) else source.text
         # a running behavior's ticks hold a lockstep simulation (released in _run when it ends)
-        clock = RosClock(lockstep=LockstepParticipant("behavior"))
+        hold = LockstepParticipant("behavior")
+        clock = RosClock(lockstep=hold) if hold.enabled else RosClock()
         context = BehaviorContext(what, autonomy=level, supervised=self.supervised, clock=clock, proxies=proxies)
         try:
             if isinstance(source, str):  # py:package.module:Class, only ever from start_local

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import time
 from typing import Optional
 
@@ -24,18 +25,20 @@ def lookup_bounded(buffer: tf2_ros.Buffer, target_frame: str, source_frame: str,
     """``buffer.lookup_transform`` waiting at most ``timeout_s`` [s] of ROS time, as tf2's own wait does -- or, while
     ROS time stands still, as much wall time since it last moved: tf2's wait would sleep forever when a lockstep
     simulation waits for this very node (:mod:`flex_nav.ros.lockstep`). Raises tf2's exception of the last try."""
-    start_s = rospy.get_time()
-    ros_deadline_s = start_s + timeout_s
-    seen_s, seen_wall_s = start_s, time.monotonic()  # ROS time, and the wall time it was last seen to change
+    start_s = seen_s = seen_wall_s = math.nan  # ROS time of the first miss; ROS time and when it last changed
     while True:
         try:
             return buffer.lookup_transform(target_frame, source_frame, stamp)
         except TF_ERRORS:
+            if timeout_s <= 0.0 or rospy.is_shutdown():
+                raise
             now_s, wall_s = rospy.get_time(), time.monotonic()
+            if math.isnan(start_s):
+                start_s = now_s
             if now_s != seen_s:
                 seen_s, seen_wall_s = now_s, wall_s
-            if (now_s >= ros_deadline_s or now_s < start_s  # the deadline, or time went back (a restarted sim)
-                    or wall_s - seen_wall_s >= timeout_s or rospy.is_shutdown()):
+            if (now_s >= start_s + timeout_s or now_s < start_s  # the deadline, or time went back (a restarted sim)
+                    or wall_s - seen_wall_s >= timeout_s):
                 raise
         time.sleep(TF_POLL_S)
 

@@ -26,8 +26,11 @@ HOLDS_QUEUE = 100  # holds of one process in flight (several participants answer
 
 
 def lockstep_enabled() -> bool:
-    """``/lockstep`` (bool, false by default) on simulated time."""
-    return param_bool("/lockstep", False) and param_bool("/use_sim_time", False)
+    """``/lockstep`` (bool, false by default) on simulated time (a node on the wall clock, or none started, does not
+    even ask the master)."""
+    if rospy.rostime.is_wallclock():
+        return False
+    return param_bool("/lockstep", False)
 
 
 def accept_hold_name(server: str) -> str:
