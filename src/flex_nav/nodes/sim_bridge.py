@@ -50,9 +50,8 @@ Per robot ``NS`` (its name; frames are prefixed ``NS/``; an empty name is allowe
 Global: /clock (rosgraph_msgs/Clock; run every other node with use_sim_time), sim_events (world events).
 Service ~start_world (std_srvs/Trigger, with ~world_start on_request): the world's script and fresh noise from the
 seed start before the next step, and with ~publish_initial_pose every robot's initial pose goes out again (the
-answer comes at once). Service ~teleport (flex_nav/Teleport): move a robot to
-a map pose at once, at rest, without its odometry seeing it (the kidnapped robot); answered after the stepping
-thread has done it.
+answer comes at once). Service ~teleport (flex_nav/Teleport): move a robot to a map pose at once, at rest, without
+its odometry seeing it (the kidnapped robot); answered after the stepping thread has done it.
 """
 
 from __future__ import annotations
@@ -481,25 +480,24 @@ class SimBridge:
         return (f"sim: t = {self.sim.time:.1f} s in {wall:.1f} s wall, real-time factor {rtf:.2f}; cost: {parts}"
                 f"{behind}{lockstep}")
 
-    def _wait_for_participants(self, t: float) -> bool:
+    def _wait_for_participants(self, t: float) -> None:
         """Lockstep, after a step's readings: wait for the holds that have come, then publish the scans that are
-        ready and wait for their holds; True if it waited."""
+        ready and wait for their holds."""
         barrier = self.lockstep
         assert barrier is not None
         barrier.published(CLOCK_TOPIC, stamp_of(t).to_sec())  # as the nodes will read it
-        waited = self._wait_for_holds(barrier, t)
+        self._wait_for_holds(barrier, t)
         if self._scans_ready:
             scans, self._scans_ready = self._scans_ready, []
             for scan in scans:
                 self._publish_scan(scan)
-            waited = self._wait_for_holds(barrier, t) or waited
-        return waited
+            self._wait_for_holds(barrier, t)
 
-    def _wait_for_holds(self, barrier: LockstepBarrier, t: float) -> bool:
+    def _wait_for_holds(self, barrier: LockstepBarrier, t: float) -> None:
         """Once a hold has come, publish /clock at ``t`` (its node sees the time of what it waits for), wait until
         every such hold is replaced, then ``settle_s`` more (what the nodes sent before letting go lands first)."""
         if not barrier.blocking():
-            return False
+            return
         if self._clock_s < t:
             self._publish_clock(t)
         for hold in barrier.wait(rospy.is_shutdown):
@@ -507,7 +505,6 @@ class SimBridge:
                           f"{barrier.timeout_s:g} s of wall time: dropped, the simulation goes on")
         if self.settle_s > 0.0:
             time.sleep(self.settle_s)
-        return True
 
     # -- publishing ---------------------------------------------------------------------------------
     def _publish_clock(self, t: float) -> None:
