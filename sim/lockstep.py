@@ -22,7 +22,7 @@ import math
 import threading
 import time
 from dataclasses import dataclass
-from typing import Callable, Dict, List, Optional
+from typing import Callable, Dict, List
 
 from flex_nav.exceptions import ConfigError
 
@@ -127,12 +127,3 @@ class LockstepBarrier:
                 self.stats.wait_s += waited
             self.stats.dropped += len(dropped)
         return dropped
-
-    def forget(self, participant: Optional[str] = None) -> None:
-        """Drop one participant's hold (None: every hold), e.g. when the simulation restarts its time."""
-        with self._cond:
-            if participant is None:
-                self._holds.clear()
-            else:
-                self._holds.pop(participant, None)
-            self._cond.notify_all()

@@ -89,6 +89,7 @@ from flex_nav.msg import (
 )
 from flex_nav.nav.planar import transform_poses
 from flex_nav.nav.pose_checks import yaw_of_quaternion
+from flex_nav.ros.frames import TF_ERRORS
 from flex_nav.ros.master_probe import MASTER_CALL_TIMEOUT_S, _TimeoutTransport
 from flex_nav.ros.memory_markers import remembered_of_markers
 from flex_nav.ros.node import init_node
@@ -189,7 +190,7 @@ class MapLink:
     def _to_map(self, frame: str) -> Tuple[float, float, float] | None:
         try:
             t = self.view.tf.lookup_transform(self.view.frame, frame.lstrip("/"), rospy.Time(0)).transform
-        except (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.ExtrapolationException):
+        except TF_ERRORS:
             return None
         return (t.translation.x, t.translation.y, _yaw(t.rotation))
 

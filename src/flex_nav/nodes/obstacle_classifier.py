@@ -182,8 +182,7 @@ class ObstacleClassifierNode:
             if self._last_start is not None and now < self._last_start:
                 self._last_start = self._first_colour = None  # time went backwards (a simulation restarted)
                 self._pairing.clear()
-            if (self.max_rate > 0.0 and self._last_start is not None
-                    and now - self._last_start < 1.0 / self.max_rate - RATE_SLACK_S):
+            if self.max_rate > 0.0 and self._last_start is not None and now < self._next_start_after(self._last_start):
                 return
             self._last_start = now
             if self._first_colour is None:
@@ -213,7 +212,20 @@ class ObstacleClassifierNode:
         if pair is not None:
             self._classify(pair[1], pair[2])
 
+    def _next_start_after(self, start_s: float) -> float:
+        """[s] the stamp of the first image the rate limit lets through after one classified at ``start_s`` (no
+        limit: any later image)."""
+        return start_s + (1.0 / self.max_rate - RATE_SLACK_S if self.max_rate > 0.0 else RATE_SLACK_S)
+
     def _classify(self, colour: Image, depth_msg: Optional[Image]) -> None:
+        try:
+            self._classify_frame(colour, depth_msg)
+        finally:  # lockstep: the next image that will be classified holds the simulation, whatever happened here
+            with self._cond:
+                next_s = self._next_start_after(self._last_start or 0.0)
+            self.lockstep.hold_topic(self.subscriber.resolved_name, next_s)
+
+    def _classify_frame(self, colour: Image, depth_msg: Optional[Image]) -> None:
         try:
             rgb = to_rgb(colour.data, colour.width, colour.height, colour.encoding, colour.step)
             depth = None if depth_msg is None else to_depth(
@@ -228,15 +240,11 @@ class ObstacleClassifierNode:
             self._last_frame = rospy.get_time()
             self._fresh_frames += 1
             self._cond.notify_all()
-            # [s] the stamp of the first image the rate limit lets through (every image: the next one)
-            next_s = (self._last_start or 0.0) + (1.0 / self.max_rate - RATE_SLACK_S if self.max_rate > 0.0
-                                                  else RATE_SLACK_S)
         message = self._message(vote, prediction, colour)
         self.publisher.publish(message)
         scan = self._scan
         self.class_marker.publish(message, scan[1].header.frame_id if scan is not None else None)
         self.fusion_publisher.publish(String(data=self.fused(vote).line()))
-        self.lockstep.hold_topic(self.subscriber.resolved_name, next_s)
 
     @staticmethod
     def _message(vote: Vote, prediction: Prediction, image: Image) -> ObstacleClass:

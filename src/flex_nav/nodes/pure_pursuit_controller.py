@@ -359,8 +359,8 @@ class PurePursuitController(FollowNode):
             with self._wake:
                 used_odom = self._odom_count
                 path_msg = None
-                later = self.lockstep.enabled and used_path >= 0  # the goal's first Path at once, in lockstep too
-                if source is not None and source.new_for_tick(used_path, now_s, later):
+                defer_same_step = self.lockstep.enabled and used_path >= 0  # the goal's first Path at once
+                if source is not None and source.new_for_tick(used_path, now_s, defer_same_step):
                     path_msg, used_path = source.msg, source.count
             # from the tick itself: odometry arriving later starts the next one; in lockstep odometry stamped one
             # period on is due (to within TICK_SLACK_S: a stamp is not an exact sum of periods)

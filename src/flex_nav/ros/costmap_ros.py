@@ -59,9 +59,9 @@ from flex_nav.nav.costmap.obstacle_layer import LaserScan, ObstacleLayerParams
 from flex_nav.nav.planar import transform_poses
 from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.ros.conversions import grid_map_of, occupancy_grid_msg
-from flex_nav.ros.frames import lookup_bounded
+from flex_nav.ros.frames import TF_ERRORS, lookup_bounded
 from flex_nav.ros.latest_worker import LatestWorker
-from flex_nav.ros.lockstep import LockstepParticipant, accept_hold_name, accept_hold_param, lockstep_enabled
+from flex_nav.ros.lockstep import LockstepParticipant, lockstep_enabled, server_accept_hold
 from flex_nav.ros.memory_markers import memory_markers
 from flex_nav.ros.params import param_bool, param_float, param_int, param_str, reject_unknown
 from flex_nav.ros.private_ns import private_name
@@ -274,7 +274,7 @@ class CostmapROS:
     def _frame_pose_at(self, frame_id: str, stamp: rospy.Time) -> tuple[float, float, float]:
         try:
             tf = lookup_bounded(self.tf_buffer, self.global_frame, frame_id, stamp, TF_WAIT_S)
-        except (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.ExtrapolationException) as err:
+        except TF_ERRORS as err:
             raise NotReadyError(f"no transform {self.global_frame} -> {frame_id}: {err}") from err
         t, q = tf.transform.translation, tf.transform.rotation
         return (t.x, t.y, yaw_of_quaternion(q.x, q.y, q.z, q.w))
@@ -306,7 +306,7 @@ class CostmapROS:
     def _on_bumper_hit(self, msg: PointStamped) -> None:
         try:
             tf = lookup_bounded(self.tf_buffer, self.global_frame, msg.header.frame_id, msg.header.stamp, TF_WAIT_S)
-        except (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.ExtrapolationException) as err:
+        except TF_ERRORS as err:
             rospy.logwarn(f"{self.name}: bumper hit ignored, no transform: {err}")
             return
         t, q = tf.transform.translation, tf.transform.rotation
@@ -406,10 +406,7 @@ class CostmapROS:
         """Serve ClearCostmap on ``action_name`` (a node's ``<node>/clear_costmap``)."""
         server = actionlib.SimpleActionServer(action_name, ClearCostmapAction, auto_start=False)
         # lockstep: a client's hold stands from its send until the costmap is cleared (accept_hold_name)
-        resolved = rospy.resolve_name(action_name)
-        accept = LockstepParticipant("", name=accept_hold_name(resolved), dedupe=False)
-        if accept.enabled:
-            rospy.set_param(accept_hold_param(resolved), True)
+        accept = server_accept_hold(rospy.resolve_name(action_name))
 
         def on_goal() -> None:
             server.accept_new_goal()

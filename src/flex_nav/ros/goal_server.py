@@ -55,7 +55,7 @@ import rospy
 from flex_nav.action_types import ActionType
 from flex_nav.exceptions import ConfigError
 from flex_nav.ros.actionlib_internals import RememberedGoal, SimpleServerInternals
-from flex_nav.ros.lockstep import LockstepParticipant, accept_hold_name, accept_hold_param
+from flex_nav.ros.lockstep import server_accept_hold
 
 CLIENT_CHECK_PERIOD_S = 0.1  # [s] how often the client of the running goal is looked for
 OLD_TIMELINE_TOLERANCE_S = 1.0  # [s] a goal stamped this far ahead of the node's clock is from before a jump back
@@ -119,9 +119,7 @@ class GoalServer:
         self._internals.intercept_goals(self._on_goal_arrival)
         self.server.register_preempt_callback(self._on_preempt)
         # lockstep: a client's hold from its send to this server's first hold of the goal (accept_hold_name)
-        self.lockstep_accept = LockstepParticipant("", name=accept_hold_name(rospy.resolve_name(name)), dedupe=False)
-        if self.lockstep_accept.enabled:
-            rospy.set_param(accept_hold_param(rospy.resolve_name(name)), True)
+        self.lockstep_accept = server_accept_hold(rospy.resolve_name(name))
         self._worker = threading.Thread(target=self._work, name=f"goals:{name}", daemon=True)
         self._client_watch = threading.Thread(target=self._watch_clients, name=f"clients:{name}", daemon=True)
 
@@ -173,7 +171,10 @@ class GoalServer:
     # ------------------------------------------------------------------ actionlib callbacks (its locks held)
     def _on_goal_arrival(self, incoming: Any) -> None:
         """Every goal, before SimpleActionServer's stamp check: forget goals of an old timeline first."""
-        self._forget_old_timeline(incoming.get_goal_id().stamp)
+        stamp = incoming.get_goal_id().stamp
+        self._forget_old_timeline(stamp)
+        if any(old is not None and stamp < old for old in map(self._internals.remembered_stamp, RememberedGoal)):
+            self._release_accept_if_idle()  # SimpleActionServer cancels it (older than a goal it keeps): no run
 
     def _forget_old_timeline(self, stamp: rospy.Time) -> None:
         ahead_of = rospy.Time.now() + rospy.Duration(OLD_TIMELINE_TOLERANCE_S)
@@ -201,6 +202,7 @@ class GoalServer:
             self._current = ticket
             if self.server.is_preempt_requested():  # cancelled between arrival and acceptance
                 self._preempt(ticket, replaced=False)
+                self._release_accept_if_idle()  # no run of it will let go of its sender's hold
                 return
             self._pending = ticket
             self._cond.notify_all()
@@ -228,6 +230,13 @@ class GoalServer:
                 self._on_cancel(ticket, replaced)
             except Exception as err:
                 rospy.logerr(f"{self.name}: error while stopping goal #{ticket.number}: {err}")
+
+    def _release_accept_if_idle(self) -> None:
+        """Let go of the clients' accept hold unless a goal waits for its run (that run lets go of it: releasing it
+        here would let the simulation step before the waiting goal holds it)."""
+        with self._cond:
+            if self._pending is None:
+                self.lockstep_accept.release()
 
     # ------------------------------------------------------------------ client watch thread
     def _watch_clients(self) -> None:
@@ -293,6 +302,6 @@ class GoalServer:
                     except Exception as inner:
                         rospy.logerr(f"{self.name}: error handler failed too: {inner}")
                 self.finish(ticket, GoalOutcome.ABORTED, self.result("FAILURE", f"internal error: {err!r}"))
-            self.lockstep_accept.release()
+            self._release_accept_if_idle()
             if self.finish(ticket, GoalOutcome.ABORTED, self.result("FAILURE", "the server ended without a result")):
                 rospy.logerr(f"{self.name}: goal #{ticket.number} ended without a result (a bug); aborted it")

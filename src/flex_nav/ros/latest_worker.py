@@ -57,11 +57,14 @@ class LatestWorker(Generic[Message]):
             self._ready.notify()
 
     def close(self, timeout_s: float = 2.0) -> None:
-        """Stop the thread once it has finished the message in hand (waits at most ``timeout_s`` [s])."""
+        """Stop the thread once it has finished the message in hand (waits at most ``timeout_s`` [s]); a closed
+        worker holds the simulation no longer."""
         with self._ready:
             self._closed = True
             self._ready.notify()
         self._thread.join(timeout_s)
+        if self._lockstep is not None:
+            self._lockstep.release()
 
     def _loop(self) -> None:
         while True:

@@ -92,3 +92,12 @@ class LockstepParticipant:
             self._last = key
             msg = LockstepHold(participant=self.name, holding=holding, topic=topic, stamp_s=stamp_s)
             self._publisher.publish(msg)
+
+
+def server_accept_hold(server: str) -> LockstepParticipant:
+    """An action server's side of :func:`accept_hold_name` (``server`` resolved): the participant it lets go of that
+    hold with, and, under lockstep, :func:`accept_hold_param` set so that its clients place the hold."""
+    accept = LockstepParticipant("", name=accept_hold_name(server), dedupe=False)
+    if accept.enabled:
+        rospy.set_param(accept_hold_param(server), True)
+    return accept

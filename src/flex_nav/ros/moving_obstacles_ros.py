@@ -39,7 +39,7 @@ from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.perception.moving_obstacles import MovingObstacleTracker, Track, TrackerParams
 from flex_nav.perception.static_mask import StaticMask
 from flex_nav.ros.conversions import grid_map_of
-from flex_nav.ros.frames import lookup_bounded
+from flex_nav.ros.frames import TF_ERRORS, lookup_bounded
 from flex_nav.ros.latest_worker import LatestWorker
 from flex_nav.ros.lockstep import LockstepParticipant
 from flex_nav.ros.params import param_float, param_str, reject_unknown
@@ -160,7 +160,7 @@ class MovingObstaclesROS:
             # only to drop the points the static map explains (within static_tolerance): the newest map -> odom
             # will do, and waiting for the localizer's at this scan's stamp would lose every scan it is late for
             to_global = self._planar(self.global_frame, self.tracking_frame, rospy.Time(0))
-        except (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.ExtrapolationException) as err:
+        except TF_ERRORS as err:
             rospy.logwarn_throttle(5.0, f"people tracker: scan ignored: no transform {self.global_frame} -> "
                                         f"{self.tracking_frame} -> {msg.header.frame_id}: {err}")
             return
@@ -225,7 +225,7 @@ class MovingObstaclesROS:
             return tracks
         try:
             x, y, yaw = self._planar(self.global_frame, self.tracking_frame, rospy.Time(0))
-        except (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.ExtrapolationException):
+        except TF_ERRORS:
             return []
         c, s = math.cos(yaw), math.sin(yaw)
         return [dataclasses.replace(t, x=x + c * t.x - s * t.y, y=y + s * t.x + c * t.y,

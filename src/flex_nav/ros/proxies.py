@@ -146,7 +146,7 @@ class ActionClientProxy:
         server = rospy.resolve_name(name)
         self._accept = LockstepParticipant("", name=accept_hold_name(server), dedupe=False)
         self._accept_param = accept_hold_param(server)
-        self._server_accepts: Optional[bool] = None  # lockstep: the server lets go of the accept hold (cached)
+        self._server_accepts = False  # lockstep: the server lets go of the accept hold (cached once true)
         self._lock = threading.Condition()  # guards the fields below; notified when a goal is done
         self._goal_number = 0  # sequence number of the goal the fields below describe
         self._handle: Optional[ClientGoalHandle] = None
@@ -197,7 +197,7 @@ class ActionClientProxy:
             self._result, self._feedback, self._done, self._active = None, None, False, True
             self._state = GoalStatus.PENDING
         if self._accept.enabled:
-            if self._server_accepts is None:
+            if not self._server_accepts:  # asked again until true (a server that started later sets it then)
                 self._server_accepts = bool(rospy.get_param(self._accept_param, False))
             if self._server_accepts:
                 self._accept.hold_clock(rospy.get_time())  # the simulation stands until the server holds

@@ -55,30 +55,27 @@ class RosClock:
 class LockstepTimer:
     """``callback(now_s)`` every ``period_s`` [s] of ROS time on a daemon thread named ``name``, holding a lockstep
     simulation at each call until it returns (a rospy.Timer fires beside the stepping simulation, at whatever
-    step its thread gets to run). A call comes late rather than twice; ROS time moving back starts afresh."""
+    step its thread gets to run). A call comes late rather than twice; ROS time moving back starts afresh. It runs
+    until rospy shuts down (the costmaps keep theirs for the node's life)."""
 
     def __init__(self, period_s: float, callback: Callable[[float], None], participant: LockstepParticipant,
                  name: str) -> None:
         self._period_s = period_s
         self._callback = callback
         self._clock = RosClock(lockstep=participant)
-        self._stop = threading.Event()
+        self._never = threading.Event()  # nothing wakes the wait early: each ends at its deadline or shutdown
         self._thread = threading.Thread(target=self._loop, name=name, daemon=True)
         self._thread.start()
 
-    def shutdown(self) -> None:
-        self._stop.set()
-        if self._clock.lockstep is not None:
-            self._clock.lockstep.release()
-
     def _loop(self) -> None:
         next_s = self._clock.now() + self._period_s
-        while not self._stop.is_set() and not rospy.is_shutdown():
+        while not rospy.is_shutdown():
             now_s = self._clock.now()
             if now_s < next_s - 2.0 * self._period_s:  # ROS time went back (a restarted simulation)
                 next_s = now_s + self._period_s
             if now_s >= next_s:
                 self._callback(now_s)
-                next_s = max(next_s + self._period_s, now_s)
+                while next_s <= now_s:  # on the grid of the first call; ticks missed while late are skipped
+                    next_s += self._period_s
                 continue
-            self._clock.wait_until(next_s, self._stop)
+            self._clock.wait_until(next_s, self._never)

@@ -17,7 +17,7 @@ from sensor_msgs.msg import LaserScan
 from flex_nav.localization import ScanBeams
 from flex_nav.nav.planar import Pose2D
 from flex_nav.nav.pose_checks import quaternion_of_yaw, yaw_of_quaternion
-from flex_nav.ros.frames import lookup_bounded
+from flex_nav.ros.frames import TF_ERRORS, lookup_bounded
 
 LOG_THROTTLE_S = 2.0  # [s] wall: one kind of complaint is logged at most this often
 
@@ -62,7 +62,7 @@ class ScanInput:
             return None
         try:
             tf = lookup_bounded(self.buffer, self.base_frame, frame, rospy.Time(0), self.timeout.to_sec())
-        except (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.ExtrapolationException) as err:
+        except TF_ERRORS as err:
             self.complain("scan_frame", f"scan ignored: its frame '{frame}' cannot be placed in the base frame "
                                         f"'{self.base_frame}': {err}")
             return None
@@ -74,7 +74,7 @@ class ScanInput:
         """The robot's odometry pose at ``stamp``; None (and a warning) if tf has none."""
         try:
             tf = lookup_bounded(self.buffer, self.odom_frame, self.base_frame, stamp, self.timeout.to_sec())
-        except (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.ExtrapolationException) as err:
+        except TF_ERRORS as err:
             self.complain("odom", f"scan ignored: no odometry '{self.odom_frame}' -> '{self.base_frame}' at the "
                                   f"scan's stamp {stamp.to_sec():.3f} s: {err}")
             return None

@@ -44,12 +44,12 @@ class TopicPath:
             self.arrived_s = rospy.get_time()
             self._wake.notify_all()
 
-    def new_for_tick(self, used: int, tick_s: float, lockstep: bool) -> bool:
+    def new_for_tick(self, used: int, tick_s: float, defer_same_step: bool) -> bool:
         """(``wake`` held) Whether a loop that used Path number ``used`` takes the newest at its tick at ROS time
-        ``tick_s`` [s]. In lockstep only a Path that arrived before the tick's simulated time: one sent at the same
-        step may arrive before or after the tick, so it waits for the next tick either way."""
+        ``tick_s`` [s]. ``defer_same_step`` (lockstep): only a Path that arrived before the tick's simulated time --
+        one sent at the same step may arrive before or after the tick, so it waits for the next tick either way."""
         return (self.msg is not None and self.count != used
-                and not (lockstep and self.arrived_s >= tick_s))
+                and not (defer_same_step and self.arrived_s >= tick_s))
 
     def close(self) -> None:
         self.subscriber.unregister()

@@ -94,9 +94,9 @@ def walking_intervals(person: Any, events: Sequence[Any]) -> List[Tuple[float, f
     return intervals
 
 
-def person_position(person: Any, intervals: Sequence[Tuple[float, float]], sim_s: float) -> Tuple[float, float]:
-    """(x, y) [m] of ``person`` at simulated time ``sim_s``."""
-    walked = sum(max(0.0, min(sim_s, end) - start) for start, end in intervals)
+def person_position(person: Any, intervals: Sequence[Tuple[float, float]], world_s: float) -> Tuple[float, float]:
+    """(x, y) [m] of ``person`` at ``world_s`` [s] of the world's time (simulated time since the world's start)."""
+    walked = sum(max(0.0, min(world_s, end) - start) for start, end in intervals)
     x, y, _yaw = person.pose_after(walked)
     return x, y
 
