@@ -49,8 +49,10 @@ class LockstepParticipant:
     :mod:`flex_nav.ros.private_ns`) or ``name``; every method is a no-op when lockstep is off. ``dedupe``: a hold
     equal to the last one sent is not sent again (False where another node replaces this participant's holds)."""
 
-    def __init__(self, what: str, enabled: Optional[bool] = None, *, name: Optional[str] = None,
+    def __init__(self, what: str = "", enabled: Optional[bool] = None, *, name: Optional[str] = None,
                  dedupe: bool = True) -> None:
+        if (name is None) == (not what):
+            raise ValueError(f"a lockstep participant needs what ({what!r}) or name ({name!r}), exactly one")
         self.name = name if name is not None else f"{private_namespace()}/{what}"
         self.dedupe = dedupe
         self.enabled = lockstep_enabled() if enabled is None else enabled
@@ -97,7 +99,7 @@ class LockstepParticipant:
 def server_accept_hold(server: str) -> LockstepParticipant:
     """An action server's side of :func:`accept_hold_name` (``server`` resolved): the participant it lets go of that
     hold with, and, under lockstep, :func:`accept_hold_param` set so that its clients place the hold."""
-    accept = LockstepParticipant("", name=accept_hold_name(server), dedupe=False)
+    accept = LockstepParticipant(name=accept_hold_name(server), dedupe=False)
     if accept.enabled:
         rospy.set_param(accept_hold_param(server), True)
     return accept

@@ -144,7 +144,7 @@ class ActionClientProxy:
         self.action_type = action_type
         self._client = actionlib.ActionClient(name, action_type)
         server = rospy.resolve_name(name)
-        self._accept = LockstepParticipant("", name=accept_hold_name(server), dedupe=False)
+        self._accept = LockstepParticipant(name=accept_hold_name(server), dedupe=False)
         self._accept_param = accept_hold_param(server)
         self._server_accepts = False  # lockstep: the server lets go of the accept hold (cached once true)
         self._lock = threading.Condition()  # guards the fields below; notified when a goal is done
