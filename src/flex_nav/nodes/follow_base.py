@@ -117,6 +117,9 @@ class FollowNode(abc.ABC):
             return None
         fresh_since = fresh_from(ticket.goal.newer_than)
         source = self._topics.subscribe(topic)
+        # lockstep: the client's accept hold stands while this waits: the Path comes from a server that publishes
+        # its first plan at once (the same simulated time); one that needs time to pass is dropped by the
+        # simulator's lockstep timeout (reported), so the wait is bounded either way
         if not self._topics.wait_first(source, self.topic_timeout_s, ticket.cancelled, newer_than=fresh_since):
             if not ticket.cancelled.is_set():
                 self._end(ticket, GoalOutcome.ABORTED, source.no_path_reason(self.topic_timeout_s))
