@@ -27,10 +27,14 @@ HOLDS_QUEUE = 100  # holds of one process in flight (several participants answer
 
 def lockstep_enabled() -> bool:
     """``/lockstep`` (bool, false by default) on simulated time (a node on the wall clock, or none started, does not
-    even ask the master)."""
-    if rospy.rostime.is_wallclock():
+    even ask the master; an unreachable master means off, with a warning)."""
+    if rospy.rostime.is_wallclock() or not rospy.core.is_initialized():
+        return False  # (no node: no master to ask)
+    try:
+        return param_bool("/lockstep", False)
+    except OSError as err:  # the master is gone (a test process whose earlier node's master stopped)
+        rospy.logwarn(f"lockstep off: the master could not be asked for /lockstep: {err}")
         return False
-    return param_bool("/lockstep", False)
 
 
 def accept_hold_name(server: str) -> str:

@@ -2,9 +2,17 @@
 given whole, exactly one of the two; with lockstep off it advertises nothing and every method does nothing."""
 
 import pytest
+import rospy
 
-from flex_nav.ros.lockstep import LockstepParticipant, accept_hold_name, accept_hold_param, server_accept_hold
+from flex_nav.ros.lockstep import (
+    LockstepParticipant,
+    accept_hold_name,
+    accept_hold_param,
+    lockstep_enabled,
+    server_accept_hold,
+)
 from flex_nav.ros.private_ns import hosted_as
+from flex_nav.testing.private_master import free_port
 
 
 def test_the_name_is_the_components_namespace_and_what_it_holds_for() -> None:
@@ -40,3 +48,12 @@ def test_a_server_without_lockstep_does_not_tell_its_clients_to_hold() -> None:
     assert not accept.enabled
     assert accept.name == "/robot1/get_path/accept"
     assert accept_hold_param("/robot1/get_path") == "/robot1/get_path/lockstep_accepts"
+
+
+def test_a_node_whose_master_is_gone_runs_without_lockstep(monkeypatch: pytest.MonkeyPatch) -> None:
+    # as in one test process after a system test's node and master: simulated time, a node, nobody to ask
+    monkeypatch.setattr(rospy.rostime, "is_wallclock", lambda: False)
+    monkeypatch.setattr(rospy.core, "is_initialized", lambda: True)
+    monkeypatch.setenv("ROS_MASTER_URI", f"http://127.0.0.1:{free_port()}/")
+    monkeypatch.setattr(rospy.core, "_master_proxy", None, raising=False)
+    assert lockstep_enabled() is False
