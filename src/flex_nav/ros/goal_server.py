@@ -173,7 +173,8 @@ class GoalServer:
         """Every goal, before SimpleActionServer's stamp check: forget goals of an old timeline first."""
         stamp = incoming.get_goal_id().stamp
         self._forget_old_timeline(stamp)
-        if any(old is not None and stamp < old for old in map(self._internals.remembered_stamp, RememberedGoal)):
+        if self.lockstep_accept.enabled and any(
+                old is not None and stamp < old for old in map(self._internals.remembered_stamp, RememberedGoal)):
             self._release_accept_if_idle()  # SimpleActionServer cancels it (older than a goal it keeps): no run
 
     def _forget_old_timeline(self, stamp: rospy.Time) -> None:
