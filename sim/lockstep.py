@@ -11,6 +11,11 @@ work to do, and lets it go on once that work is done:
 - a **topic hold** ``(topic, stamp)``: step no further once a message on ``topic`` stamped at or after ``stamp`` has
   been published (a scan consumer holds on the next scan, the classifier on the next image it will classify).
 
+A hold may also say that its participant has just *sent* the simulator a message (a velocity command stamped
+``sent_stamp_s`` on ``sent_topic``): the simulation steps on only once that message has come in (:meth:`received`),
+so a command computed at one step is applied from the next, whatever the load (the two messages travel on two
+connections and either may arrive first).
+
 A participant replaces its hold by sending the next one (or lets go). Every wait is bounded: a hold that keeps the
 simulation waiting ``timeout_s`` [s of wall time] is dropped, reported, and counted (a participant that died or
 lost a message must not stop the world); its next hold counts again.
@@ -37,8 +42,11 @@ class Hold:
     participant: str
     topic: str
     stamp_s: float  # [s] simulated time
+    sent: bool = False  # True: the simulator waits to receive the participant's message on topic, at stamp_s
 
     def describe(self) -> str:
+        if self.sent:
+            return f"{self.participant} (its message on {self.topic} stamped {self.stamp_s:.3f} s has not arrived)"
         what = "simulated time" if self.topic == CLOCK_TOPIC else f"a message on {self.topic} stamped"
         return f"{self.participant} (waiting for {what} >= {self.stamp_s:.3f} s)"
 
@@ -70,19 +78,43 @@ class LockstepBarrier:
         self._cond = threading.Condition()
         self._holds: Dict[str, Hold] = {}
         self._published: Dict[str, float] = {CLOCK_TOPIC: -math.inf}  # topic -> newest stamp [s]
+        self._sent: Dict[str, Hold] = {}  # participant -> the message it sent the simulator, not received yet
+        self._received: Dict[str, float] = {}  # topic the simulator subscribes to -> newest stamp received [s]
         self.stats = LockstepStats()
 
-    def update(self, participant: str, holding: bool, topic: str, stamp_s: float) -> None:
-        """A participant's new hold replaces its old one (``holding`` False: it lets go)."""
+    def update(self, participant: str, holding: bool, topic: str, stamp_s: float, *, sent_topic: str = "",
+               sent_stamp_s: float = 0.0) -> None:
+        """A participant's new hold replaces its old one (``holding`` False: it lets go); with ``sent_topic``, it
+        sent the simulator a message stamped ``sent_stamp_s`` [s] there, to be waited for until :meth:`received`."""
         if not participant:
             raise ConfigError("a lockstep hold must name its participant")
         if holding and not math.isfinite(stamp_s):
             raise ConfigError(f"lockstep hold of {participant}: stamp {stamp_s!r} is not a finite time")
+        if sent_topic and not math.isfinite(sent_stamp_s):
+            raise ConfigError(f"lockstep hold of {participant}: sent stamp {sent_stamp_s!r} is not a finite time")
         with self._cond:
             if holding:
                 self._holds[participant] = Hold(participant, topic, stamp_s)
             else:
                 self._holds.pop(participant, None)
+            if sent_topic in self._received and self._received[sent_topic] < sent_stamp_s:
+                self._sent[participant] = Hold(participant, sent_topic, sent_stamp_s, sent=True)
+            self._cond.notify_all()
+
+    def subscribed(self, topic: str) -> None:
+        """The simulator receives ``topic``: messages sent there are waited for (on any other topic they are not: a
+        node that publishes where the simulator does not listen must not stop it)."""
+        with self._cond:
+            self._received.setdefault(topic, -math.inf)
+
+    def received(self, topic: str, stamp_s: float) -> None:
+        """The simulator received a message stamped ``stamp_s`` [s] on ``topic`` (a ROS thread)."""
+        with self._cond:
+            if stamp_s > self._received.get(topic, -math.inf):
+                self._received[topic] = stamp_s
+            for participant, sent in list(self._sent.items()):
+                if sent.topic == topic and sent.stamp_s <= stamp_s:
+                    del self._sent[participant]
             self._cond.notify_all()
 
     def published(self, topic: str, stamp_s: float) -> None:
@@ -98,10 +130,15 @@ class LockstepBarrier:
     def _reached(self, hold: Hold) -> bool:
         return self._published.get(hold.topic, -math.inf) >= hold.stamp_s  # exactly: as the participant compares
 
+    def _blocking(self) -> List[Hold]:
+        """(lock held) The holds whose wait has come and the messages sent but not received yet."""
+        return [h for h in self._holds.values() if self._reached(h)] + list(self._sent.values())
+
     def blocking(self) -> List[Hold]:
-        """The holds whose wait has come: the simulation must not step on while any is left."""
+        """The holds whose wait has come (and the sent messages still on their way): the simulation must not step on
+        while any is left."""
         with self._cond:
-            return [h for h in self._holds.values() if self._reached(h)]
+            return self._blocking()
 
     def wait(self, stop: Callable[[], bool] = lambda: False) -> List[Hold]:
         """Block until no hold has come (or ``stop()``); returns the holds dropped after ``timeout_s`` each."""
@@ -111,13 +148,16 @@ class LockstepBarrier:
         with self._cond:
             while not stop():
                 now = self._wall()
-                blocking = [h for h in self._holds.values() if self._reached(h)]
+                blocking = self._blocking()
                 if not blocking:
                     break
                 for hold in blocking:
                     since = first_blocked.setdefault(hold, now)
-                    if now - since >= self.timeout_s and self._holds.get(hold.participant) == hold:
-                        del self._holds[hold.participant]
+                    if now - since < self.timeout_s:
+                        continue
+                    table = self._sent if hold.sent else self._holds
+                    if table.get(hold.participant) == hold:
+                        del table[hold.participant]
                         dropped.append(hold)
                 oldest = min(first_blocked.get(h, now) for h in blocking)
                 self._cond.wait(max(0.0, min(POLL_S, oldest + self.timeout_s - now)))

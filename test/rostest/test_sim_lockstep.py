@@ -5,15 +5,20 @@ import sys
 import time
 import unittest
 
+import actionlib
 import rospy
 import rostest
+from actionlib_msgs.msg import GoalStatus
 import tf2_ros
+from geometry_msgs.msg import Twist, TwistStamped
 from message_log import MessageLog
+from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock, Log
 from sensor_msgs.msg import LaserScan
 from std_srvs.srv import Trigger
 
-from flex_nav.msg import SimEvent
+from flex_nav.msg import ClearCostmapAction, ClearCostmapResult, SimEvent
+from flex_nav.ros.proxies import ActionClientProxy
 from flex_nav.ros.lockstep import LockstepParticipant
 from flex_nav.ros.node import init_node
 
@@ -115,6 +120,63 @@ class TestSimLockstep(unittest.TestCase):
         again = start()
         self.assertFalse(again.success)
         self.assertIn("started already", again.message)
+
+    def test_5_a_sent_command_is_waited_for_and_drives_the_robot_from_the_next_step(self):
+        commands = rospy.Publisher("/robot1/cmd_vel_stamped", TwistStamped, queue_size=10)
+        relay_copies = rospy.Publisher("/robot1/cmd_vel", Twist, queue_size=10)
+        odom = WallLog("/robot1/odom", Odometry)
+        hold = LockstepParticipant("controller", enabled=True)
+        self.assertTrue(hold.wait_connected(WAIT_S))
+        deadline = time.monotonic() + WAIT_S
+        while commands.get_num_connections() == 0 and time.monotonic() < deadline:
+            time.sleep(0.01)
+        self.assertGreater(commands.get_num_connections(), 0, "the simulator takes no stamped commands")
+        stop_s = self.now() + 1.0
+        hold.hold_clock(stop_s)
+        self.stands_at(stop_s, 0.1)
+        stamp = self.clock.newest(lambda m: True).clock
+        hold.sent("/robot1/cmd_vel_stamped", stamp.to_sec())  # announced, not published yet
+        hold.release()
+        self.stands_at(stamp.to_sec(), TIMEOUT_S / 2.0)  # it waits for the command, not for the released hold
+        command = TwistStamped()
+        command.header.stamp = stamp
+        command.twist.linear.x = 0.2
+        commands.publish(command)
+        moving = odom.newest(lambda m: m.twist.twist.linear.x > 0.01)
+        self.assertLess(moving.header.stamp.to_sec(), stamp.to_sec() + 0.5)
+        self.assertFalse([m for m in self.rosout.since(0) if "/controller" in m.msg and "dropped" in m.msg],
+                         "the announced command was dropped, not received")
+        # stopped by a later stamped zero; twist_relay's Twist copies do not drive a lockstep simulation
+        command.header.stamp = self.clock.newest(lambda m: True).clock
+        command.twist.linear.x = 0.0
+        commands.publish(command)
+        stopped = odom.newest(lambda m: abs(m.twist.twist.linear.x) < 1e-3)
+        relay_copies.publish(Twist())
+        later = Twist()
+        later.linear.x = 0.3
+        relay_copies.publish(later)
+        after_s = stopped.header.stamp.to_sec() + 1.0
+        self.assertLess(abs(odom.newest(lambda m: m.header.stamp.to_sec() >= after_s).twist.twist.linear.x), 1e-3)
+
+    def test_6_a_result_sent_while_the_simulation_stands_is_seen_only_once_it_goes_on(self):
+        server = actionlib.SimpleActionServer(
+            "/instant_server", ClearCostmapAction, lambda _goal: server.set_succeeded(ClearCostmapResult()),
+            auto_start=False)
+        server.start()
+        client = ActionClientProxy("/instant_server", ClearCostmapAction)
+        self.assertTrue(client.is_available(WAIT_S))
+        hold = LockstepParticipant("behavior_tick", enabled=True)
+        self.assertTrue(hold.wait_connected(WAIT_S))
+        tick_s = self.now() + 1.0
+        hold.hold_clock(tick_s)
+        self.stands_at(tick_s, 0.1)
+        client.send_goal(ClearCostmapAction().action_goal.goal)
+        self.assertTrue(client.wait_for_result(WAIT_S))  # it has arrived (a wall-time wait) ...
+        self.assertFalse(client.has_result())  # ... but a tick at the time it was sent does not see it
+        hold.release()
+        self.clock.newest(lambda m: clock_s(m) > tick_s + 0.05)
+        self.assertTrue(client.has_result())
+        self.assertEqual(client.state(), GoalStatus.SUCCEEDED)
 
 
 if __name__ == "__main__":

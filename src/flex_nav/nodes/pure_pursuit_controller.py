@@ -254,6 +254,7 @@ class PurePursuitController(FollowNode):
             msg.header.frame_id = self.robot_base_frame
             msg.twist.linear.x, msg.twist.angular.z = v, w
             self.cmd_publisher.publish(msg)
+            self.lockstep.sent(self.cmd_publisher.resolved_name, msg.header.stamp.to_sec())
             return True
 
     def _on_shutdown(self) -> None:

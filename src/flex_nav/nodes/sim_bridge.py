@@ -26,9 +26,11 @@ Private parameters:
                  :mod:`flex_nav_sim.lockstep`): the simulation steps no further than the nodes' holds on
                  ``/lockstep/holds`` (flex_nav/LockstepHold) allow; a hold that keeps it waiting this long is dropped
                  and logged; after each wait it pauses ``~lockstep_settle`` [s of wall time] (0.002) more, so
-                 what a node sent just before it let go (a velocity command through twist_relay, a plan, a class)
-                 arrives before the next step; a scan goes out after the step of the first odometry at or
-                 after its stamp
+                 what a node sent just before it let go (a plan, a class) arrives before the next step; a scan
+                 goes out after the step of the first odometry at or after its stamp. Velocity commands come from
+                 NS/cmd_vel_stamped then (the controllers' own output, not twist_relay's NS/cmd_vel): a controller
+                 says with its hold that it sent one, and the simulation steps on only once that command is in,
+                 so a command computed at one step drives the robot from the next, whatever the load
   ~world_start  str  at_once  at_once: people walk and world events happen on the world's times from t = 0;
                  on_request: from the step after a call of ~start_world (a scenario's run starts there, the
                  same run at whatever time it starts)
@@ -45,7 +47,9 @@ Per robot ``NS`` (its name; frames are prefixed ``NS/``; an empty name is allowe
              NS/sim_events (SimEvent: contacts begin/end, ignored/clamped/timed-out commands)
   tf         map -> NS/odom -> NS/base_footprint; static NS/base_footprint -> NS/base_link, NS/laser,
              NS/camera_rgb_frame -> NS/camera_rgb_optical_frame
-  subscribes NS/cmd_vel (geometry_msgs/Twist)
+  subscribes NS/cmd_vel (geometry_msgs/Twist); in lockstep mode NS/cmd_vel_stamped (geometry_msgs/TwistStamped)
+             instead, with twist_relay's rules: a command stamped before the newest one taken is dropped, at equal
+             stamps a stop wins, a non-finite one stops the robot
   with ~publish_initial_pose: NS/initialpose (geometry_msgs/PoseWithCovarianceStamped, map frame, latched)
 Global: /clock (rosgraph_msgs/Clock; run every other node with use_sim_time), sim_events (world events).
 Service ~start_world (std_srvs/Trigger, with ~world_start on_request): the world's script and fresh noise from the
@@ -66,7 +70,7 @@ from typing import Any, Callable, Dict, List, Optional, Tuple
 
 import genpy
 import rospy
-from geometry_msgs.msg import PoseWithCovarianceStamped, TransformStamped, Twist
+from geometry_msgs.msg import PoseWithCovarianceStamped, TransformStamped, Twist, TwistStamped
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import CameraInfo, Image, LaserScan
@@ -75,6 +79,7 @@ from tf2_msgs.msg import TFMessage
 
 from flex_nav.exceptions import ConfigError
 from flex_nav.msg import BumperEvent, BumperState, CreateBumper, LockstepHold, SimEvent
+from flex_nav.nav.control.safety import CommandOrder, twist_problem
 from flex_nav.ros.lockstep import HOLDS_QUEUE, HOLDS_TOPIC, lockstep_enabled
 from flex_nav.ros.node import init_node
 from flex_nav.ros.params import param_bool, param_float, param_int, param_str
@@ -151,7 +156,8 @@ class RobotIO:
     """One robot's publishers, subscriber, frames and reusable messages."""
 
     def __init__(
-        self, name: str, profile: RobotProfile, sim: Simulation, map_frame: str, queue_command: Callable
+        self, name: str, profile: RobotProfile, sim: Simulation, map_frame: str, queue_command: Callable,
+        *, stamped_commands: bool = False,
     ) -> None:
         self.name = name
         self.profile = profile
@@ -195,8 +201,11 @@ class RobotIO:
         self.pub_initial_pose = rospy.Publisher(
             topic("initialpose"), PoseWithCovarianceStamped, queue_size=1, latch=True
         )
+        # lockstep: the controllers' stamped commands (each waited for), not twist_relay's copies of them
         self.sub_cmd = rospy.Subscriber(
-            topic("cmd_vel"), Twist, lambda msg: queue_command(name, msg), queue_size=1, tcp_nodelay=True
+            topic("cmd_vel_stamped") if stamped_commands else topic("cmd_vel"),
+            TwistStamped if stamped_commands else Twist,
+            lambda msg: queue_command(name, msg), queue_size=10 if stamped_commands else 1, tcp_nodelay=True,
         )
         self._prepare_messages()
 
@@ -318,10 +327,18 @@ class SimBridge:
         self.pub_tf_static = rospy.Publisher("/tf_static", TFMessage, queue_size=10, latch=True)
         # latched: a node that subscribes late still learns the last world event (e.g. "box removed at 35 s")
         self.pub_world_events = rospy.Publisher("sim_events", SimEvent, queue_size=50, latch=True)
+        self._command_order = {name: CommandOrder() for name in sim.robot_names}  # lockstep's stamped commands
+        self.lockstep: Optional[LockstepBarrier] = None
+        if options.lockstep:
+            self.lockstep = LockstepBarrier(options.lockstep_timeout_s)
         self.robots = {
-            name: RobotIO(name, sim.robot(name).profile, sim, map_frame, self._queue_command)
+            name: RobotIO(name, sim.robot(name).profile, sim, map_frame, self._queue_command,
+                          stamped_commands=options.lockstep)
             for name in sim.robot_names
         }
+        if self.lockstep is not None:
+            for io in self.robots.values():
+                self.lockstep.subscribed(io.sub_cmd.resolved_name)
         self.publish_cost = 0.0  # [s] wall time spent building and publishing messages
         self.lag_resets = 0  # times the simulation fell more than MAX_LAG_S behind the requested rtf
         self._handlers: Dict[type, Callable] = {
@@ -336,7 +353,6 @@ class SimBridge:
         self._clock = Clock()
         self._clock_s = -math.inf  # [s] the newest /clock published
         self._tf = TFMessage()
-        self.lockstep: Optional[LockstepBarrier] = None
         # lockstep: a scan goes out once the first odometry at or after its stamp is out and the nodes are done with
         # that step (the controllers' ticks on it), so its consumers find tf at its stamp without waiting for a step
         # that cannot come, and every controller tick sees the scans of the steps before its own, none of its own
@@ -344,8 +360,7 @@ class SimBridge:
         self._scans_waiting: Dict[str, List[ScanReading]] = {}  # robot -> scans newer than its odometry
         self._scans_ready: List[ScanReading] = []  # to go out after this step's holds
         self.settle_s = options.lockstep_settle_s
-        if options.lockstep:
-            self.lockstep = LockstepBarrier(options.lockstep_timeout_s)
+        if self.lockstep is not None:
             self._holds_subscriber = rospy.Subscriber(HOLDS_TOPIC, LockstepHold, self._on_hold,
                                                       queue_size=HOLDS_QUEUE, tcp_nodelay=True)
         self.teleport_service = rospy.Service("~teleport", Teleport, self._on_teleport)
@@ -357,13 +372,29 @@ class SimBridge:
         if self.lockstep is None:
             return
         try:
-            self.lockstep.update(msg.participant, msg.holding, msg.topic, msg.stamp_s)
+            self.lockstep.update(msg.participant, msg.holding, msg.topic, msg.stamp_s, sent_topic=msg.sent_topic,
+                                 sent_stamp_s=msg.sent_stamp_s)
         except ConfigError as err:
             rospy.logwarn_throttle(5.0, f"sim: lockstep hold ignored: {err}")
 
-    def _queue_command(self, robot: str, msg: Twist) -> None:
+    def _queue_command(self, robot: str, msg: Any) -> None:
+        """A Twist, or in lockstep mode a TwistStamped, which the barrier is told of once it is queued."""
+        if not isinstance(msg, TwistStamped):
+            with self._lock:
+                self._pending[robot] = (msg.linear.x, msg.angular.z)
+            return
+        lin, ang = msg.twist.linear, msg.twist.angular
+        problem = twist_problem((lin.x, lin.y, lin.z), (ang.x, ang.y, ang.z))
+        v, w = (0.0, 0.0) if problem is not None else (lin.x, ang.z)
+        stamp_s = msg.header.stamp.to_sec()
         with self._lock:
-            self._pending[robot] = (msg.linear.x, msg.angular.z)
+            if self._command_order[robot].admit(stamp_s, v != 0.0 or w != 0.0):
+                self._pending[robot] = (v, w)
+        if problem is not None:
+            rospy.logerr_throttle(1.0, f"sim: {robot}: {problem}: the robot stops")
+        io = self.robots.get(robot)  # (None only for a message during construction: no hold waits for it yet)
+        if self.lockstep is not None and io is not None:
+            self.lockstep.received(io.sub_cmd.resolved_name, stamp_s)
 
     def _on_teleport(self, request: TeleportRequest) -> TeleportResponse:
         """Service thread: queue the teleport for the stepping thread and wait (bounded) for its result."""

@@ -86,6 +86,17 @@ class LockstepParticipant:
         """I wait for nothing now."""
         self._send(False, "", 0.0)
 
+    def sent(self, topic: str, stamp_s: float) -> None:
+        """I have just published a message stamped ``stamp_s`` [s] on ``topic`` (resolved; the simulator subscribes
+        to it, e.g. a velocity command): the simulation steps on only once it has received that message. Sent with
+        my current hold, before any later one."""
+        if self._publisher is None:
+            return
+        with self._lock:
+            holding, topic_held, stamp_held = self._last if self._last is not None else (False, "", 0.0)
+            self._publisher.publish(LockstepHold(participant=self.name, holding=holding, topic=topic_held,
+                                                 stamp_s=stamp_held, sent_topic=topic, sent_stamp_s=stamp_s))
+
     def _send(self, holding: bool, topic: str, stamp_s: float) -> None:
         if self._publisher is None:
             return

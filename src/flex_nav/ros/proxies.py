@@ -12,6 +12,7 @@ proxies use; mypy checks it (the typed assignment at the end of this module)."""
 from __future__ import annotations
 
 import collections
+import math
 import threading
 import time
 from typing import TYPE_CHECKING, Any, Callable, Deque, Generic, List, Optional, Tuple, TypeVar
@@ -154,6 +155,7 @@ class ActionClientProxy:
         self._feedback: Any = None
         self._state: int = GoalStatus.LOST
         self._done = False
+        self._done_stamp_s = -math.inf  # [s] ROS time the server stamped the last goal's result with
         self._active = False
 
     def is_available(self, timeout_s: float = 0.0) -> bool:
@@ -214,6 +216,8 @@ class ActionClientProxy:
         comm_state = handle.get_comm_state()
         if comm_state == CommState.DONE:
             state, result = handle.get_terminal_state(), handle.get_result()
+            action_result = handle.comm_state_machine.latest_result  # None: done by a lost or recalled status
+            done_stamp_s = action_result.header.stamp.to_sec() if action_result is not None else -math.inf
         with self._lock:
             if number != self._goal_number or self._done:
                 return
@@ -221,6 +225,7 @@ class ActionClientProxy:
                 self._state = GoalStatus.ACTIVE
             elif comm_state == CommState.DONE:
                 self._state, self._result, self._done, self._active = state, result, True, False
+                self._done_stamp_s = done_stamp_s
                 self._lock.notify_all()
 
     def _on_feedback(self, number: int, feedback: Any) -> None:
@@ -229,8 +234,12 @@ class ActionClientProxy:
                 self._feedback = feedback
 
     def has_result(self) -> bool:
+        """True once the last goal is done. In a lockstep simulation only from a ROS time after the one the server
+        stamped its result with: a result sent while the simulation stands at the caller's tick arrives before or
+        after that tick by a wall-time race, and is seen at the next tick either way, whatever the load."""
         with self._lock:
-            return self._done
+            done, done_stamp_s = self._done, self._done_stamp_s
+        return done and not (self._accept.enabled and rospy.get_time() <= done_stamp_s)
 
     def wait_for_result(self, timeout_s: float) -> bool:
         """Block until the last goal is done or ``timeout_s`` [s] of wall time passed; True if it is done."""

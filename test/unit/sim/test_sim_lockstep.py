@@ -127,3 +127,57 @@ def test_a_hold_without_a_participant_or_a_finite_stamp_is_refused() -> None:
         barrier.update("", True, CLOCK_TOPIC, 1.0)
     with pytest.raises(ConfigError, match="not a finite time"):
         barrier.update("x", True, CLOCK_TOPIC, float("nan"))
+
+
+CMD = "/robot1/cmd_vel_stamped"
+CONTROL = "/robot1/pure_pursuit_path/control"
+
+
+def test_a_sent_command_blocks_until_the_simulator_has_received_it() -> None:
+    barrier = LockstepBarrier(1.0)
+    barrier.subscribed(CMD)
+    barrier.update(CONTROL, True, "/robot1/odom", 2.0, sent_topic=CMD, sent_stamp_s=1.95)
+    assert barrier.blocking() == [Hold(CONTROL, CMD, 1.95, sent=True)]  # its hold has not come, the command is due
+    barrier.received(CMD, 1.9)  # an older command is not the one sent
+    assert len(barrier.blocking()) == 1
+    barrier.received(CMD, 1.95)
+    assert barrier.blocking() == []
+
+
+def test_a_command_received_before_the_hold_that_announces_it_is_not_waited_for() -> None:
+    barrier = LockstepBarrier(1.0)
+    barrier.subscribed(CMD)
+    barrier.received(CMD, 1.95)  # the command overtook the hold on its own connection
+    barrier.update(CONTROL, False, "", 0.0, sent_topic=CMD, sent_stamp_s=1.95)
+    assert barrier.blocking() == []
+
+
+def test_a_message_sent_where_the_simulator_does_not_listen_is_not_waited_for() -> None:
+    barrier = LockstepBarrier(1.0)
+    barrier.update(CONTROL, False, "", 0.0, sent_topic="/robot1/remapped_cmd", sent_stamp_s=1.0)
+    assert barrier.blocking() == []
+
+
+def test_a_sent_command_that_never_arrives_is_dropped_after_the_timeout_and_the_hold_kept() -> None:
+    wall = ManualWall(step_s=0.3)
+    barrier = LockstepBarrier(1.0, wall_clock=wall)
+    barrier.subscribed(CMD)
+    barrier.update(CONTROL, True, "/robot1/odom", 2.0, sent_topic=CMD, sent_stamp_s=1.95)
+    dropped = barrier.wait()
+    assert dropped == [Hold(CONTROL, CMD, 1.95, sent=True)]
+    assert "has not arrived" in dropped[0].describe()
+    assert barrier.holds() == [Hold(CONTROL, "/robot1/odom", 2.0)]  # the participant's own hold stays
+    assert barrier.blocking() == []
+
+
+def test_wait_returns_when_the_sent_command_arrives_from_another_thread() -> None:
+    barrier = LockstepBarrier(5.0)
+    barrier.subscribed(CMD)
+    barrier.update(CONTROL, False, "", 0.0, sent_topic=CMD, sent_stamp_s=3.0)
+    arrival = threading.Timer(0.05, barrier.received, (CMD, 3.0))
+    arrival.start()
+    started = time.monotonic()
+    assert barrier.wait() == []
+    arrival.join()
+    assert 0.04 <= time.monotonic() - started < 4.0
+    assert barrier.stats.waits == 1
