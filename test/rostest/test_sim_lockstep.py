@@ -17,8 +17,8 @@ from rosgraph_msgs.msg import Clock, Log
 from sensor_msgs.msg import LaserScan
 from std_srvs.srv import Trigger
 
-from flex_nav.msg import ClearCostmapAction, ClearCostmapResult, SimEvent
-from flex_nav.ros.proxies import ActionClientProxy
+from flex_nav.msg import ClearCostmapAction, ClearCostmapResult, LockstepHold, SimEvent
+from flex_nav.ros.proxies import ActionClientProxy, RosProxies
 from flex_nav.ros.lockstep import LockstepParticipant
 from flex_nav.ros.node import init_node
 
@@ -50,6 +50,7 @@ class TestSimLockstep(unittest.TestCase):
         cls.scan = WallLog("/robot1/scan", LaserScan)
         cls.events = WallLog("/sim_events", SimEvent)
         cls.rosout = WallLog("/rosout", Log)
+        cls.holds = WallLog("/lockstep/holds", LockstepHold)
         cls.tf_buffer = tf2_ros.Buffer()
         cls.tf_listener = tf2_ros.TransformListener(cls.tf_buffer)
         cls.clock.newest(lambda m: clock_s(m) > 0.5)
@@ -177,6 +178,31 @@ class TestSimLockstep(unittest.TestCase):
         self.clock.newest(lambda m: clock_s(m) > tick_s + 0.05)
         self.assertTrue(client.has_result())
         self.assertEqual(client.state(), GoalStatus.SUCCEEDED)
+
+    def test_7_a_behaviors_velocity_commands_are_announced_with_its_hold(self):
+        hold = LockstepParticipant("announcing_behavior", enabled=True)
+        self.assertTrue(hold.wait_connected(WAIT_S))
+        proxies = RosProxies(lockstep=hold)
+        try:
+            commands = proxies.publisher("/robot1/cmd_vel_stamped", TwistStamped)
+            deadline = time.monotonic() + WAIT_S
+            while commands.get_num_connections() == 0 and time.monotonic() < deadline:
+                time.sleep(0.01)
+            tick_s = self.now() + 0.5
+            hold.hold_clock(tick_s)
+            self.stands_at(tick_s, 0.05)
+            stop = TwistStamped()
+            stop.header.stamp = self.clock.newest(lambda m: True).clock
+            commands.publish(stop)
+            announced = self.holds.newest(lambda m: m.participant == hold.name and m.sent_topic)
+            self.assertEqual(announced.sent_topic, "/robot1/cmd_vel_stamped")
+            self.assertEqual(announced.sent_stamp_s, stop.header.stamp.to_sec())
+            self.assertTrue(announced.holding)  # with the behavior's current hold, which it keeps
+            self.assertEqual(announced.stamp_s, tick_s)
+            hold.release()
+            self.clock.newest(lambda m: clock_s(m) > tick_s + 0.05)  # received: the simulation goes on
+        finally:
+            proxies.shutdown()
 
 
 if __name__ == "__main__":

@@ -28,7 +28,7 @@ import math
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
 from flex_nav.behavior.container import Container, listed
-from flex_nav.behavior.state import State, StateRuntime
+from flex_nav.behavior.state import DUE_SLACK_S, State, StateRuntime
 from flex_nav.exceptions import (
     BehaviorConstructionError,
     BehaviorRuntimeError,
@@ -172,7 +172,7 @@ class ConcurrencyContainer(Container):
                 outcome, route, forced = resolved
             else:
                 child_due = child.due
-                if child_due > now:
+                if child_due > now + DUE_SLACK_S:
                     due = min(due, child_due)
                     continue
                 result = child.tick(now)

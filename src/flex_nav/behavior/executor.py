@@ -44,7 +44,7 @@ from flex_nav.behavior.container import Container
 from flex_nav.behavior.context import CURRENT_CONTEXT, HOLD_PAUSE, BehaviorContext, hook_error
 from flex_nav.behavior.events import BehaviorStatus, CommandEvent, LogLevel, StatusEvent
 from flex_nav.behavior.proxies import Proxies
-from flex_nav.behavior.state import Pending, PendingReason, State, StateRuntime
+from flex_nav.behavior.state import DUE_SLACK_S, Pending, PendingReason, State, StateRuntime
 from flex_nav.behavior.userdata import UserDataView, view_parts
 from flex_nav.behavior.userdata_summary import MISSING, StateUserdata
 from flex_nav.exceptions import (
@@ -289,7 +289,7 @@ class BehaviorExecutor:
                 if self._terminal or self._paused:
                     return False
                 now = self._ctx.clock.now()
-                if self._rt.due > now:
+                if self._rt.due > now + DUE_SLACK_S:
                     return False
                 self._tick(now)
                 return True
@@ -335,7 +335,7 @@ class BehaviorExecutor:
                         with lock:
                             self._preempt(f"run() timed out after {timeout_s} s", now)
                     break
-                if self._paused or root.due > now:
+                if self._paused or root.due > now + DUE_SLACK_S:
                     if should_stop is not None and should_stop():
                         with lock:
                             self._preempt("stopped: shutdown requested", now)

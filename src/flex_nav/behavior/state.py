@@ -71,6 +71,10 @@ if TYPE_CHECKING:
     from flex_nav.behavior.context import BehaviorContext, ContextRuntime
 
 DEFAULT_RATE_HZ = 10.0  # [Hz] FlexBE's default execution rate of a state
+# [s] a tick due this little after the clock's time counts as due now: a clock's stamp is not an exact float sum of
+# periods (1.1 + 0.1 > 1.2), and a tick found not quite due would wait for the next clock step (a simulated clock's,
+# or a lockstep simulation's) and every later tick would come that much later
+DUE_SLACK_S = 1e-6
 
 
 class PendingReason(enum.Enum):
@@ -260,7 +264,7 @@ class StateRuntime:
         self.active = True
         self.entering = True
         # a state never executes faster than its rate, even when it is re-entered at once (loops)
-        self.due = now if self.next_s <= now else self.next_s
+        self.due = now if self.next_s <= now + DUE_SLACK_S else self.next_s
         ctx = self.ctx
         if ctx is not None and ctx.priority and ctx.outside_priority(self):
             ctx.hold_leaf(self, HOLD_PRIORITY)

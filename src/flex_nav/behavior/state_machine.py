@@ -22,7 +22,7 @@ import math
 from typing import Any, Dict, List, Mapping, Optional, Sequence
 
 from flex_nav.behavior.container import Container, child_path, listed
-from flex_nav.behavior.state import Route, State, StateRuntime
+from flex_nav.behavior.state import DUE_SLACK_S, Route, State, StateRuntime
 from flex_nav.exceptions import (
     LabelClashError,
     MissingInitialStateError,
@@ -206,7 +206,7 @@ class StateMachine(Container):
                 return None
             outcome, route, forced = resolved
         else:
-            if child.due > now:
+            if child.due > now + DUE_SLACK_S:
                 rt.due = child.due
                 return None
             outcome = child.tick(now)

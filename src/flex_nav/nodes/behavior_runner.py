@@ -49,6 +49,7 @@ import concurrent.futures
 import dataclasses
 import importlib
 import threading
+import time
 from pathlib import Path
 from typing import Any, Callable, Dict, FrozenSet, List, Optional, Sequence, Tuple, Union
 
@@ -71,7 +72,7 @@ from flex_nav.resources import behaviors_dir
 from flex_nav.ros.lockstep import LockstepParticipant
 from flex_nav.ros.operator_interface import OperatorPublisher
 from flex_nav.ros.proxies import RosProxies
-from flex_nav.ros.ros_clock import RosClock
+from flex_nav.ros.ros_clock import RosClock, next_grid_point
 from flex_nav.ros.userdata_publisher import DEFAULT_RATE_HZ, UserdataPublisher, no_userdata, userdata_topic
 
 PACKAGE_BEHAVIORS = behaviors_dir()
@@ -79,6 +80,8 @@ PYTHON_PREFIX = "py:"  # ~behavior given as a FlexBE behavior class: py:package.
 COMMAND_APPLY_TIMEOUT_S = 2.0  # [s] bound on waiting for the executor to apply a command
 STOP_TIMEOUT_S = 5.0  # [s] bound on waiting for a preempted behavior to exit its states
 LOAD_TIMEOUT_S = 10.0  # [s] bound on a load (read, build, validate); = the loader's own max_load_s
+LOCKSTEP_START_GRID_S = 1.0  # [s] lockstep: a behavior starts at a whole second of simulated time
+LOCKSTEP_START_WAIT_S = 10.0  # [s] wall: bound on waiting for that second (a stalled clock starts it anyway)
 SHOWN_CHARS = 60  # characters of a remote argument repeated in an answer
 
 Loader = Callable[[BehaviorSource, Dict[str, Any], Sequence[Path]], Behavior]
@@ -237,10 +240,11 @@ class BehaviorRunner:
     def _build(self, source: Union[str, BehaviorSource], level: Autonomy, parameters: Dict[str, Any],
                inputs: Dict[str, Any]) -> _Built:
         """Runs in the load's worker thread: the behavior and its executor, not started yet."""
-        proxies = RosProxies()
-        what = source if isinstance(source, str) else source.text
-        # a running behavior's ticks hold a lockstep simulation (released in _run when it ends)
+        # a running behavior's ticks hold a lockstep simulation (released in _run when it ends); its states'
+        # velocity commands are announced with the same participant
         hold = LockstepParticipant("behavior")
+        proxies = RosProxies(lockstep=hold)
+        what = source if isinstance(source, str) else source.text
         clock = RosClock(lockstep=hold) if hold.enabled else RosClock()
         context = BehaviorContext(what, autonomy=level, supervised=self.supervised, clock=clock, proxies=proxies)
         try:
@@ -295,16 +299,33 @@ class BehaviorRunner:
         return merged
 
     def _run(self, executor: BehaviorExecutor, proxies: RosProxies) -> None:
+        clock = executor.context.clock
+        hold: Optional[LockstepParticipant] = getattr(clock, "lockstep", None)  # a RosClock's, in lockstep
         try:
+            if hold is not None:
+                self._wait_for_start_grid(clock)
             result = executor.run()
         finally:
             proxies.shutdown()
-            clock = executor.context.clock
-            if isinstance(clock, RosClock) and clock.lockstep is not None:
-                clock.lockstep.release()
+            if hold is not None:
+                hold.release()
         rospy.loginfo(f"behavior {self._name!r} ended: {result.status.name} {result.outcome or ''} {result.reason}")
         if self.on_done is not None:
             self.on_done(result)
+
+    def _wait_for_start_grid(self, clock: Any) -> None:
+        """Lockstep: the behavior starts on the grid of whole seconds of simulated time (held there), so its states
+        tick at the same simulated times whenever its node came up (each state's ticks follow from its entry);
+        bounded by LOCKSTEP_START_WAIT_S of wall time (a stalled clock starts it anyway, with a warning)."""
+        start_s = next_grid_point(clock.now(), LOCKSTEP_START_GRID_S)
+        never = threading.Event()
+        wall_deadline = time.monotonic() + LOCKSTEP_START_WAIT_S
+        while clock.now() < start_s and not rospy.is_shutdown():
+            if time.monotonic() > wall_deadline:
+                rospy.logwarn(f"behavior {self._name!r}: simulated time did not reach {start_s:.3f} s within "
+                              f"{LOCKSTEP_START_WAIT_S:g} s of wall time: started at {clock.now():.3f} s")
+                return
+            clock.wait_until(start_s, never)
 
     def stop(self, timeout_s: float = STOP_TIMEOUT_S) -> str:
         """Cancel a load in progress, or preempt the running behavior and wait (bounded) until it exited its states."""

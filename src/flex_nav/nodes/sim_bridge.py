@@ -626,6 +626,8 @@ class SimBridge:
         io.state.header.frame_id = io.frame_base
         io.state.pressed = [r.pressed[z] for z in io.state.zones]
         io.pub_state.publish(io.state)
+        if self.lockstep is not None:  # bumper_relay holds on it
+            self.lockstep.published(io.pub_state.resolved_name, io.state.header.stamp.to_sec())
 
     def _on_contact(self, r: ContactReading) -> None:
         msg = SimEvent()

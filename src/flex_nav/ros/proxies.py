@@ -21,6 +21,7 @@ import actionlib
 import rospy
 from actionlib.action_client import ClientGoalHandle, CommState
 from actionlib_msgs.msg import GoalStatus
+from geometry_msgs.msg import TwistStamped
 
 from flex_nav.behavior.proxies import Connections
 from flex_nav.exceptions import NotReadyError, TimedOutError
@@ -34,15 +35,32 @@ MsgT = TypeVar("MsgT")
 DEFAULT_BUFFER_SIZE = 10  # messages kept by a buffered subscription
 PUBLISH_DRAIN_S = 1.0  # [s] bound on sending what is still queued (a final zero twist) before unregistering
 SHUTDOWN_DRAIN_S = 0.5  # [s] bound on sending a node's last zero twist while it shuts down
+# [s] lockstep: a stamped message at most this far ahead of ROS time waits for it (one stamped further ahead was
+# stamped on another clock: taken in at once, the states judge its age)
+EARLY_WINDOW_S = 1.0
 AVAILABILITY_POLL_S = 0.01  # [s] how often ActionClientProxy.is_available looks again while it may wait
 
 
-class Subscription(Generic[MsgT]):
-    """The newest message of a topic (and optionally a bounded buffer of recent ones), filled by a callback."""
+def _stamp_s(msg: Any) -> float:
+    """[s] a message's header stamp (0: it has none)."""
+    header = getattr(msg, "header", None)
+    stamp = getattr(header, "stamp", None)
+    return float(stamp.to_sec()) if stamp is not None else 0.0
 
-    def __init__(self, topic: str, msg_type: type, buffer_size: int = 0) -> None:
+
+class Subscription(Generic[MsgT]):
+    """The newest message of a topic (and optionally a bounded buffer of recent ones), filled by a callback.
+
+    ``lockstep`` (a behavior's subscriptions in a lockstep simulation): a stamped message is taken in only once ROS
+    time has passed its stamp. A message stamped at the time the simulation stands at arrives before or after the
+    reader's tick at that time by a wall-time race; so it is seen at the next tick either way, whatever the load.
+    (The extra callbacks still get every message as it arrives.)"""
+
+    def __init__(self, topic: str, msg_type: type, buffer_size: int = 0, *, lockstep: bool = False) -> None:
         self.topic = topic
         self.msg_type = msg_type
+        self._lockstep = lockstep
+        self._early: Deque[MsgT] = collections.deque()  # (lockstep) arrived, stamped at or after ROS time then
         self._lock = threading.Lock()
         self._last: Optional[MsgT] = None
         self._last_wall_s = 0.0  # [s] time.monotonic() when the newest message arrived
@@ -57,13 +75,31 @@ class Subscription(Generic[MsgT]):
 
     def _callback(self, msg: MsgT) -> None:
         with self._lock:
-            self._last = msg
-            self._last_wall_s = time.monotonic()
-            if self._buffered:
-                self._buffer.append(msg)
+            if self._lockstep and 0.0 <= _stamp_s(msg) - rospy.get_time() < EARLY_WINDOW_S:
+                self._early.append(msg)
+            else:
+                self._take(msg)
             callbacks = list(self._callbacks)
         for callback in callbacks:  # outside the lock: a callback may read this subscription
             callback(msg)
+
+    def _take(self, msg: MsgT) -> None:
+        """(lock held) ``msg`` becomes the newest message (and is buffered)."""
+        self._last = msg
+        self._last_wall_s = time.monotonic()
+        if self._buffered:
+            self._buffer.append(msg)
+
+    def _take_due(self) -> None:
+        """(lock held; lockstep) Take in the early messages whose stamp ROS time has passed, in arrival order."""
+        if not self._early:
+            return
+        now_s = rospy.get_time()
+        due = [msg for msg in self._early if _stamp_s(msg) < now_s]
+        if due:
+            self._early = collections.deque(msg for msg in self._early if _stamp_s(msg) >= now_s)
+            for msg in due:  # in the order they arrived
+                self._take(msg)
 
     def add_callback(self, callback: Callable[[MsgT], None]) -> None:
         """Also call ``callback(msg)`` for every message (in rospy's thread, after caching it)."""
@@ -89,30 +125,36 @@ class Subscription(Generic[MsgT]):
 
     def has_msg(self) -> bool:
         with self._lock:
+            self._take_due()
             return self._last is not None
 
     def last(self) -> Optional[MsgT]:
         """The newest message, or None if none arrived (or it was removed)."""
         with self._lock:
+            self._take_due()
             return self._last
 
     def age_s(self) -> float:
         """[s] wall time since the newest message arrived (inf if none)."""
         with self._lock:
+            self._take_due()
             return time.monotonic() - self._last_wall_s if self._last is not None else float("inf")
 
     def remove_last(self) -> None:
         """Forget the newest message, so that :meth:`has_msg` waits for a new one."""
         with self._lock:
+            self._take_due()
             self._last = None
 
     def has_buffered(self) -> bool:
         with self._lock:
+            self._take_due()
             return bool(self._buffer)
 
     def pop_buffered(self) -> Optional[MsgT]:
         """The oldest buffered message not yet taken, or None."""
         with self._lock:
+            self._take_due()
             return self._buffer.popleft() if self._buffer else None
 
     def wait_for_message(self, timeout_s: float) -> MsgT:
@@ -313,10 +355,28 @@ class ServiceCallerProxy:
             raise NotReadyError(f"service {rospy.resolve_name(self.name)} failed: {err}") from err
 
 
-class RosProxies:
-    """The connections of one behavior, shared among its states by name; :meth:`shutdown` releases them all."""
+class AnnouncingPublisher(rospy.Publisher):
+    """A behavior's velocity command publisher in a lockstep simulation: after each TwistStamped it tells the
+    simulator, through the behavior's ``lockstep`` participant, that the command is on its way (the simulation steps
+    on once it is in, so a state's command drives the robot from the next step whatever the load)."""
 
-    def __init__(self) -> None:
+    def __init__(self, topic: str, msg_type: type, lockstep: LockstepParticipant, **kwargs: Any) -> None:
+        super().__init__(topic, msg_type, **kwargs)
+        self._lockstep = lockstep
+
+    def publish(self, *args: Any, **kwargs: Any) -> None:
+        super().publish(*args, **kwargs)
+        msg = args[0] if args else None
+        if isinstance(msg, TwistStamped):
+            self._lockstep.sent(self.resolved_name, msg.header.stamp.to_sec())
+
+
+class RosProxies:
+    """The connections of one behavior, shared among its states by name; :meth:`shutdown` releases them all.
+    ``lockstep``: the behavior's participant in a lockstep simulation (its velocity commands are announced with it)."""
+
+    def __init__(self, lockstep: Optional[LockstepParticipant] = None) -> None:
+        self._announce = lockstep if lockstep is not None and lockstep.enabled else None
         self._lock = threading.Lock()
         self._publishers: Connections[Tuple[type, rospy.Publisher]] = Connections("topic", lambda known: known[0])
         self._subscriptions: Connections[Subscription[Any]] = Connections("topic", lambda known: known.msg_type)
@@ -325,6 +385,9 @@ class RosProxies:
 
     def publisher(self, topic: str, msg_type: type, latch: bool = False, queue_size: int = 10) -> rospy.Publisher:
         def make() -> Tuple[type, rospy.Publisher]:  # kept with the type it was made with
+            if self._announce is not None and msg_type is TwistStamped:
+                return msg_type, AnnouncingPublisher(topic, msg_type, self._announce, latch=latch,
+                                                     queue_size=queue_size)
             return msg_type, rospy.Publisher(topic, msg_type, latch=latch, queue_size=queue_size)
 
         with self._lock:
@@ -332,7 +395,8 @@ class RosProxies:
 
     def subscription(self, topic: str, msg_type: type, buffer_size: int = 0) -> Subscription[Any]:
         with self._lock:
-            sub = self._subscriptions.shared(topic, msg_type, lambda: Subscription(topic, msg_type, buffer_size))
+            sub = self._subscriptions.shared(topic, msg_type, lambda: Subscription(
+                topic, msg_type, buffer_size, lockstep=self._announce is not None))
             if buffer_size > 0:  # a subscription made before without a buffer gets one (no-op when buffering)
                 sub.enable_buffer(buffer_size)
             return sub

@@ -13,10 +13,18 @@ from typing import Callable, Optional
 
 import rospy
 
+from flex_nav.behavior.state import DUE_SLACK_S
 from flex_nav.ros.lockstep import LockstepParticipant
 
 SIM_TIME_POLL_S = 0.002  # [s] wall period at which a wait on simulated time re-reads the clock
 IDLE_WAIT_S = 0.1  # [s] wall bound of a wait with no finite deadline
+GRID_SLACK_S = 1e-6  # [s] a grid point k * period is due this much early (k * period is not exact in floats)
+
+
+def next_grid_point(now_s: float, period_s: float) -> float:
+    """[s] the first point of the grid k * ``period_s`` [s] after ``now_s`` (each due GRID_SLACK_S early): a
+    timer on it ticks at the same times whenever it was started, so a run does not depend on when its node came up."""
+    return (math.floor((now_s + 2.0 * GRID_SLACK_S) / period_s) + 1.0) * period_s - GRID_SLACK_S
 
 
 class RosClock:
@@ -45,8 +53,8 @@ class RosClock:
         return min(remaining_s, self._poll_s) if self._sim_time else remaining_s
 
     def wait_until(self, deadline_s: float, wake: threading.Event) -> None:
-        if self.lockstep is not None:
-            self.lockstep.hold_clock(deadline_s)
+        if self.lockstep is not None:  # at the step that makes the deadline due (within the behaviors' DUE_SLACK_S)
+            self.lockstep.hold_clock(deadline_s - DUE_SLACK_S)
         wait_s = self.wall_wait_s(deadline_s, self.now())
         if wait_s > 0.0:
             wake.wait(wait_s)
@@ -55,7 +63,8 @@ class RosClock:
 class LockstepTimer:
     """``callback(now_s)`` every ``period_s`` [s] of ROS time on a daemon thread named ``name``, holding a lockstep
     simulation at each call until it returns (a rospy.Timer fires beside the stepping simulation, at whatever
-    step its thread gets to run). A call comes late rather than twice; ROS time moving back starts afresh. It runs
+    step its thread gets to run). The calls fall on the grid k * ``period_s`` (:func:`next_grid_point`), not on
+    the time the timer started. A call comes late rather than twice; ROS time moving back starts afresh. It runs
     until rospy shuts down (the costmaps keep theirs for the node's life)."""
 
     def __init__(self, period_s: float, callback: Callable[[float], None], participant: LockstepParticipant,
@@ -68,14 +77,13 @@ class LockstepTimer:
         self._thread.start()
 
     def _loop(self) -> None:
-        next_s = self._clock.now() + self._period_s
+        next_s = next_grid_point(self._clock.now(), self._period_s)
         while not rospy.is_shutdown():
             now_s = self._clock.now()
             if now_s < next_s - 2.0 * self._period_s:  # ROS time went back (a restarted simulation)
-                next_s = now_s + self._period_s
+                next_s = next_grid_point(now_s, self._period_s)
             if now_s >= next_s:
                 self._callback(now_s)
-                while next_s <= now_s:  # on the grid of the first call; ticks missed while late are skipped
-                    next_s += self._period_s
+                next_s = next_grid_point(now_s, self._period_s)  # ticks missed while late are skipped
                 continue
             self._clock.wait_until(next_s, self._never)

@@ -6,7 +6,7 @@ import math
 
 import pytest
 
-from flex_nav.apps.eval.run_divergence import Divergence, Recording, first_divergence, report
+from flex_nav.apps.eval.run_divergence import Divergence, Recording, aligned, first_divergence, report
 
 
 def test_the_earliest_common_stamp_that_differs_is_found_whatever_the_order_given() -> None:
@@ -57,3 +57,13 @@ def test_the_report_of_two_equal_runs_says_so() -> None:
     run = Recording({1.0: (0.0,)}, {1.0: (1.0,)}, [])
     assert report(run, run, 0.0)[1:] == ["ground truth: the same at every common stamp",
                                         "scans: the same at every common stamp"]
+
+
+def test_recordings_are_aligned_on_their_first_transition() -> None:
+    late = Recording({10.0: (1.0,), 10.1: (2.0,)}, {10.05: (3.0,)}, [(10.029, "/Plan --planned--> Follow"),
+                                                                   (10.0, "/ReceiveGoal --received--> Plan")])
+    shifted = aligned(late)
+    assert shifted.truth == {0.0: (1.0,), 0.1: (2.0,)}
+    assert shifted.scans == {0.05: (3.0,)}
+    assert shifted.transitions == [(0.029, "/Plan --planned--> Follow"), (0.0, "/ReceiveGoal --received--> Plan")]
+    assert aligned(Recording({1.0: (1.0,)}, {}, [])).truth == {1.0: (1.0,)}

@@ -1,12 +1,14 @@
 """Where two recordings of the same run part: the first stamp at which their ground truth or their scans differ.
 
-``python -m flex_nav.apps.eval.run_divergence A/run.bag B/run.bag [--robot robot1] [--tolerance 1e-6]``
+``python -m flex_nav.apps.eval.run_divergence A/run.bag B/run.bag [--robot robot1] [--tolerance 1e-6] [--absolute]``
 
 Two runs of one world, behavior and seed (``scenario_run --bag``, e.g. one after another and beside another run,
 or at two real-time factors) should be the same run in a lockstep simulation. When their times differ, this names
 the first simulated time [s] at which the robot's ground truth (pose [m], velocities [m/s], [rad/s]) differs by more
 than ``--tolerance``, the first scan that differs, and the behavior transitions of each run around it: what to look
-at next. The comparison is pure (:func:`first_divergence`); only :func:`read_bag` needs rosbag.
+at next. Times are counted from each run's first behavior transition (the goal's arrival), so two runs whose
+world started at different simulated times compare step by step (``--absolute``: the recorded stamps). The
+comparison is pure (:func:`first_divergence`); only :func:`read_bag` needs rosbag.
 """
 
 from __future__ import annotations
@@ -17,7 +19,7 @@ import sys
 from pathlib import Path
 from typing import Dict, List, Mapping, NamedTuple, Optional, Sequence, Tuple
 
-STAMP_DIGITS = 6  # stamps are matched rounded to the microsecond (the simulator steps at 1/240 s)
+STAMP_DIGITS = 4  # stamps are matched rounded to 0.1 ms (the simulator steps at 1/240 s)
 
 
 class Divergence(NamedTuple):
@@ -56,6 +58,19 @@ def _same(x: float, y: float, tolerance: float) -> bool:
     if math.isinf(x) or math.isinf(y):
         return x == y
     return abs(x - y) <= tolerance
+
+
+def aligned(recording: Recording) -> Recording:
+    """``recording`` with every stamp counted from its first transition (unchanged without transitions)."""
+    if not recording.transitions:
+        return recording
+    origin_s = min(s for s, _ in recording.transitions)
+
+    def shifted(samples: Dict[float, Tuple[float, ...]]) -> Dict[float, Tuple[float, ...]]:
+        return {round(s - origin_s, STAMP_DIGITS): v for s, v in samples.items()}
+
+    return Recording(shifted(recording.truth), shifted(recording.scans),
+                     [(round(s - origin_s, STAMP_DIGITS), what) for s, what in recording.transitions])
 
 
 def read_bag(path: Path, robot: str) -> Recording:
@@ -117,6 +132,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     parser.add_argument("second", type=Path, help="run.bag of the other run")
     parser.add_argument("--robot", default="robot1", help="the robot's namespace")
     parser.add_argument("--tolerance", type=float, default=1e-6, help="largest difference that counts as equal")
+    parser.add_argument("--absolute", action="store_true",
+                        help="compare at the recorded stamps (default: from each run's first behavior transition)")
     args = parser.parse_args(argv)
     for path in (args.first, args.second):
         if not path.is_file():
@@ -126,6 +143,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         empty = args.first if not first.truth else args.second
         print(f"{empty}: no ground truth of robot {args.robot!r} (/{args.robot}/ground_truth)", file=sys.stderr)
         return 2
+    if not args.absolute:
+        first, second = aligned(first), aligned(second)
+        print("times [s] from each run's first behavior transition (the goal's arrival)")
     for line in report(first, second, args.tolerance):
         print(line)
     return 0
