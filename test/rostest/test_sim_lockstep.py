@@ -8,9 +8,9 @@ import unittest
 import actionlib
 import rospy
 import rostest
-from actionlib_msgs.msg import GoalStatus
 import tf2_ros
-from geometry_msgs.msg import Twist, TwistStamped
+from actionlib_msgs.msg import GoalStatus
+from geometry_msgs.msg import PoseStamped, Twist, TwistStamped
 from message_log import MessageLog
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock, Log
@@ -18,14 +18,15 @@ from sensor_msgs.msg import LaserScan
 from std_srvs.srv import Trigger
 
 from flex_nav.msg import ClearCostmapAction, ClearCostmapResult, LockstepHold, SimEvent
-from flex_nav.ros.proxies import ActionClientProxy, RosProxies
 from flex_nav.ros.lockstep import LockstepParticipant
 from flex_nav.ros.node import init_node
+from flex_nav.ros.proxies import ActionClientProxy, RosProxies, Subscription
 
 WAIT_S = 20.0  # [s] wall-time bound on every wait
 TIMEOUT_S = 2.0  # [s] wall: the simulator's ~lockstep_timeout (sim_lockstep.test)
 STEP_S = 1.0 / 240.0  # [s] one physics step
 LATE_WALKER_AT_S = 10.0  # [s] open_room's start_walking event, in the world's time
+LEAD_S = 5.0  # [s] simulated: a hold this far ahead arrives before the simulation (rtf 0) gets there
 
 
 class WallLog(MessageLog):
@@ -64,11 +65,25 @@ class TestSimLockstep(unittest.TestCase):
         time.sleep(wall_s)
         self.assertLess(self.now(), stamp_s + STEP_S + 1e-6)
 
+    def frozen_at(self, hold):
+        """Hold simulated time where it is when the hold arrives (this node's view of /clock may lag behind on a
+        loaded machine, so a hold 'a little ahead' could already be passed) and return where it stands."""
+        hold.hold_clock(0.0)
+        deadline = time.monotonic() + WAIT_S
+        before = self.now()
+        while time.monotonic() < deadline:
+            time.sleep(0.2)
+            now = self.now()
+            if now == before:
+                return now
+            before = now
+        self.fail(f"simulated time did not stand still within {WAIT_S} s (at {before:.3f} s)")
+
     def test_1_a_clock_hold_stops_simulated_time_until_replaced(self):
         hold = LockstepParticipant("clock_hold", enabled=True)
         self.assertTrue(hold.wait_connected(WAIT_S))
-        stop_s = self.now() + 2.0
-        hold.hold_clock(stop_s)
+        stop_s = self.frozen_at(hold) + 1.0
+        hold.hold_clock(stop_s)  # replaced while the simulation stands: it goes on to there
         self.stands_at(stop_s, TIMEOUT_S / 2.0)
         hold.hold_clock(stop_s + 1.0)  # replaced: on to the next
         self.stands_at(stop_s + 1.0, TIMEOUT_S / 2.0)
@@ -78,7 +93,7 @@ class TestSimLockstep(unittest.TestCase):
     def test_2_a_topic_hold_stops_after_the_scan_and_its_transform_is_there(self):
         hold = LockstepParticipant("scan_hold", enabled=True)
         self.assertTrue(hold.wait_connected(WAIT_S))
-        after_s = self.now() + 1.0
+        after_s = self.now() + LEAD_S
         hold.hold_topic("/robot1/scan", after_s)
         scan = self.scan.newest(lambda m: m.header.stamp.to_sec() >= after_s)
         time.sleep(TIMEOUT_S / 2.0)
@@ -92,7 +107,7 @@ class TestSimLockstep(unittest.TestCase):
     def test_3_a_hold_nobody_replaces_is_dropped_after_the_timeout(self):
         hold = LockstepParticipant("forgotten_hold", enabled=True)
         self.assertTrue(hold.wait_connected(WAIT_S))
-        stop_s = self.now() + 1.0
+        stop_s = self.now() + LEAD_S
         hold.hold_clock(stop_s)
         self.clock.newest(lambda m: clock_s(m) >= stop_s)
         held_from = time.monotonic()
@@ -108,7 +123,7 @@ class TestSimLockstep(unittest.TestCase):
         start = rospy.ServiceProxy("/sim/start_world", Trigger)
         hold = LockstepParticipant("world_start", enabled=True)
         self.assertTrue(hold.wait_connected(WAIT_S))
-        start_s = self.now() + 1.0
+        start_s = self.now() + LEAD_S
         hold.hold_clock(start_s)  # so the start falls on a known step
         self.stands_at(start_s, 0.2)
         answer = start()
@@ -132,7 +147,7 @@ class TestSimLockstep(unittest.TestCase):
         while commands.get_num_connections() == 0 and time.monotonic() < deadline:
             time.sleep(0.01)
         self.assertGreater(commands.get_num_connections(), 0, "the simulator takes no stamped commands")
-        stop_s = self.now() + 1.0
+        stop_s = self.now() + LEAD_S
         hold.hold_clock(stop_s)
         self.stands_at(stop_s, 0.1)
         stamp = self.clock.newest(lambda m: True).clock
@@ -168,7 +183,7 @@ class TestSimLockstep(unittest.TestCase):
         self.assertTrue(client.is_available(WAIT_S))
         hold = LockstepParticipant("behavior_tick", enabled=True)
         self.assertTrue(hold.wait_connected(WAIT_S))
-        tick_s = self.now() + 1.0
+        tick_s = self.now() + LEAD_S
         hold.hold_clock(tick_s)
         self.stands_at(tick_s, 0.1)
         client.send_goal(ClearCostmapAction().action_goal.goal)
@@ -188,7 +203,7 @@ class TestSimLockstep(unittest.TestCase):
             deadline = time.monotonic() + WAIT_S
             while commands.get_num_connections() == 0 and time.monotonic() < deadline:
                 time.sleep(0.01)
-            tick_s = self.now() + 0.5
+            tick_s = self.now() + LEAD_S
             hold.hold_clock(tick_s)
             self.stands_at(tick_s, 0.05)
             stop = TwistStamped()
@@ -203,6 +218,38 @@ class TestSimLockstep(unittest.TestCase):
             self.clock.newest(lambda m: clock_s(m) > tick_s + 0.05)  # received: the simulation goes on
         finally:
             proxies.shutdown()
+
+    def test_8_a_message_stamped_at_the_standing_time_is_seen_only_once_time_has_passed_it(self):
+        publisher = rospy.Publisher("/gated_goal", PoseStamped, queue_size=10)
+        gated = Subscription("/gated_goal", PoseStamped, buffer_size=5, lockstep=True)
+        try:
+            deadline = time.monotonic() + WAIT_S
+            while publisher.get_num_connections() == 0 and time.monotonic() < deadline:
+                time.sleep(0.01)
+            hold = LockstepParticipant("gated_reader", enabled=True)
+            self.assertTrue(hold.wait_connected(WAIT_S))
+            tick_s = self.now() + LEAD_S
+            hold.hold_clock(tick_s)
+            self.stands_at(tick_s, 0.05)
+            now = self.clock.newest(lambda m: True).clock
+            current, older = PoseStamped(), PoseStamped()
+            current.header.stamp = now
+            older.header.stamp = now - rospy.Duration(1.0)
+            publisher.publish(current)
+            publisher.publish(older)
+            deadline = time.monotonic() + WAIT_S
+            while gated.last() is None and time.monotonic() < deadline:
+                time.sleep(0.01)
+            time.sleep(0.2)  # the message stamped now has arrived as well, surely
+            self.assertEqual(gated.last().header.stamp, older.header.stamp)  # only the one from before now
+            self.assertEqual(gated.pop_buffered().header.stamp, older.header.stamp)
+            self.assertIsNone(gated.pop_buffered())
+            hold.release()
+            self.clock.newest(lambda m: clock_s(m) > tick_s + 0.05)
+            self.assertEqual(gated.last().header.stamp, now)  # time has passed its stamp
+            self.assertEqual(gated.pop_buffered().header.stamp, now)
+        finally:
+            gated.unregister()
 
 
 if __name__ == "__main__":
