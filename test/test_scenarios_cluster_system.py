@@ -67,7 +67,7 @@ def rows_of(run: ClusterRun) -> Dict[str, Dict[str, str]]:
 @pytest.mark.ros
 def test_two_scenarios_run_at_once_on_a_two_worker_cluster(cluster_run: ClusterRun) -> None:
     assert cluster_run.status == 0, cluster_run.printed[-3000:]
-    assert "2 run(s) on 2 worker(s)" in cluster_run.printed, cluster_run.printed
+    assert "2 run(s) on 2 cluster worker(s)" in cluster_run.printed, cluster_run.printed
     tmp_path = cluster_run.out
     rows = rows_of(cluster_run)
     assert list(rows) == ["s1_light_box_door", "s3_person_in_door"]  # the plan's order

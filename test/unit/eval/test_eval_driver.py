@@ -103,7 +103,7 @@ def test_workers_run_at_the_same_time_and_the_table_keeps_the_plan_order(tmp_pat
     assert a_start < b_end and b_start < a_end  # they overlapped
     seeds = [line.split(",")[2] for line in (tmp_path / "results.csv").read_text().strip().splitlines()[1:]]
     assert seeds == ["0", "1"]
-    assert "on 1 worker(s)" in capsys.readouterr().out  # threads of one process: one host:pid
+    assert "2 run(s) on 2 local worker(s)" in capsys.readouterr().out
 
 
 def test_durations_of_an_earlier_table_start_the_longest_runs_first(tmp_path, monkeypatch, capsys):

@@ -301,8 +301,10 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         on_result(evaluation, "done")
     sys.stderr.write("\n")
     print(to_markdown([r for run in plan if (r := kept.get(run) or evaluation.results.get(run)) is not None]))
-    print(f"results: {out / 'results.md'}, {out / 'results.csv'}; {len(evaluation.results)} run(s) on "
-          f"{len(set(evaluation.workers.values()))} worker(s) in {time.monotonic() - started:.0f} s")
+    where = (f"{len(set(evaluation.workers.values()))} cluster worker(s)" if args.cluster
+             else f"{args.workers} local worker(s)")  # (a local pool's threads all report this process)
+    print(f"results: {out / 'results.md'}, {out / 'results.csv'}; {len(evaluation.results)} run(s) on {where} in "
+          f"{time.monotonic() - started:.0f} s")
     for label in evaluation.retried:
         print(f"run tried again: {label}", file=sys.stderr)
     for label in evaluation.broken:
