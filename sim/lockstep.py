@@ -78,6 +78,7 @@ class LockstepBarrier:
         self._cond = threading.Condition()
         self._holds: Dict[str, Hold] = {}
         self._published: Dict[str, float] = {CLOCK_TOPIC: -math.inf}  # topic -> newest stamp [s]
+        self._released_through: Dict[str, float] = {}  # participant -> newest stamp it let go through [s]
         self._sent: Dict[str, Hold] = {}  # participant -> the message it sent the simulator, not received yet
         self._received: Dict[str, float] = {}  # topic the simulator subscribes to -> newest stamp received [s]
         self.stats = LockstepStats()
@@ -85,7 +86,12 @@ class LockstepBarrier:
     def update(self, participant: str, holding: bool, topic: str, stamp_s: float, *, sent_topic: str = "",
                sent_stamp_s: float = 0.0) -> None:
         """A participant's new hold replaces its old one (``holding`` False: it lets go); with ``sent_topic``, it
-        sent the simulator a message stamped ``sent_stamp_s`` [s] there, to be waited for until :meth:`received`."""
+        sent the simulator a message stamped ``sent_stamp_s`` [s] there, to be waited for until :meth:`received`.
+
+        A release with a finite ``stamp_s`` lets go only of holds stamped up to it, and also of such a hold that
+        arrives after it: a participant whose holds and releases come from two nodes (an action client holds from
+        sending its goal, the server lets go once the goal runs) has no order between them, and the server's release
+        may overtake the client's hold. Any other release (stamp -inf) lets go of whatever is held."""
         if not participant:
             raise ConfigError("a lockstep hold must name its participant")
         if holding and not math.isfinite(stamp_s):
@@ -93,8 +99,15 @@ class LockstepBarrier:
         if sent_topic and not math.isfinite(sent_stamp_s):
             raise ConfigError(f"lockstep hold of {participant}: sent stamp {sent_stamp_s!r} is not a finite time")
         with self._cond:
-            if holding:
+            if holding and stamp_s <= self._released_through.get(participant, -math.inf):
+                pass  # let go of already: the release overtook it (see release_through below)
+            elif holding:
                 self._holds[participant] = Hold(participant, topic, stamp_s)
+            elif math.isfinite(stamp_s):  # let go of holds up to stamp_s, also one still on its way
+                self._released_through[participant] = max(stamp_s, self._released_through.get(participant, -math.inf))
+                old = self._holds.get(participant)
+                if old is not None and old.stamp_s <= stamp_s:
+                    del self._holds[participant]
             else:
                 self._holds.pop(participant, None)
             if sent_topic in self._received and self._received[sent_topic] < sent_stamp_s:

@@ -119,7 +119,7 @@ class FollowServer(FollowNode):
         watch.observe(last_plan_s, time.monotonic())
         pose: Optional[Pose2D] = None
         self.lockstep.hold_clock(next_due_s)
-        self.server.lockstep_accept.release()  # the goal holds on its own now
+        self.server.release_accept(ticket)  # the goal holds on its own now
         while True:
             self.lockstep.hold_clock(next_due_s)
             with self._wake:

@@ -84,7 +84,7 @@ class GetPathServer:
 
     def _run(self, ticket: GoalTicket) -> None:
         self.lockstep.hold_clock(rospy.get_time())
-        self.server.lockstep_accept.release()  # the goal holds on its own now
+        self.server.release_accept(ticket)  # the goal holds on its own now
         try:
             self._answer(ticket)
         finally:

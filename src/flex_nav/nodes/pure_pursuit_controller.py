@@ -335,7 +335,7 @@ class PurePursuitController(FollowNode):
             self.follower.watchdog.restart(next_due_s)
         last_feedback_s = -math.inf
         self.lockstep.hold_topic(self.odom_subscriber.resolved_name, next_due_s)
-        self.server.lockstep_accept.release()  # the goal holds on its own now
+        self.server.release_accept(ticket)  # the goal holds on its own now
         while True:
             wake = self._wait_for_tick(ticket, next_due_s, used_odom)
             if wake is Wake.CANCELLED:

@@ -410,6 +410,7 @@ class CostmapROS:
 
         def on_goal() -> None:
             server.accept_new_goal()
+            stamp_s = server.current_goal.get_goal_id().stamp.to_sec()  # its client's hold is stamped up to it
             result = ClearCostmapResult()
             try:
                 if self.costmap is None:
@@ -420,7 +421,7 @@ class CostmapROS:
                 result.code, result.message = ClearCostmapResult.SUCCESS, f"{self.name} cleared"
                 server.set_succeeded(result, result.message)
             finally:
-                accept.release()
+                accept.release(through_s=stamp_s)
 
         server.register_goal_callback(on_goal)
         server.start()

@@ -44,6 +44,7 @@ connections, the goal handles SimpleActionServer remembers, a hook ahead of its 
 from __future__ import annotations
 
 import enum
+import math
 import threading
 import time
 import traceback
@@ -72,10 +73,11 @@ class GoalTicket:
     """One accepted goal: the goal message, its sequence number, the node that sent it ("" if unknown), and
     whether it was cancelled or replaced."""
 
-    def __init__(self, goal: Any, number: int, sender: str = "") -> None:
+    def __init__(self, goal: Any, number: int, sender: str = "", stamp_s: float = -math.inf) -> None:
         self.goal = goal
         self.number = number
         self.sender = sender
+        self.stamp_s = stamp_s  # [s] ROS time of the goal id's stamp (its client sent it then)
         self.cancelled = threading.Event()
         self.sender_connection: Optional[int] = None  # id of the sender's status connection, once seen
         self.sender_missing_since: Optional[float] = None  # [s] ROS time
@@ -175,7 +177,8 @@ class GoalServer:
         self._forget_old_timeline(stamp)
         if self.lockstep_accept.enabled and any(
                 old is not None and stamp < old for old in map(self._internals.remembered_stamp, RememberedGoal)):
-            self._release_accept_if_idle()  # SimpleActionServer cancels it (older than a goal it keeps): no run
+            self._release_accept_if_idle(stamp.to_sec())  # SimpleActionServer cancels it (older than a goal it
+            # keeps): no run
 
     def _forget_old_timeline(self, stamp: rospy.Time) -> None:
         ahead_of = rospy.Time.now() + rospy.Duration(OLD_TIMELINE_TOLERANCE_S)
@@ -199,11 +202,12 @@ class GoalServer:
             return
         with self._cond:
             self._count += 1
-            ticket = GoalTicket(goal, self._count, self._internals.sender_of_current_goal())
+            stamp_s = self.server.current_goal.get_goal_id().stamp.to_sec()
+            ticket = GoalTicket(goal, self._count, self._internals.sender_of_current_goal(), stamp_s)
             self._current = ticket
             if self.server.is_preempt_requested():  # cancelled between arrival and acceptance
                 self._preempt(ticket, replaced=False)
-                self._release_accept_if_idle()  # no run of it will let go of its sender's hold
+                self._release_accept_if_idle(ticket.stamp_s)  # no run of it will let go of its sender's hold
                 return
             self._pending = ticket
             self._cond.notify_all()
@@ -232,12 +236,17 @@ class GoalServer:
             except Exception as err:
                 rospy.logerr(f"{self.name}: error while stopping goal #{ticket.number}: {err}")
 
-    def _release_accept_if_idle(self) -> None:
-        """Let go of the clients' accept hold unless a goal waits for its run (that run lets go of it: releasing it
-        here would let the simulation step before the waiting goal holds it)."""
+    def release_accept(self, ticket: GoalTicket) -> None:
+        """Let go of the accept hold ``ticket``'s client placed when it sent the goal (the goal holds on its own
+        now); only of holds up to the goal's stamp, so a later goal's hold stays, and one overtaken stays released."""
+        self.lockstep_accept.release(through_s=ticket.stamp_s)
+
+    def _release_accept_if_idle(self, through_s: float) -> None:
+        """Let go of the clients' accept hold up to ``through_s`` [s] unless a goal waits for its run (that run lets
+        go of it: releasing it here would let the simulation step before the waiting goal holds it)."""
         with self._cond:
             if self._pending is None:
-                self.lockstep_accept.release()
+                self.lockstep_accept.release(through_s=through_s)
 
     # ------------------------------------------------------------------ client watch thread
     def _watch_clients(self) -> None:
@@ -303,6 +312,6 @@ class GoalServer:
                     except Exception as inner:
                         rospy.logerr(f"{self.name}: error handler failed too: {inner}")
                 self.finish(ticket, GoalOutcome.ABORTED, self.result("FAILURE", f"internal error: {err!r}"))
-            self._release_accept_if_idle()
+            self._release_accept_if_idle(ticket.stamp_s)
             if self.finish(ticket, GoalOutcome.ABORTED, self.result("FAILURE", "the server ended without a result")):
                 rospy.logerr(f"{self.name}: goal #{ticket.number} ended without a result (a bug); aborted it")

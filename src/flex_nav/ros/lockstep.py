@@ -82,9 +82,10 @@ class LockstepParticipant:
         """Wait for me once a message on ``topic`` (resolved) stamped at or after ``stamp_s`` [s] is published."""
         self._send(True, topic, stamp_s)
 
-    def release(self) -> None:
-        """I wait for nothing now."""
-        self._send(False, "", 0.0)
+    def release(self, through_s: float = -math.inf) -> None:
+        """I wait for nothing now; with ``through_s`` [s]: for nothing stamped up to it, even a hold of mine that is
+        still on its way from another node (an action server letting go of the hold its client placed)."""
+        self._send(False, "", through_s)
 
     def sent(self, topic: str, stamp_s: float) -> None:
         """I have just published a message stamped ``stamp_s`` [s] on ``topic`` (resolved; the simulator subscribes

@@ -3,6 +3,7 @@ and the bounded wait that drops a hold nobody replaces."""
 
 from __future__ import annotations
 
+import math
 import threading
 import time
 from typing import List
@@ -56,9 +57,46 @@ def test_a_new_hold_or_a_release_replaces_the_participants_old_one() -> None:
     barrier.published(CLOCK_TOPIC, 1.0)
     assert {h.participant for h in barrier.blocking()} == {"a", "b"}
     barrier.update("a", True, CLOCK_TOPIC, 1.05)
-    barrier.update("b", False, "", 0.0)
+    barrier.update("b", False, "", -math.inf)
     assert barrier.blocking() == []
     assert barrier.holds() == [Hold("a", CLOCK_TOPIC, 1.05)]
+
+
+ACCEPT = "/robot1/get_path/accept"  # a client holds it when it sends a goal, the server lets go once the goal runs
+
+
+def test_a_release_through_a_stamp_lets_go_only_of_holds_up_to_it() -> None:
+    barrier = LockstepBarrier(1.0)
+    barrier.update(ACCEPT, True, CLOCK_TOPIC, 3.0)  # a later goal's hold
+    barrier.published(CLOCK_TOPIC, 3.0)
+    barrier.update(ACCEPT, False, "", 2.5)  # the release of an earlier goal's run
+    assert [h.stamp_s for h in barrier.blocking()] == [3.0]
+    barrier.update(ACCEPT, False, "", 3.0)
+    assert barrier.blocking() == []
+
+
+def test_a_hold_overtaken_by_its_release_is_not_placed() -> None:
+    barrier = LockstepBarrier(1.0)
+    barrier.published(CLOCK_TOPIC, 2.0)
+    barrier.update(ACCEPT, False, "", 2.0)  # the server's release arrived first
+    barrier.update(ACCEPT, True, CLOCK_TOPIC, 2.0)  # the client's hold, sent before the goal, arrives late
+    assert barrier.blocking() == []
+    assert barrier.holds() == []
+    barrier.update(ACCEPT, True, CLOCK_TOPIC, 2.0 + 1e-6)  # the next goal's hold is placed
+    assert barrier.holds() == [Hold(ACCEPT, CLOCK_TOPIC, 2.0 + 1e-6)]
+    barrier.update(ACCEPT, False, "", 2.0 + 1e-6)
+    barrier.update(ACCEPT, False, "", 1.0)  # an older release does not move the mark back
+    barrier.update(ACCEPT, True, CLOCK_TOPIC, 2.0)
+    assert barrier.holds() == []
+
+
+def test_an_unstamped_release_lets_go_of_any_hold_and_marks_nothing() -> None:
+    barrier = LockstepBarrier(1.0)
+    barrier.update("a", True, CLOCK_TOPIC, 5.0)
+    barrier.update("a", False, "", -math.inf)
+    assert barrier.holds() == []
+    barrier.update("a", True, CLOCK_TOPIC, 0.0)
+    assert barrier.holds() == [Hold("a", CLOCK_TOPIC, 0.0)]
 
 
 def test_wait_returns_when_the_blocking_hold_is_replaced_from_another_thread() -> None:
@@ -148,13 +186,13 @@ def test_a_command_received_before_the_hold_that_announces_it_is_not_waited_for(
     barrier = LockstepBarrier(1.0)
     barrier.subscribed(CMD)
     barrier.received(CMD, 1.95)  # the command overtook the hold on its own connection
-    barrier.update(CONTROL, False, "", 0.0, sent_topic=CMD, sent_stamp_s=1.95)
+    barrier.update(CONTROL, False, "", -math.inf, sent_topic=CMD, sent_stamp_s=1.95)
     assert barrier.blocking() == []
 
 
 def test_a_message_sent_where_the_simulator_does_not_listen_is_not_waited_for() -> None:
     barrier = LockstepBarrier(1.0)
-    barrier.update(CONTROL, False, "", 0.0, sent_topic="/robot1/remapped_cmd", sent_stamp_s=1.0)
+    barrier.update(CONTROL, False, "", -math.inf, sent_topic="/robot1/remapped_cmd", sent_stamp_s=1.0)
     assert barrier.blocking() == []
 
 
@@ -173,7 +211,7 @@ def test_a_sent_command_that_never_arrives_is_dropped_after_the_timeout_and_the_
 def test_wait_returns_when_the_sent_command_arrives_from_another_thread() -> None:
     barrier = LockstepBarrier(5.0)
     barrier.subscribed(CMD)
-    barrier.update(CONTROL, False, "", 0.0, sent_topic=CMD, sent_stamp_s=3.0)
+    barrier.update(CONTROL, False, "", -math.inf, sent_topic=CMD, sent_stamp_s=3.0)
     arrival = threading.Timer(0.05, barrier.received, (CMD, 3.0))
     arrival.start()
     started = time.monotonic()
