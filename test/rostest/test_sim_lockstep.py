@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """rostest node: the simulator's lockstep mode through a real master (see sim_lockstep.test)."""
 
+import math
 import sys
 import time
 import unittest
@@ -10,7 +11,7 @@ import rospy
 import rostest
 import tf2_ros
 from actionlib_msgs.msg import GoalStatus
-from geometry_msgs.msg import PoseStamped, Twist, TwistStamped
+from geometry_msgs.msg import PoseStamped, PoseWithCovarianceStamped, Twist, TwistStamped
 from message_log import MessageLog
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock, Log
@@ -54,6 +55,7 @@ class TestSimLockstep(unittest.TestCase):
         cls.events = WallLog("/sim_events", SimEvent)
         cls.rosout = WallLog("/rosout", Log)
         cls.holds = WallLog("/lockstep/holds", LockstepHold)
+        cls.poses = WallLog("/robot1/initialpose", PoseWithCovarianceStamped)
         cls.tf_buffer = tf2_ros.Buffer()
         cls.tf_listener = tf2_ros.TransformListener(cls.tf_buffer)
         cls.clock.newest(lambda m: clock_s(m) > 0.5)
@@ -133,6 +135,9 @@ class TestSimLockstep(unittest.TestCase):
         start = rospy.ServiceProxy("/sim/start_world", Trigger)
         hold = LockstepParticipant("world_start", enabled=True)
         self.assertTrue(hold.wait_connected(WAIT_S))
+        pose_hold = LockstepParticipant("localizer_like", enabled=True)  # as the localizer holds for a world start
+        self.assertTrue(pose_hold.wait_connected(WAIT_S))
+        pose_hold.hold_topic("/robot1/initialpose", math.nextafter(0.0, math.inf))
         start_s = self.now() + LEAD_S
         hold.hold_clock(start_s)  # so the start falls on a known step
         self.stands_at(start_s, 0.2)
@@ -140,6 +145,11 @@ class TestSimLockstep(unittest.TestCase):
         self.assertTrue(answer.success, answer.message)
         held_at_s = self.now()
         hold.release()
+        # the initial pose goes out again, stamped at the start, and the simulation waits for its taker
+        pose = self.poses.newest(lambda m: m.header.stamp.to_sec() > 0.0)
+        self.assertAlmostEqual(pose.header.stamp.to_sec(), held_at_s, delta=STEP_S / 2.0)
+        self.stands_at(held_at_s + STEP_S, TIMEOUT_S / 2.0)
+        pose_hold.release()
         event = self.events.newest(lambda e: e.kind == SimEvent.WORLD_EVENT)
         self.assertEqual(event.other, "late_walker")
         self.assertAlmostEqual(event.header.stamp.to_sec(), held_at_s + LATE_WALKER_AT_S, delta=2 * STEP_S)

@@ -38,6 +38,9 @@ the filter's (:class:`flex_nav.localization.FilterParams`: ``min_particles``, ``
                                              initial pose is the same run whenever it starts)
   ~transform_timeout float  0.1 [s]         bound on waiting for the odometry and laser transforms
 
+In a lockstep simulation (``/lockstep``) the node holds the simulation at every scan until it has weighed it, and
+at every ``initialpose`` stamped after time 0 (the simulator's at a world start) until it has applied it.
+
 Bad input is logged (throttled) with the field that is wrong and nothing wrong is published: beams that are NaN,
 -inf or outside the range limits are dropped beam by beam (+inf, "no return" in REP 117, is skipped quietly); a
 scan in a frame tf cannot place, a scan before the map or before an initial pose, an ``initialpose`` in another
@@ -146,6 +149,10 @@ class LocalizerNode:
         self.sub_map = rospy.Subscriber("map", OccupancyGrid, self._on_map, queue_size=1)
         self.sub_initial = rospy.Subscriber("initialpose", PoseWithCovarianceStamped, self._on_initial_pose,
                                             queue_size=1)
+        # lockstep: a stamped initial pose (the simulator's at a world start) is applied before the simulation steps
+        # on, so the first scan weighed from it is the same in every run (it raced the scans before)
+        self.initial_hold = LockstepParticipant("initialpose")
+        self.initial_hold.hold_topic(self.sub_initial.resolved_name, math.nextafter(0.0, math.inf))
         # the filter runs on a thread of its own (LatestWorker's docstring says why)
         self.scan_worker: LatestWorker[LaserScan] = LatestWorker(self._process_scan, "localizer scans")
         self.sub_scan = self.scan_worker.subscribe("scan", LaserScan, LockstepParticipant("scan"), buff_size=2**20)
@@ -186,6 +193,13 @@ class LocalizerNode:
                                  "or a global_localization call")
 
     def _on_initial_pose(self, msg: PoseWithCovarianceStamped) -> None:
+        try:
+            self._take_initial_pose(msg)
+        finally:  # (lockstep) held for the next one, stamped after this
+            stamp_s = max(msg.header.stamp.to_sec(), 0.0)
+            self.initial_hold.hold_topic(self.sub_initial.resolved_name, math.nextafter(stamp_s, math.inf))
+
+    def _take_initial_pose(self, msg: PoseWithCovarianceStamped) -> None:
         frame = msg.header.frame_id.lstrip("/")
         if frame != self.global_frame:
             self._complain("initial_frame", f"initialpose ignored: header.frame_id '{msg.header.frame_id}' is not "

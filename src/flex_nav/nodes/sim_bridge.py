@@ -50,7 +50,8 @@ Per robot ``NS`` (its name; frames are prefixed ``NS/``; an empty name is allowe
   subscribes NS/cmd_vel (geometry_msgs/Twist); in lockstep mode NS/cmd_vel_stamped (geometry_msgs/TwistStamped)
              instead, with twist_relay's rules: a command stamped before the newest one taken is dropped, at equal
              stamps a stop wins, a non-finite one stops the robot
-  with ~publish_initial_pose: NS/initialpose (geometry_msgs/PoseWithCovarianceStamped, map frame, latched)
+  with ~publish_initial_pose: NS/initialpose (geometry_msgs/PoseWithCovarianceStamped, map frame, latched; stamped
+             0 at the start, the world start's time at a world start: lockstep waits for a localizer to apply it)
 Global: /clock (rosgraph_msgs/Clock; run every other node with use_sim_time), sim_events (world events).
 Service ~start_world (std_srvs/Trigger, with ~world_start on_request): the world's script and fresh noise from the
 seed start before the next step, and with ~publish_initial_pose every robot's initial pose goes out again (the
@@ -259,10 +260,12 @@ class RobotIO:
         self.state.zones = [z.name for z in self.profile.bumper.zones]
         self.state.pressed = [False] * len(self.state.zones)
 
-    def publish_initial_pose(self, pose: Pose2D) -> None:
-        """``pose`` (the spawn) on NS/initialpose, latched, with the covariance of an operator's estimate."""
+    def publish_initial_pose(self, pose: Pose2D, stamp: Optional[genpy.Time] = None) -> None:
+        """``pose`` (the spawn) on NS/initialpose, latched, with the covariance of an operator's estimate; stamped
+        ``stamp`` (a world start's time; none: 0, the simulation's start)."""
         msg = PoseWithCovarianceStamped()
         msg.header.frame_id = self.map_frame
+        msg.header.stamp = stamp if stamp is not None else genpy.Time()
         _set_pose(msg.pose.pose, pose)
         msg.pose.covariance[0] = msg.pose.covariance[7] = INITIAL_STD_XY_M**2
         msg.pose.covariance[35] = INITIAL_STD_YAW_RAD**2
@@ -434,8 +437,11 @@ class SimBridge:
             self.sim.start_world()
             rospy.loginfo(f"sim: t = {self.sim.time:.3f} s: the world's script starts (people, events, fresh noise)")
             if self.publish_initial_pose:  # the robots' initial poses again, as an operator gives them at a start
+                stamp = stamp_of(self.sim.time)
                 for name, io in self.robots.items():
-                    io.publish_initial_pose(self.sim.truth_pose(name))
+                    io.publish_initial_pose(self.sim.truth_pose(name), stamp)
+                    if self.lockstep is not None:  # a localizer holds until it has applied it
+                        self.lockstep.published(io.pub_initial_pose.resolved_name, stamp.to_sec())
         if self._teleports:
             self._apply_teleports()
         if not self._pending:
