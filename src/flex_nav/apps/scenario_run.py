@@ -231,7 +231,6 @@ def start_at_grid(monitor: ScenarioMonitor, not_before_s: float, wall_deadline: 
     from flex_nav.ros.lockstep import LockstepParticipant  # noqa: PLC0415
 
     hold = LockstepParticipant("start", enabled=True)
-    world_s = math.ceil(not_before_s / START_GRID_S) * START_GRID_S
 
     def held_at(stamp_s: float) -> Optional[str]:
         hold.hold_clock(stamp_s)
@@ -245,7 +244,7 @@ def start_at_grid(monitor: ScenarioMonitor, not_before_s: float, wall_deadline: 
 
     try:
         if not hold.wait_connected(max(0.0, wall_deadline - time.monotonic())):
-            return "the simulator did not subscribe to the lockstep holds", world_s
+            return "the simulator did not subscribe to the lockstep holds", not_before_s
         # a grid point the simulation has not nearly reached while the simulator subscribed (half a grid ahead)
         world_s = math.ceil(max(not_before_s, monitor.sim_s() + START_GRID_S / 2.0) / START_GRID_S) * START_GRID_S
         problem = held_at(world_s)
