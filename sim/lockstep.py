@@ -14,7 +14,10 @@ work to do, and lets it go on once that work is done:
 A hold may also say that its participant has just *sent* the simulator a message (a velocity command stamped
 ``sent_stamp_s`` on ``sent_topic``): the simulation steps on only once that message has come in (:meth:`received`),
 so a command computed at one step is applied from the next, whatever the load (the two messages travel on two
-connections and either may arrive first).
+connections and either may arrive first). Messages between two nodes are waited for the same way once their
+receiver says it receives the topic (``received_topic`` with stamp -inf; +inf: it no longer does) and reports each
+message it has taken in (``received_topic``, ``received_stamp_s``): a controller following a plan topic takes each
+plan the behavior publishes before the simulation steps on.
 
 A participant replaces its hold by sending the next one (or lets go). Every wait is bounded: a hold that keeps the
 simulation waiting ``timeout_s`` [s of wall time] is dropped, reported, and counted (a participant that died or
@@ -27,7 +30,7 @@ import math
 import threading
 import time
 from dataclasses import dataclass
-from typing import Callable, Dict, List
+from typing import Callable, Dict, List, Tuple
 
 from flex_nav.exceptions import ConfigError
 
@@ -79,23 +82,28 @@ class LockstepBarrier:
         self._holds: Dict[str, Hold] = {}
         self._published: Dict[str, float] = {CLOCK_TOPIC: -math.inf}  # topic -> newest stamp [s]
         self._released_through: Dict[str, float] = {}  # participant -> newest stamp it let go through [s]
-        self._sent: Dict[str, Hold] = {}  # participant -> the message it sent the simulator, not received yet
-        self._received: Dict[str, float] = {}  # topic the simulator subscribes to -> newest stamp received [s]
+        self._sent: Dict[Tuple[str, str], Hold] = {}  # (participant, topic) -> a message it sent, not received yet
+        self._received: Dict[str, float] = {}  # topic the simulator or a node receives -> newest stamp received [s]
         self.stats = LockstepStats()
 
     def update(self, participant: str, holding: bool, topic: str, stamp_s: float, *, sent_topic: str = "",
-               sent_stamp_s: float = 0.0) -> None:
+               sent_stamp_s: float = 0.0, received_topic: str = "", received_stamp_s: float = 0.0) -> None:
         """A participant's new hold replaces its old one (``holding`` False: it lets go); with ``sent_topic``, it
         sent the simulator a message stamped ``sent_stamp_s`` [s] there, to be waited for until :meth:`received`.
 
         A release with a finite ``stamp_s`` lets go only of holds stamped up to it, and also of such a hold that
         arrives after it: a participant whose holds and releases come from two nodes (an action client holds from
         sending its goal, the server lets go once the goal runs) has no order between them, and the server's release
-        may overtake the client's hold. Any other release (stamp -inf) lets go of whatever is held."""
+        may overtake the client's hold. Any other release (stamp -inf) lets go of whatever is held.
+
+        ``received_topic``: the participant receives that topic (``received_stamp_s`` -inf; +inf: no longer) or has
+        taken in a message stamped ``received_stamp_s`` [s] there (see the module docstring)."""
         if not participant:
             raise ConfigError("a lockstep hold must name its participant")
         if holding and not math.isfinite(stamp_s):
             raise ConfigError(f"lockstep hold of {participant}: stamp {stamp_s!r} is not a finite time")
+        if received_topic and math.isnan(received_stamp_s):
+            raise ConfigError(f"lockstep hold of {participant}: received stamp {received_stamp_s!r} is not a time")
         if sent_topic and not math.isfinite(sent_stamp_s):
             raise ConfigError(f"lockstep hold of {participant}: sent stamp {sent_stamp_s!r} is not a finite time")
         with self._cond:
@@ -111,7 +119,11 @@ class LockstepBarrier:
             else:
                 self._holds.pop(participant, None)
             if sent_topic in self._received and self._received[sent_topic] < sent_stamp_s:
-                self._sent[participant] = Hold(participant, sent_topic, sent_stamp_s, sent=True)
+                self._sent[(participant, sent_topic)] = Hold(participant, sent_topic, sent_stamp_s, sent=True)
+            if received_topic and received_stamp_s == -math.inf:  # it receives the topic (again)
+                self._received[received_topic] = -math.inf
+            elif received_topic:  # a message it took in (+inf: it no longer receives the topic)
+                self._took(received_topic, received_stamp_s)
             self._cond.notify_all()
 
     def subscribed(self, topic: str) -> None:
@@ -123,12 +135,16 @@ class LockstepBarrier:
     def received(self, topic: str, stamp_s: float) -> None:
         """The simulator received a message stamped ``stamp_s`` [s] on ``topic`` (a ROS thread)."""
         with self._cond:
-            if stamp_s > self._received.get(topic, -math.inf):
-                self._received[topic] = stamp_s
-            for participant, sent in list(self._sent.items()):
-                if sent.topic == topic and sent.stamp_s <= stamp_s:
-                    del self._sent[participant]
-            self._cond.notify_all()
+            self._took(topic, stamp_s)
+
+    def _took(self, topic: str, stamp_s: float) -> None:
+        """(lock held) A message stamped ``stamp_s`` [s] on ``topic`` is in: sends up to it are waited for no more."""
+        if stamp_s > self._received.get(topic, -math.inf):
+            self._received[topic] = stamp_s
+        for key, sent in list(self._sent.items()):
+            if sent.topic == topic and sent.stamp_s <= stamp_s:
+                del self._sent[key]
+        self._cond.notify_all()
 
     def published(self, topic: str, stamp_s: float) -> None:
         """The stepping thread published a message on ``topic`` (:data:`CLOCK_TOPIC`: reached time) at ``stamp_s``."""
@@ -168,9 +184,11 @@ class LockstepBarrier:
                     since = first_blocked.setdefault(hold, now)
                     if now - since < self.timeout_s:
                         continue
-                    table = self._sent if hold.sent else self._holds
-                    if table.get(hold.participant) == hold:
-                        del table[hold.participant]
+                    if hold.sent and self._sent.get((hold.participant, hold.topic)) == hold:
+                        del self._sent[(hold.participant, hold.topic)]
+                        dropped.append(hold)
+                    elif not hold.sent and self._holds.get(hold.participant) == hold:
+                        del self._holds[hold.participant]
                         dropped.append(hold)
                 oldest = min(first_blocked.get(h, now) for h in blocking)
                 self._cond.wait(max(0.0, min(POLL_S, oldest + self.timeout_s - now)))

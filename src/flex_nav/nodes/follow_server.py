@@ -87,7 +87,7 @@ class FollowServer(FollowNode):
         self.global_frame = self.costmap.global_frame
         self.clock = RosClock(poll_s=CLOCK_POLL_S)
         self.lockstep = LockstepParticipant("replanning")  # a goal's replanning ticks hold a lockstep simulation
-        self._topics = TopicPaths(self._wake, self.clock)
+        self._topics = TopicPaths(self._wake, self.clock, LockstepParticipant("paths"))  # reports each Path taken in
         # not latched: a stale local plan must not steer the controller of a new goal
         self.plan_publisher = rospy.Publisher(private_name("~plan"), Path, queue_size=1)
         self.costmap.serve_clear_costmap(self.name + "/clear_costmap")

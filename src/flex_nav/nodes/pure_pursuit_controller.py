@@ -189,7 +189,7 @@ class PurePursuitController(FollowNode):
         self._odom_count = 0
         self._odom_stamp_s = -math.inf  # [s] the newest odometry's stamp
         self._publish_lock = threading.Lock()
-        self._topics = TopicPaths(self._wake, self.clock)
+        self._topics = TopicPaths(self._wake, self.clock, LockstepParticipant("paths"))  # reports each Path taken in
         self.cmd_publisher = rospy.Publisher("cmd_vel_stamped", TwistStamped, queue_size=1, tcp_nodelay=True)
         self.footprint_publisher = rospy.Publisher("footprint", PolygonStamped, queue_size=1, latch=True)
         if self.costmap.inflation.inscribed_radius > 0.0:  # a point robot (robot_radius 0) has no outline to draw

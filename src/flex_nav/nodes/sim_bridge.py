@@ -376,7 +376,8 @@ class SimBridge:
             return
         try:
             self.lockstep.update(msg.participant, msg.holding, msg.topic, msg.stamp_s, sent_topic=msg.sent_topic,
-                                 sent_stamp_s=msg.sent_stamp_s)
+                                 sent_stamp_s=msg.sent_stamp_s, received_topic=msg.received_topic,
+                                 received_stamp_s=msg.received_stamp_s)
         except ConfigError as err:
             rospy.logwarn_throttle(5.0, f"sim: lockstep hold ignored: {err}")
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 import threading
 import time
-from typing import Optional, Tuple
+from typing import Any, Optional, Tuple
 
 import rospy
 
@@ -89,14 +89,24 @@ class LockstepParticipant:
 
     def sent(self, topic: str, stamp_s: float) -> None:
         """I have just published a message stamped ``stamp_s`` [s] on ``topic`` (resolved; the simulator subscribes
-        to it, e.g. a velocity command): the simulation steps on only once it has received that message. Sent with
-        my current hold, before any later one."""
+        to it, e.g. a velocity command, or a node that reports it with :meth:`received`): the simulation steps on
+        only once it has received that message. Sent with my current hold, before any later one."""
+        self._report(sent_topic=topic, sent_stamp_s=stamp_s)
+
+    def received(self, topic: str, stamp_s: float) -> None:
+        """I have taken in a message stamped ``stamp_s`` [s] on ``topic`` (resolved): what was sent there up to that
+        stamp is waited for no more. ``stamp_s`` -inf: I receive ``topic`` from now on (messages announced there
+        are waited for until I report them); +inf: I no longer do."""
+        self._report(received_topic=topic, received_stamp_s=stamp_s)
+
+    def _report(self, **fields: Any) -> None:
+        """My current hold again, with ``fields`` of LockstepHold (a send or a receipt)."""
         if self._publisher is None:
             return
         with self._lock:
-            holding, topic_held, stamp_held = self._last if self._last is not None else (False, "", 0.0)
+            holding, topic_held, stamp_held = self._last if self._last is not None else (False, "", -math.inf)
             self._publisher.publish(LockstepHold(participant=self.name, holding=holding, topic=topic_held,
-                                                 stamp_s=stamp_held, sent_topic=topic, sent_stamp_s=stamp_s))
+                                                 stamp_s=stamp_held, **fields))
 
     def _send(self, holding: bool, topic: str, stamp_s: float) -> None:
         if self._publisher is None:

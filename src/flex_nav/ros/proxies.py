@@ -22,6 +22,7 @@ import rospy
 from actionlib.action_client import ClientGoalHandle, CommState
 from actionlib_msgs.msg import GoalStatus
 from geometry_msgs.msg import TwistStamped
+from nav_msgs.msg import Path
 
 from flex_nav.behavior.proxies import Connections
 from flex_nav.exceptions import NotReadyError, TimedOutError
@@ -355,10 +356,15 @@ class ServiceCallerProxy:
             raise NotReadyError(f"service {rospy.resolve_name(self.name)} failed: {err}") from err
 
 
+ANNOUNCED_TYPES = (TwistStamped, Path)  # a behavior's messages the simulator (commands) or a node (plans) waits for
+
+
 class AnnouncingPublisher(rospy.Publisher):
-    """A behavior's velocity command publisher in a lockstep simulation: after each TwistStamped it tells the
-    simulator, through the behavior's ``lockstep`` participant, that the command is on its way (the simulation steps
-    on once it is in, so a state's command drives the robot from the next step whatever the load)."""
+    """A behavior's publisher of velocity commands or plans in a lockstep simulation: after each message it tells the
+    simulator, through the behavior's ``lockstep`` participant, that the message (stamped) is on its way; the
+    simulation steps on once it is in (the simulator's own command topic, or a node that reports what it takes in,
+    as a controller following a plan topic does), so a state's command drives the robot from the next step and a
+    plan reaches its controller at the same step whatever the load."""
 
     def __init__(self, topic: str, msg_type: type, lockstep: LockstepParticipant, **kwargs: Any) -> None:
         super().__init__(topic, msg_type, **kwargs)
@@ -367,13 +373,14 @@ class AnnouncingPublisher(rospy.Publisher):
     def publish(self, *args: Any, **kwargs: Any) -> None:
         super().publish(*args, **kwargs)
         msg = args[0] if args else None
-        if isinstance(msg, TwistStamped):
+        if isinstance(msg, ANNOUNCED_TYPES):
             self._lockstep.sent(self.resolved_name, msg.header.stamp.to_sec())
 
 
 class RosProxies:
     """The connections of one behavior, shared among its states by name; :meth:`shutdown` releases them all.
-    ``lockstep``: the behavior's participant in a lockstep simulation (its velocity commands are announced with it)."""
+    ``lockstep``: the behavior's participant in a lockstep simulation (its velocity commands and plans are announced
+    with it)."""
 
     def __init__(self, lockstep: Optional[LockstepParticipant] = None) -> None:
         self._announce = lockstep if lockstep is not None and lockstep.enabled else None
@@ -385,7 +392,7 @@ class RosProxies:
 
     def publisher(self, topic: str, msg_type: type, latch: bool = False, queue_size: int = 10) -> rospy.Publisher:
         def make() -> Tuple[type, rospy.Publisher]:  # kept with the type it was made with
-            if self._announce is not None and msg_type is TwistStamped:
+            if self._announce is not None and msg_type in ANNOUNCED_TYPES:
                 return msg_type, AnnouncingPublisher(topic, msg_type, self._announce, latch=latch,
                                                      queue_size=queue_size)
             return msg_type, rospy.Publisher(topic, msg_type, latch=latch, queue_size=queue_size)

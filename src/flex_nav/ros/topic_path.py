@@ -8,6 +8,9 @@ A Path stamped before the goal started is most likely what the topic held for th
 planner's latched plan): following it, a controller already at its end would report success at once.
 Such a Path is used only if no newer one arrives within ``STALE_GRACE_S`` (a one-shot latched publisher).
 Both waits run on ROS time (:class:`flex_nav.ros.ros_clock.RosClock`), like every other timeout of the nodes.
+In a lockstep simulation each Path taken in is reported to the simulator (``lockstep``, a participant of the node),
+which waits for a Path its publisher announced (a behavior's plans) until it is in: a controller sees each new plan
+at the same step whatever the load.
 A client that already waited for a fresh Path says from when it counted (the goal's ``newer_than``), so the
 server does not wait again for one newer than the goal.
 """
@@ -21,6 +24,7 @@ from typing import Optional
 import rospy
 from nav_msgs.msg import Path
 
+from flex_nav.ros.lockstep import LockstepParticipant
 from flex_nav.ros.ros_clock import RosClock
 
 STALE_GRACE_S = 1.0  # [s] ROS time: how long to wait for a Path newer than the goal before using an older one
@@ -29,12 +33,16 @@ STALE_GRACE_S = 1.0  # [s] ROS time: how long to wait for a Path newer than the 
 class TopicPath:
     """Subscription to one topic: the newest Path and how many have arrived."""
 
-    def __init__(self, topic: str, wake: threading.Condition) -> None:
+    def __init__(self, topic: str, wake: threading.Condition, lockstep: Optional[LockstepParticipant] = None,
+                 ) -> None:
         self.topic = topic
         self._wake = wake
+        self._lockstep = lockstep
         self.msg: Optional[Path] = None
         self.count = 0
         self.arrived_s = -math.inf  # [s] ROS time the newest Path arrived at
+        if lockstep is not None:
+            lockstep.received(topic, -math.inf)  # from now on announced Paths there are waited for
         self.subscriber = rospy.Subscriber(topic, Path, self._on_path, queue_size=1)
 
     def _on_path(self, msg: Path) -> None:
@@ -43,6 +51,8 @@ class TopicPath:
             self.count += 1
             self.arrived_s = rospy.get_time()
             self._wake.notify_all()
+        if self._lockstep is not None:
+            self._lockstep.received(self.topic, msg.header.stamp.to_sec())
 
     def new_for_tick(self, used: int, tick_s: float, defer_same_step: bool) -> bool:
         """(``wake`` held) Whether a loop that used Path number ``used`` takes the newest at its tick at ROS time
@@ -53,6 +63,8 @@ class TopicPath:
 
     def close(self) -> None:
         self.subscriber.unregister()
+        if self._lockstep is not None:
+            self._lockstep.received(self.topic, math.inf)
 
     def no_path_reason(self, timeout_s: float) -> str:
         publishers = self.subscriber.get_num_connections()
@@ -61,11 +73,14 @@ class TopicPath:
 
 
 class TopicPaths:
-    """Owns the current :class:`TopicPath`; ``wake`` is notified on every new Path (and by cancels)."""
+    """Owns the current :class:`TopicPath`; ``wake`` is notified on every new Path (and by cancels). ``lockstep``:
+    the node's participant that reports the Paths taken in (see the module docstring)."""
 
-    def __init__(self, wake: threading.Condition, clock: RosClock) -> None:
+    def __init__(self, wake: threading.Condition, clock: RosClock, lockstep: Optional[LockstepParticipant] = None,
+                 ) -> None:
         self._wake = wake
         self._clock = clock
+        self._lockstep = lockstep if lockstep is not None and lockstep.enabled else None
         self.current: Optional[TopicPath] = None
 
     def subscribe(self, topic: str) -> TopicPath:
@@ -73,7 +88,7 @@ class TopicPaths:
         if self.current is None or self.current.topic != resolved:
             if self.current is not None:
                 self.current.close()
-            self.current = TopicPath(resolved, self._wake)
+            self.current = TopicPath(resolved, self._wake, self._lockstep)
         return self.current
 
     def wait_first(

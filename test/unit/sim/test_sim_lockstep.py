@@ -219,3 +219,52 @@ def test_wait_returns_when_the_sent_command_arrives_from_another_thread() -> Non
     arrival.join()
     assert 0.04 <= time.monotonic() - started < 4.0
     assert barrier.stats.waits == 1
+
+
+PLAN = "/robot1/move_base_like/plan"
+BEHAVIOR = "/robot1/behavior_runner/behavior"
+PATHS = "/robot1/pure_pursuit_topic/paths"  # the controller's receiver of the plan topic
+
+
+def test_a_plan_sent_to_a_node_that_receives_its_topic_blocks_until_the_node_reports_it() -> None:
+    barrier = LockstepBarrier(1.0)
+    barrier.update(BEHAVIOR, False, "", -math.inf, sent_topic=PLAN, sent_stamp_s=1.0)  # nobody receives it yet
+    assert barrier.blocking() == []
+    barrier.update(PATHS, False, "", -math.inf, received_topic=PLAN, received_stamp_s=-math.inf)
+    barrier.update(BEHAVIOR, False, "", -math.inf, sent_topic=PLAN, sent_stamp_s=2.0)
+    assert barrier.blocking() == [Hold(BEHAVIOR, PLAN, 2.0, sent=True)]
+    barrier.update(PATHS, False, "", -math.inf, received_topic=PLAN, received_stamp_s=2.0)
+    assert barrier.blocking() == []
+    barrier.update(PATHS, False, "", -math.inf, received_topic=PLAN, received_stamp_s=3.0)  # overtook its announcement
+    barrier.update(BEHAVIOR, False, "", -math.inf, sent_topic=PLAN, sent_stamp_s=3.0)
+    assert barrier.blocking() == []
+
+
+def test_a_node_that_stops_receiving_a_topic_lets_go_of_what_was_sent_there() -> None:
+    barrier = LockstepBarrier(1.0)
+    barrier.update(PATHS, False, "", -math.inf, received_topic=PLAN, received_stamp_s=-math.inf)
+    barrier.update(BEHAVIOR, False, "", -math.inf, sent_topic=PLAN, sent_stamp_s=2.0)
+    assert len(barrier.blocking()) == 1
+    barrier.update(PATHS, False, "", -math.inf, received_topic=PLAN, received_stamp_s=math.inf)
+    assert barrier.blocking() == []
+    barrier.update(BEHAVIOR, False, "", -math.inf, sent_topic=PLAN, sent_stamp_s=5.0)
+    assert barrier.blocking() == []
+    barrier.update(PATHS, False, "", -math.inf, received_topic=PLAN, received_stamp_s=-math.inf)  # again
+    barrier.update(BEHAVIOR, False, "", -math.inf, sent_topic=PLAN, sent_stamp_s=6.0)
+    assert barrier.blocking() == [Hold(BEHAVIOR, PLAN, 6.0, sent=True)]
+
+
+def test_a_command_and_a_plan_sent_by_one_participant_are_both_waited_for() -> None:
+    barrier = LockstepBarrier(1.0)
+    barrier.subscribed(CMD)
+    barrier.update(PATHS, False, "", -math.inf, received_topic=PLAN, received_stamp_s=-math.inf)
+    barrier.update(BEHAVIOR, False, "", -math.inf, sent_topic=CMD, sent_stamp_s=2.0)
+    barrier.update(BEHAVIOR, False, "", -math.inf, sent_topic=PLAN, sent_stamp_s=2.0)
+    assert {h.topic for h in barrier.blocking()} == {CMD, PLAN}
+    barrier.received(CMD, 2.0)
+    assert barrier.blocking() == [Hold(BEHAVIOR, PLAN, 2.0, sent=True)]
+
+
+def test_a_receipt_without_a_time_is_refused() -> None:
+    with pytest.raises(ConfigError, match="received stamp"):
+        LockstepBarrier(1.0).update(PATHS, False, "", -math.inf, received_topic=PLAN, received_stamp_s=math.nan)
