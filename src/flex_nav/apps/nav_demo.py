@@ -293,7 +293,9 @@ class DemoMonitor:
         with self.lock:
             run.plans.append(points)
 
-    def send_due_goals(self) -> None:
+    def send_due_goals(self, stamp_s: Optional[float] = None) -> None:
+        """Send each robot its next goal if it is due, stamped ``stamp_s`` [s] (None: now, as this node's clock
+        reads it; a lockstep start gives the time it holds the simulation at, which that view may lag behind)."""
         for run in self.runs:
             with self.lock:
                 due = run.waiting_for_goal and run.next_goal == run.completed and run.next_goal < len(run.goals)
@@ -301,11 +303,11 @@ class DemoMonitor:
                     name, (x, y, yaw) = run.goals[run.next_goal]
                     run.next_goal += 1
                     run.waiting_for_goal = False
-                    run.goal_started_sim_s = self.sim_s()
+                    run.goal_started_sim_s = self.sim_s() if stamp_s is None else stamp_s
             if due:
                 msg = self.PoseStamped()
                 msg.header.frame_id = "map"
-                msg.header.stamp = self.rospy.Time.now()
+                msg.header.stamp = self.rospy.Time.now() if stamp_s is None else self.rospy.Time.from_sec(stamp_s)
                 msg.pose.position.x, msg.pose.position.y = x, y
                 msg.pose.orientation.z = math.sin(yaw / 2.0)
                 msg.pose.orientation.w = math.cos(yaw / 2.0)

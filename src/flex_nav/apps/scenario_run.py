@@ -260,7 +260,7 @@ def start_at_grid(monitor: ScenarioMonitor, not_before_s: float, wall_deadline: 
         problem = held_at(world_s + WORLD_LEAD_S)
         if problem is not None:
             return problem, world_s
-        monitor.send_due_goals()
+        monitor.send_due_goals(world_s + WORLD_LEAD_S)  # stamped where the simulation stands
         time.sleep(START_WALL_WAIT_S)
     finally:
         hold.release()

@@ -191,6 +191,7 @@ class ActionClientProxy:
         self._accept = LockstepParticipant(name=accept_hold_name(server), dedupe=False)
         self._accept_param = accept_hold_param(server)
         self._server_accepts = False  # lockstep: the server lets go of the accept hold (cached once true)
+        self._accept_held_s = -math.inf  # [s] lockstep: the stamp of the last accept hold placed
         self._lock = threading.Condition()  # guards the fields below; notified when a goal is done
         self._goal_number = 0  # sequence number of the goal the fields below describe
         self._handle: Optional[ClientGoalHandle] = None
@@ -245,7 +246,8 @@ class ActionClientProxy:
             if not self._server_accepts:  # asked again until true (a server that started later sets it then)
                 self._server_accepts = bool(rospy.get_param(self._accept_param, False))
             if self._server_accepts:
-                self._accept.hold_clock(rospy.get_time())  # the simulation stands until the server holds
+                self._accept_held_s = rospy.get_time()
+                self._accept.hold_clock(self._accept_held_s)  # the simulation stands until the server holds
         handle = self._client.send_goal(
             goal,
             transition_cb=lambda gh: self._on_transition(number, gh),
@@ -322,6 +324,10 @@ class ActionClientProxy:
             handle = self._handle if self._active else None
         if handle is not None:
             handle.cancel()  # outside the lock: actionlib calls the transition callback from here
+            if self._accept.enabled and self._server_accepts:
+                # a goal cancelled before the server took it (the cancel may even arrive first: actionlib then
+                # recalls the goal unseen) never runs, and nothing else would let go of the hold placed for it
+                self._accept.release(through_s=self._accept_held_s)
 
     def close(self, deadline: float) -> None:
         """Unregister the client's five topics, after the goal and cancel messages already published were sent
