@@ -143,7 +143,8 @@ class FollowServer(FollowNode):
                     self._end(ticket, GoalOutcome.ABORTED, bad_path(source, err), pose)
                     return
             try:
-                pose = self.costmap.robot_pose.pose(timeout_s=self.transform_timeout_s)
+                pose = self.costmap.robot_pose.pose(timeout_s=self.transform_timeout_s,
+                                                    at_s=self.clock.now() if self.lockstep.enabled else None)
                 state, problem = self._replan(ticket, progress, pose, source)
             except NotReadyError as err:
                 state, problem = None, f"robot pose unknown: {err}"

@@ -113,7 +113,8 @@ class GetPathServer:
             return "FAILURE", (f"no map yet: nothing arrived on {rospy.resolve_name(self.costmap.map_topic)} "
                                f"within {self.map_timeout_s:.1f} s"), None
         try:
-            start = self.costmap.robot_pose.pose(timeout_s=self.transform_timeout_s)
+            start = self.costmap.robot_pose.pose(timeout_s=self.transform_timeout_s,
+                                                 at_s=ticket.stamp_s if self.lockstep.enabled else None)
         except NotReadyError as err:
             return "FAILURE", f"robot pose unknown: {err}", None
         feedback = GetPathFeedback(location=pose_of_xy_yaw(*start), goal=pose_of_xy_yaw(*goal))

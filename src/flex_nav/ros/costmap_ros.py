@@ -332,8 +332,8 @@ class CostmapROS:
 
     def _on_update_timer(self, now_s: float) -> None:
         """Update at ROS time ``now_s`` [s]; publish if due."""
-        try:
-            self._update()
+        try:  # (lockstep: the rolling window moves to the pose at the tick's time, see RobotPoseSource.pose)
+            self._update(now_s if isinstance(getattr(self, "_update_timer", None), LockstepTimer) else None)
         except Exception as err:  # an exception would end rospy's timer thread: the costmap would freeze
             rospy.logerr_throttle(5.0, f"{self.name}: costmap update failed: {err!r}")
         if now_s < self._published_s:  # ROS time went back (a restarted simulation): publish on the new timeline
@@ -346,11 +346,13 @@ class CostmapROS:
         except Exception as err:  # as above: the next tick tries again
             rospy.logerr_throttle(5.0, f"{self.name}: costmap publish failed: {err!r}")
 
-    def _update(self) -> None:
+    def _update(self, at_s: Optional[float] = None) -> None:
+        """The upkeep of one update tick: the rolling window follows the robot (its pose at ``at_s`` [s] if given,
+        else the newest), bumper hits and remembered obstacles expire."""
         centre = None
         if self.rolling_window:
             try:  # outside the lock: a tf wait must not hold up the users of the costmap
-                centre = self.robot_pose.pose(timeout_s=0.05)
+                centre = self.robot_pose.pose(timeout_s=0.05, at_s=at_s)
             except NotReadyError:
                 return
         with self.lock:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from typing import Optional
 
 import rospy
 import tf2_ros
@@ -30,10 +31,24 @@ class RobotPoseSource:
         self.robot_base_frame = robot_base_frame
         self.transform_tolerance_s = transform_tolerance_s
 
-    def pose(self, timeout_s: float = 0.2) -> tuple[float, float, float]:
-        """(x [m], y [m], yaw [rad]) of the robot base in the global frame; waits at most ``timeout_s`` [s]."""
+    def pose(self, timeout_s: float = 0.2, at_s: Optional[float] = None) -> tuple[float, float, float]:
+        """(x [m], y [m], yaw [rad]) of the robot base in the global frame; waits at most ``timeout_s`` [s].
+
+        ``at_s`` [s] (a lockstep simulation, where the odometry is stamped at that time: a planner's goal sent at a
+        behavior's tick): the pose at that time, waited for, not the newest transform this node happens to have
+        received (one odometry message more or less, by a wall-time race, started the plan elsewhere); the newest
+        when there is none at ``at_s``."""
+        stamped = None
+        if at_s is not None:
+            try:
+                stamped = lookup_bounded(self.buffer, self.global_frame, self.robot_base_frame,
+                                         rospy.Time.from_sec(at_s), timeout_s)
+            except TF_ERRORS:
+                stamped = None
         try:
-            stamped = lookup_bounded(self.buffer, self.global_frame, self.robot_base_frame, rospy.Time(0), timeout_s)
+            if stamped is None:
+                stamped = lookup_bounded(self.buffer, self.global_frame, self.robot_base_frame, rospy.Time(0),
+                                         timeout_s)
         except TF_ERRORS as err:
             raise NotReadyError(
                 f"no transform {self.global_frame} -> {self.robot_base_frame} within {timeout_s:.2f} s: {err}"
