@@ -21,13 +21,18 @@ TF_ERRORS = (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.Ext
 
 
 def lookup_bounded(buffer: tf2_ros.Buffer, target_frame: str, source_frame: str, stamp: rospy.Time,
-                   timeout_s: float) -> TransformStamped:
+                   timeout_s: float, *, source_stamp: Optional[rospy.Time] = None,
+                   fixed_frame: str = "") -> TransformStamped:
     """``buffer.lookup_transform`` waiting at most ``timeout_s`` [s] of ROS time, as tf2's own wait does -- or, while
     ROS time stands still, as much wall time since it last moved: tf2's wait would sleep forever when a lockstep
-    simulation waits for this very node (:mod:`flex_nav.ros.lockstep`). Raises tf2's exception of the last try."""
+    simulation waits for this very node (:mod:`flex_nav.ros.lockstep`). Raises tf2's exception of the last try.
+    With ``fixed_frame``: ``lookup_transform_full`` (target at ``stamp``, source at ``source_stamp``)."""
     start_s = seen_s = seen_wall_s = math.nan  # ROS time of the first miss; ROS time and when it last changed
     while True:
         try:
+            if fixed_frame:
+                return buffer.lookup_transform_full(target_frame, stamp, source_frame,
+                                                    source_stamp if source_stamp is not None else stamp, fixed_frame)
             return buffer.lookup_transform(target_frame, source_frame, stamp)
         except TF_ERRORS:
             if timeout_s <= 0.0 or rospy.is_shutdown():

@@ -7,6 +7,7 @@ from typing import Optional
 
 import rospy
 import tf2_ros
+import yaml
 
 from flex_nav.exceptions import NotReadyError
 from flex_nav.nav.pose_checks import yaw_of_quaternion
@@ -30,19 +31,34 @@ class RobotPoseSource:
         self.global_frame = global_frame
         self.robot_base_frame = robot_base_frame
         self.transform_tolerance_s = transform_tolerance_s
+        self._odom_frame = ""  # the base frame's parent in tf, once looked up
+
+    def _odometry_frame(self) -> str:
+        """The parent of the base frame in tf (the odometry frame), once known; "" while tf has no base frame or the
+        base hangs off the global frame directly."""
+        if not self._odom_frame:
+            try:
+                frames = yaml.safe_load(self.buffer.all_frames_as_yaml()) or {}
+            except yaml.YAMLError:
+                return ""
+            parent = str(frames.get(self.robot_base_frame, {}).get("parent", ""))
+            self._odom_frame = parent if parent != self.global_frame else ""
+        return self._odom_frame
 
     def pose(self, timeout_s: float = 0.2, at_s: Optional[float] = None) -> tuple[float, float, float]:
         """(x [m], y [m], yaw [rad]) of the robot base in the global frame; waits at most ``timeout_s`` [s].
 
         ``at_s`` [s] (a lockstep simulation, where the odometry is stamped at that time: a planner's goal sent at a
-        behavior's tick): the pose at that time, waited for, not the newest transform this node happens to have
-        received (one odometry message more or less, by a wall-time race, started the plan elsewhere); the newest
-        when there is none at ``at_s``."""
+        behavior's tick): the odometry at that time, waited for, not the newest this node happens to have received
+        (one odometry message more or less, by a wall-time race, started the plan elsewhere), carried into the
+        global frame by the newest transform of the odometry frame (a localizer's, which has come long before: it
+        is sent a scan earlier); the newest pose when there is none at ``at_s``."""
         stamped = None
-        if at_s is not None:
+        odom_frame = self._odometry_frame() if at_s is not None else ""
+        if at_s is not None and odom_frame:
             try:
-                stamped = lookup_bounded(self.buffer, self.global_frame, self.robot_base_frame,
-                                         rospy.Time.from_sec(at_s), timeout_s)
+                stamped = lookup_bounded(self.buffer, self.global_frame, self.robot_base_frame, rospy.Time(0),
+                                         timeout_s, source_stamp=rospy.Time.from_sec(at_s), fixed_frame=odom_frame)
             except TF_ERRORS:
                 stamped = None
         try:
