@@ -108,7 +108,7 @@ class LockstepBarrier:
             raise ConfigError(f"lockstep hold of {participant}: sent stamp {sent_stamp_s!r} is not a finite time")
         with self._cond:
             if holding and stamp_s <= self._released_through.get(participant, -math.inf):
-                pass  # let go of already: the release overtook it (see release_through below)
+                pass  # let go of already: a release through a later stamp overtook it
             elif holding:
                 self._holds[participant] = Hold(participant, topic, stamp_s)
             elif math.isfinite(stamp_s):  # let go of holds up to stamp_s, also one still on its way

@@ -325,15 +325,16 @@ class CostmapROS:
         """A rospy.Timer; in a lockstep simulation one that holds it for each update (so the rolling window moves
         at the same steps in every run)."""
         if lockstep_enabled():
-            return LockstepTimer(period_s, self._on_update_timer, LockstepParticipant(f"{name}/update"),
-                                 f"{name} updates")
+            return LockstepTimer(period_s, lambda now_s: self._on_update_timer(now_s, at_tick=True),
+                                 LockstepParticipant(f"{name}/update"), f"{name} updates")
         return rospy.Timer(rospy.Duration(period_s), lambda event: self._on_update_timer(event.current_real.to_sec()),
                            reset=True)
 
-    def _on_update_timer(self, now_s: float) -> None:
-        """Update at ROS time ``now_s`` [s]; publish if due."""
-        try:  # (lockstep: the rolling window moves to the pose at the tick's time, see RobotPoseSource.pose)
-            self._update(now_s if isinstance(getattr(self, "_update_timer", None), LockstepTimer) else None)
+    def _on_update_timer(self, now_s: float, at_tick: bool = False) -> None:
+        """Update at ROS time ``now_s`` [s]; publish if due. ``at_tick`` (lockstep): the rolling window moves to the
+        pose at ``now_s`` (see RobotPoseSource.pose), not the newest."""
+        try:
+            self._update(now_s if at_tick else None)
         except Exception as err:  # an exception would end rospy's timer thread: the costmap would freeze
             rospy.logerr_throttle(5.0, f"{self.name}: costmap update failed: {err!r}")
         if now_s < self._published_s:  # ROS time went back (a restarted simulation): publish on the new timeline

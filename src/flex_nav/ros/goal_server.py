@@ -177,8 +177,8 @@ class GoalServer:
         self._forget_old_timeline(stamp)
         if self.lockstep_accept.enabled and any(
                 old is not None and stamp < old for old in map(self._internals.remembered_stamp, RememberedGoal)):
-            self._release_accept_if_idle(stamp.to_sec())  # SimpleActionServer cancels it (older than a goal it
-            # keeps): no run
+            # SimpleActionServer cancels it (older than a goal it keeps): no run of it lets go of the hold
+            self._release_accept_if_idle(stamp.to_sec())
 
     def _forget_old_timeline(self, stamp: rospy.Time) -> None:
         ahead_of = rospy.Time.now() + rospy.Duration(OLD_TIMELINE_TOLERANCE_S)

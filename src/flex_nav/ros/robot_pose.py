@@ -31,19 +31,19 @@ class RobotPoseSource:
         self.global_frame = global_frame
         self.robot_base_frame = robot_base_frame
         self.transform_tolerance_s = transform_tolerance_s
-        self._odom_frame = ""  # the base frame's parent in tf, once looked up
+        self._parent: Optional[str] = None  # the base frame's parent in tf, once known
 
-    def _odometry_frame(self) -> str:
-        """The parent of the base frame in tf (the odometry frame), once known; "" while tf has no base frame or the
-        base hangs off the global frame directly."""
-        if not self._odom_frame:
+    def _base_parent(self) -> Optional[str]:
+        """The base frame's parent in tf (the odometry frame, or the global frame itself), once tf has the base
+        frame (then kept: the tree does not change); None before."""
+        if self._parent is None:
             try:
                 frames = yaml.safe_load(self.buffer.all_frames_as_yaml()) or {}
             except yaml.YAMLError:
-                return ""
-            parent = str(frames.get(self.robot_base_frame, {}).get("parent", ""))
-            self._odom_frame = parent if parent != self.global_frame else ""
-        return self._odom_frame
+                return None
+            parent = frames.get(self.robot_base_frame, {}).get("parent")
+            self._parent = str(parent) if parent else None
+        return self._parent
 
     def pose(self, timeout_s: float = 0.2, at_s: Optional[float] = None) -> tuple[float, float, float]:
         """(x [m], y [m], yaw [rad]) of the robot base in the global frame; waits at most ``timeout_s`` [s].
@@ -54,11 +54,15 @@ class RobotPoseSource:
         global frame by the newest transform of the odometry frame (a localizer's, which has come long before: it
         is sent a scan earlier); the newest pose when there is none at ``at_s``."""
         stamped = None
-        odom_frame = self._odometry_frame() if at_s is not None else ""
-        if at_s is not None and odom_frame:
+        parent = self._base_parent() if at_s is not None else None
+        if at_s is not None and parent is not None:
+            at = rospy.Time.from_sec(at_s)
             try:
-                stamped = lookup_bounded(self.buffer, self.global_frame, self.robot_base_frame, rospy.Time(0),
-                                         timeout_s, source_stamp=rospy.Time.from_sec(at_s), fixed_frame=odom_frame)
+                if parent == self.global_frame:  # (a costmap in the odometry frame)
+                    stamped = lookup_bounded(self.buffer, self.global_frame, self.robot_base_frame, at, timeout_s)
+                else:
+                    stamped = lookup_bounded(self.buffer, self.global_frame, self.robot_base_frame, rospy.Time(0),
+                                             timeout_s, source_stamp=at, fixed_frame=parent)
             except TF_ERRORS:
                 stamped = None
         try:
