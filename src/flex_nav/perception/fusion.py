@@ -48,6 +48,7 @@ from flex_nav.perception.smoothing import Vote
 LOOK_AGAIN = "look_again"
 DECISIONS: Tuple[str, ...] = (PERSON, MOVABLE, CLEAR, UNKNOWN, LOOK_AGAIN)
 MAX_LOOKS = 10  # upper bound of max_looks: looking again is bounded
+BOX_BEATS_CLEAR: Tuple[str, ...] = ("always", "unsure", "never")  # which camera clear a lidar box beats (row 7)
 
 
 @dataclass(frozen=True)
@@ -58,12 +59,14 @@ class FusionParams:
     camera_min_votes: int = 0  # a camera vote with fewer votes is unsure (0: any majority)
     lidar_min_confidence: float = 0.6  # [0..1] a lidar box below this counts as unsure
     max_looks: int = 2  # looks again before deciding without them (0: never look again)
+    box_beats_clear: str = "always"  # row 7: a lidar box beats any camera clear, an unsure one, or never
 
     def __post_init__(self) -> None:
         validation.number("fusion", "camera_min_confidence", self.camera_min_confidence, minimum=0.0, maximum=1.0)
         validation.number("fusion", "lidar_min_confidence", self.lidar_min_confidence, minimum=0.0, maximum=1.0)
         validation.integer("fusion", "camera_min_votes", self.camera_min_votes, minimum=0, maximum=255)
         validation.integer("fusion", "max_looks", self.max_looks, minimum=0, maximum=MAX_LOOKS)
+        validation.choice("fusion", "box_beats_clear", self.box_beats_clear, BOX_BEATS_CLEAR)
 
 
 @dataclass(frozen=True)
@@ -138,8 +141,11 @@ def lidar_label(lidar: ShapeCue, params: FusionParams) -> str:
 def fuse(camera: CameraCue, lidar: ShapeCue, looks: int, params: FusionParams = FusionParams()) -> FusedDecision:
     """The decision on the blocking object from both cues after ``looks`` looks again (see the module table)."""
     validation.integer("fusion", "looks", looks, minimum=0)
-    case = _Case(camera.label, camera.sees_person, camera.unsure(params), lidar_label(lidar, params),
-                 looks < params.max_looks)
+    unsure = camera.unsure(params)
+    yields = camera.label == UNKNOWN or (camera.label == CLEAR and (
+        params.box_beats_clear == "always" or (params.box_beats_clear == "unsure" and unsure)))
+    case = _Case(camera.label, camera.sees_person, unsure, lidar_label(lidar, params), looks < params.max_looks,
+                 yields)
     row, label, reason = 9, UNKNOWN, ""
     for number, applies, decision, why in _ROWS:
         if applies(case):
@@ -157,6 +163,7 @@ class _Case(NamedTuple):
     unsure: bool
     lidar: str
     more: bool
+    yields_to_box: bool  # the camera's label gives way to a lidar box (row 7)
 
 
 # The module table: (row, applies, decision, reason), first row that applies; the last always does.
@@ -169,7 +176,7 @@ _ROWS: Tuple[Tuple[int, Callable[[_Case], bool], str, str], ...] = (
     (5, lambda c: c.more and c.camera == MOVABLE and c.lidar == LIDAR_NONE, LOOK_AGAIN,
      "the camera sees a movable object, the lidar nothing there"),
     (6, lambda c: c.camera == MOVABLE, MOVABLE, "the camera sees a movable object, no person cue"),
-    (7, lambda c: c.lidar == BOX, MOVABLE, "the lidar sees a box, no person cue"),
+    (7, lambda c: c.lidar == BOX and c.yields_to_box, MOVABLE, "the lidar sees a box, no person cue"),
     (8, lambda c: c.camera == CLEAR, CLEAR, "the camera sees clear, the lidar no box"),
     (9, lambda c: True, UNKNOWN, "neither cue decides"),
 )

@@ -85,6 +85,10 @@ class ShapeParams:
     box_min_size_m: float = 0.2  # [m] a straight object smaller than this: unsure
     box_max_size_m: float = 1.6  # [m] a straight object larger than this: a wall or furniture (unsure)
     moving_speed_mps: float = 0.2  # [m/s] a tracked object at least this fast moves
+    leg_min_width_m: float = 0.0  # [m] a leg is at least this wide (0: any; a chair's or table's leg is thinner)
+    two_legs_person: bool = True  # two static leg-sized arcs are a person (False: unsure)
+    lone_leg_person: bool = True  # one static curved leg-sized arc is a person (False: unsure)
+    round_body_person: bool = True  # a static round body is a person (False: unsure)
 
     def __post_init__(self) -> None:
         owner = "lidar shape"
@@ -98,6 +102,9 @@ class ShapeParams:
         validation.integer(owner, "min_points", self.min_points, minimum=MIN_SIDE_POINTS)
         validation.number(owner, "body_max_radius_m", self.body_max_radius_m, minimum=self.body_min_radius_m)
         validation.number(owner, "box_max_size_m", self.box_max_size_m, minimum=self.box_min_size_m)
+        validation.number(owner, "leg_min_width_m", self.leg_min_width_m, minimum=0.0, maximum=self.leg_max_width_m)
+        for name in ("two_legs_person", "lone_leg_person", "round_body_person"):
+            validation.boolean(owner, name, getattr(self, name))
 
     def noise_at(self, range_m: float) -> float:
         """Expected range noise (one sigma) [m] at ``range_m`` [m]."""
@@ -270,7 +277,7 @@ def features_of(px: np.ndarray, py: np.ndarray, sensor: Tuple[float, float], par
 
 
 def _leg_sized(px: np.ndarray, py: np.ndarray, params: ShapeParams) -> bool:
-    return _size(px, py) <= params.leg_max_width_m
+    return params.leg_min_width_m <= _size(px, py) <= params.leg_max_width_m
 
 
 def _seen_between(xs: np.ndarray, ys: np.ndarray, sensor: Tuple[float, float], first: np.ndarray,
@@ -340,14 +347,21 @@ def _motion_or_legs(feats: ShapeFeatures, params: ShapeParams) -> Optional[Shape
     if feats.speed_mps is not None and feats.speed_mps >= params.moving_speed_mps:
         return ShapeCue(PERSON, 0.9, f"moves at {feats.speed_mps:.2f} m/s", feats)
     if feats.legs == 2:
-        return ShapeCue(PERSON, 0.85, "two leg-sized arcs side by side", feats)
-    if feats.legs == 1:
-        curved = feats.circle_rms_m < params.curvature_ratio * feats.line_rms_m and feats.bulges
-        if feats.points >= MIN_SIDE_POINTS and curved and feats.line_rms_m > feats.noise_m \
-                and feats.circle_radius_m <= params.leg_max_width_m:
+        if params.two_legs_person:
+            return ShapeCue(PERSON, 0.85, "two leg-sized arcs side by side", feats)
+        return ShapeCue(UNSURE, 0.5, "two static leg-sized arcs side by side (a person's or furniture's legs)", feats)
+    return _lone_leg(feats, params) if feats.legs == 1 else None
+
+
+def _lone_leg(feats: ShapeFeatures, params: ShapeParams) -> ShapeCue:
+    """Rule 3's one leg-sized arc: a person if clearly curved (and ``lone_leg_person``), else unsure."""
+    curved = feats.circle_rms_m < params.curvature_ratio * feats.line_rms_m and feats.bulges
+    if feats.points >= MIN_SIDE_POINTS and curved and feats.line_rms_m > feats.noise_m \
+            and feats.circle_radius_m <= params.leg_max_width_m:
+        if params.lone_leg_person:
             return ShapeCue(PERSON, 0.6, "one curved leg-sized arc", feats)
-        return ShapeCue(UNSURE, 0.5, f"a small piece of {feats.size_m:.2f} m, not clearly curved", feats)
-    return None
+        return ShapeCue(UNSURE, 0.5, "one static curved leg-sized arc (a leg, a pole, a bottle)", feats)
+    return ShapeCue(UNSURE, 0.5, f"a small piece of {feats.size_m:.2f} m, not clearly curved", feats)
 
 
 def _outline(feats: ShapeFeatures, params: ShapeParams) -> ShapeCue:
@@ -360,6 +374,9 @@ def _outline(feats: ShapeFeatures, params: ShapeParams) -> ShapeCue:
     straight = min(feats.line_rms_m, feats.corner_rms_m) if square else feats.line_rms_m  # a box's outline
     if (feats.bulges and params.body_min_radius_m <= feats.circle_radius_m <= params.body_max_radius_m
             and feats.circle_rms_m <= params.curvature_ratio * straight and feats.line_rms_m > tolerance):
+        if not params.round_body_person:
+            return ShapeCue(UNSURE, 0.5, f"static round body of radius {feats.circle_radius_m:.2f} m (a person, a "
+                            "drum, a bin, a bag)", feats)
         ratio = feats.circle_rms_m / straight
         confidence = min(0.95, 0.6 + 0.4 * (1.0 - ratio / params.curvature_ratio))
         return ShapeCue(PERSON, confidence, f"round body of radius {feats.circle_radius_m:.2f} m", feats)
