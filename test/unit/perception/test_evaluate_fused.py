@@ -4,29 +4,43 @@ scoring (no dataset, no model)."""
 
 from __future__ import annotations
 
+import json
 import math
-from typing import Iterator, Tuple
+from typing import Iterator, Sequence, Tuple
 
 import numpy as np
 import pybullet
 import pytest
 from pybullet_utils import bullet_client
+from unit.perception.shape_synth import box_corners, ranges_of
 
 from flex_nav.exceptions import ConfigError
 from flex_nav.perception.fusion import CameraCue, FusionParams
 from flex_nav.perception.labels import CLEAR, MOVABLE, PERSON, Prediction
-from flex_nav.perception.lidar_shape import BOX, NONE, ShapeCue
+from flex_nav.perception.lidar_shape import BOX, NONE, ShapeCue, ShapeParams
 from flex_nav.perception.lidar_shape import PERSON as LIDAR_PERSON
 from flex_nav_sim.sensors import Lidar
 from tools.perception.evaluate_fused import (
+    CANDIDATES,
+    HALF_WIDTH_M,
+    REACH_M,
+    VALIDATION,
+    Candidate,
     CollidingClient,
     Records,
     camera_cue,
+    choose,
+    dump_header,
+    dumped_cue,
     fused_labels,
     lidar_spec,
+    rescore,
     scan_scene,
+    scene_record,
     score,
+    summary,
 )
+from tools.perception.render_dataset import SPLITS
 from tools.perception.scene_base import Scene
 
 GREY = (0.5, 0.5, 0.5, 1.0)
@@ -208,3 +222,100 @@ def test_score_slices_the_near_scenes() -> None:
     assert near["camera"] == pytest.approx(0.5)
     assert near["fused"] == pytest.approx(0.0)
     assert (near["camera_person_as_movable"], near["fused_person_as_movable"]) == (0, 1)
+
+
+# ------------------------------------------------------------------------------------------ dump and rescore
+def dumped_scene(split: str, truth: str, camera: str, confidence: float, ranges: np.ndarray,
+                 model: str = "m") -> dict:
+    prediction = Prediction(camera, confidence, {camera: confidence})
+    return scene_record(split, 0, truth=truth, model=model, distance_m=0.6, prediction=prediction,
+                        cue=ShapeCue(NONE, 1.0, "not used by rescore"), ranges=ranges)
+
+
+def scan_of(polygons: Sequence[np.ndarray] = (), circles: Sequence[Tuple[float, float, float]] = ()) -> np.ndarray:
+    """A 360-beam scan (1 degree from -180 degrees) of synthetic shapes, no noise."""
+    return ranges_of((0.0, 0.0), np.radians(np.arange(-180.0, 180.0, 1.0)), polygons, circles)
+
+
+HEADER = {"lidar": {"angle_min": -math.pi, "angle_increment": math.radians(1.0), "range_min": 0.15,
+                    "range_max": 12.0}, "reach_m": REACH_M, "half_width_m": HALF_WIDTH_M}
+BOX_SCAN = scan_of([box_corners(0.75, 0.0, 0.4, 0.4, 0.3)])  # a 0.4 m box, its corner 0.5 m ahead
+BODY_SCAN = scan_of(circles=[(0.75, 0.0, 0.2)])  # a round body (or a drum) 0.55 m ahead
+
+
+def test_a_scene_record_holds_both_cues_and_the_scan(client: CollidingClient) -> None:
+    Scene(client, np.random.default_rng(0)).box((1.0, 0.0, 0.25), (0.2, 0.2, 0.25), GREY)
+    lidar = lidar_on(client)
+    ranges, cue = scan_scene(lidar)
+    record = scene_record("val", 3, truth=MOVABLE, model="box", distance_m=1.0,
+                          prediction=Prediction(CLEAR, 0.8, {CLEAR: 0.8, MOVABLE: 0.2}), cue=cue, ranges=ranges)
+    record = json.loads(json.dumps(record))  # JSON as written (no NaN, no inf)
+    assert (record["split"], record["index"], record["truth"], record["model"]) == ("val", 3, MOVABLE, "box")
+    assert record["camera"] == {"label": CLEAR, "confidence": 0.8, "scores": {CLEAR: 0.8, MOVABLE: 0.2}}
+    assert cue.features is not None
+    assert record["lidar"]["label"] == BOX and record["lidar"]["features"]["points"] == cue.features.points
+    assert len(record["ranges_m"]) == 360 and None in record["ranges_m"]
+    header = json.loads(json.dumps(dump_header(ShapeParams(), FusionParams())))
+    assert dumped_cue(record, header, ShapeParams()) == cue  # the cue recomputed from the dump is the same
+
+
+def test_rescore_recomputes_the_lidar_cue_per_candidate() -> None:
+    dump = {"header": HEADER, "scenes": [
+        dumped_scene("val", CLEAR, CLEAR, 0.9, BOX_SCAN, "fridge"),  # a sure clear and a box
+        dumped_scene("val", MOVABLE, MOVABLE, 0.9, BODY_SCAN, "drum"),  # a movable drum, round to the lidar
+        dumped_scene("val_extra", PERSON, CLEAR, 0.6, BOX_SCAN, "wheelchair"),  # an unsure clear on a person
+    ]}
+    body_on = ShapeParams(round_body_person=True)
+    body_off = ShapeParams(round_body_person=False)
+    candidates = [Candidate("always", "", body_on, FusionParams(box_beats_clear="always")),
+                  Candidate("unsure", "", body_off, FusionParams(box_beats_clear="unsure")),
+                  Candidate("never", "", body_off, FusionParams(box_beats_clear="never"))]
+    results = rescore(dump, candidates)
+    assert set(results) == {"always", "unsure", "never"} and set(results["never"]) == {"val", "val_extra"}
+    for name, (val, val_extra, unsafe) in {"always": (0.0, 0.0, 1), "unsure": (1.0, 0.0, 1),
+                                           "never": (1.0, 0.0, 0)}.items():
+        assert results[name]["val"]["fused"]["accuracy"] == pytest.approx(val), name
+        assert results[name]["val_extra"]["fused"]["accuracy"] == pytest.approx(val_extra), name
+        assert results[name]["val_extra"]["fused"]["person_as_movable"] == unsafe, name
+        assert results[name]["val"]["camera"]["accuracy"] == pytest.approx(1.0)
+    assert results["always"]["val"]["lidar_by_truth"][MOVABLE][LIDAR_PERSON] == 1
+    assert results["never"]["val"]["lidar_by_truth"][MOVABLE]["unsure"] == 1
+
+
+def figures(fused: Tuple[float, ...], unsafe: Tuple[int, ...], asked: int, camera_unsafe: int = 1) -> dict:
+    """Per-split results as :func:`score` gives them, for the criterion: fused accuracies, fused people taken for
+    movable (the camera alone: 0.9 and ``camera_unsafe`` on each split), looks asked on the first split."""
+    return {f"val{i}": {"camera": {"accuracy": 0.9, "person_as_movable": camera_unsafe},
+                        "fused": {"accuracy": a, "person_as_movable": u}, "asked_again": asked if i == 0 else 0}
+            for i, (a, u) in enumerate(zip(fused, unsafe))}
+
+
+def test_summary_means_each_split_once_and_names_the_less_safe_ones() -> None:
+    s = summary(figures((0.8, 1.0), (1, 2), asked=5))
+    assert s["camera_mean"] == pytest.approx(0.9) and s["fused_mean"] == pytest.approx(0.9)
+    assert (s["camera_person_as_movable"], s["fused_person_as_movable"]) == (2, 3)
+    assert s["less_safe_splits"] == ["val1"] and s["asked_again"] == 5
+
+
+def test_choose_follows_the_stated_criterion() -> None:
+    results = {
+        "unsafe_best": figures((1.0, 1.0), (0, 2), asked=0),  # more people for movable on one split: not eligible
+        "good": figures((0.95, 0.93), (1, 0), asked=9),
+        "good_fewer_looks": figures((0.93, 0.9504), (0, 1), asked=3),  # the same mean at 0.1 point, fewer looks
+        "worse": figures((0.9, 0.9), (0, 0), asked=0),
+    }
+    order = list(results)
+    assert choose(results, order) == "good_fewer_looks"
+    results["good_fewer_looks"] = figures((0.93, 0.9504), (0, 1), asked=9)  # tie on looks too: the earlier
+    assert choose(results, order) == "good"
+    assert choose(results, ["unsafe_best", "worse"]) == "worse"
+    assert choose({"unsafe_best": results["unsafe_best"]}, ["unsafe_best"]) is None
+
+
+def test_the_candidates_are_distinct_and_fix_every_switch() -> None:
+    names = [c.name for c in CANDIDATES]
+    assert len(set(names)) == len(names) == 18
+    assert len({(c.shape, c.fusion) for c in CANDIDATES}) == 18
+    for candidate in CANDIDATES:  # a candidate's switches are its own, not the current defaults
+        assert candidate.fusion.box_beats_clear == {"A": "always", "U": "unsure", "N": "never"}[candidate.name[-1]]
+    assert tuple(s for s in SPLITS if s.startswith("val")) == VALIDATION and "val_extra8" in VALIDATION

@@ -196,7 +196,54 @@ def test_the_summary_names_every_feature() -> None:
         assert word in text
 
 
+def two_legs(face_m: float, radius_m: float, rng: np.random.Generator) -> Tuple[np.ndarray, np.ndarray]:
+    """A scan of two round legs of ``radius_m`` [m] 0.25 m apart, their near side ``face_m`` [m] ahead."""
+    legs = [(face_m + radius_m, -0.125, radius_m), (face_m + radius_m, 0.125, radius_m)]
+    return noisy_scan(SENSOR, circles=legs, rng=rng, phase_deg=rng.uniform(0.0, 1.0))
+
+
+def test_the_static_person_cues_can_each_be_switched_off() -> None:
+    """Each static person cue (two legs, a lone curved leg, a round body) is unsure when switched off, the others
+    and a moving object unchanged."""
+    rng = np.random.default_rng(16)
+    body = noisy_scan(SENSOR, circles=[(0.55 + 0.2, 0.0, 0.2)], rng=rng)
+    leg = noisy_scan(SENSOR, circles=[(0.4 + 0.06, 0.0, 0.06)], rng=rng)
+    pair = two_legs(0.55, 0.06, rng)
+    scans = {"round_body_person": body, "lone_leg_person": leg, "two_legs_person": pair}
+    for switch, (xs, ys) in scans.items():
+        off = ShapeParams(**{switch: False})
+        for other, (oxs, oys) in scans.items():
+            on = classify_shape(oxs, oys, SENSOR, (0.5, 0.0))
+            cue = classify_shape(oxs, oys, SENSOR, (0.5, 0.0), off)
+            assert on.label == PERSON, on.describe()
+            assert cue.label == (UNSURE if other == switch else PERSON), f"{switch} off, {other}: {cue.describe()}"
+        assert classify_shape(xs, ys, SENSOR, (0.5, 0.0), off, speed_mps=0.5).label == PERSON  # it moves
+    still = ShapeParams(two_legs_person=False, lone_leg_person=False, round_body_person=False)
+    for xs, ys in scans.values():
+        assert classify_shape(xs, ys, SENSOR, (0.5, 0.0), still).label == UNSURE
+    assert "static round body" in classify_shape(*body, SENSOR, (0.5, 0.0), still).reason
+
+
+@pytest.mark.parametrize("face_m", [0.4, 0.55, 1.0])
+def test_a_least_leg_width_keeps_a_persons_legs_and_drops_a_chairs(face_m: float) -> None:
+    rng = np.random.default_rng(17)
+    wide = ShapeParams(leg_min_width_m=0.06)
+    for _ in range(10):
+        person = classify_shape(*two_legs(face_m, 0.06, rng), SENSOR, (face_m, 0.0), wide)
+        assert person.label == PERSON and person.features is not None and person.features.legs == 2, \
+            person.describe()
+        thin = two_legs(face_m, 0.015, rng)  # a chair's legs, 3 cm across
+        assert classify_shape(*thin, SENSOR, (face_m, 0.0)).label == PERSON  # no least width: two legs
+        cue = classify_shape(*thin, SENSOR, (face_m, 0.0), wide)
+        assert cue.label == UNSURE and cue.features is not None and cue.features.legs == 0, cue.describe()
+
+
 @pytest.mark.parametrize(("field", "value", "match"), [
+    ("leg_min_width_m", -0.01, "leg_min_width_m"),
+    ("leg_min_width_m", 0.25, "leg_min_width_m"),  # wider than leg_max_width_m
+    ("two_legs_person", 1, "two_legs_person"),
+    ("lone_leg_person", "yes", "lone_leg_person"),
+    ("round_body_person", None, "round_body_person"),
     ("noise_m", 0.0, "noise_m"),
     ("min_points", 2, "min_points"),
     ("curvature_ratio", 1.5, "curvature_ratio"),
