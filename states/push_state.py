@@ -6,21 +6,32 @@ the whole push taking longer than ``distance_m / speed_mps + margin_s`` (progres
 ``enough_fraction`` of the distance by then moved the object and counts as done), and the
 perception seeing a person in front of the robot (the state never starts and never goes on pushing a
 person; it also refuses to start without a fresh class that is not person).
+
+With ``approach_speed_mps`` and a ``scan_topic``, the gap to the object's face on the scan at the start is driven
+faster, up to ``contact_slack_m`` before it; the push itself (contact, and a heavy object's stall) is at
+``speed_mps``. A robot that stops ~0.5 m before a box (the blocked-path distance) reaches it 0.6 s sooner at
+0.3 m/s than at 0.2 m/s.
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Optional
 
+from sensor_msgs.msg import LaserScan
+
 from flex_nav.behavior.userdata import UserDataView
+from flex_nav.exceptions import ConfigError
 from flex_nav.nav.angles import wrap_angle
 from flex_nav.perception.labels import PERSON
 from flex_nav_states import validation
-from flex_nav_states.messages import OdomSample
+from flex_nav_states.messages import OdomSample, message_age_s
 from flex_nav_states.motion_base import MotionBase, stall_watch
 from flex_nav_states.motion_params import SPEED_LIMITS, CommandOutput, OdometryInput
 from flex_nav_states.obstacle_class_state import ClassReader
+from flex_nav_states.proxy_types import SubscriptionLike, proxies_of
+from flex_nav_states.rear_clearance import gap_ahead_m
 
 HEADING_GAIN = 1.0  # [1/s] yaw rate per radian of heading error (pushes straight)
 MAX_HEADING_RATE = 0.3  # [rad/s] bound of the heading correction
@@ -47,6 +58,13 @@ class PushState(MotionBase):
     -- odom_timeout_s    float  [s] Fail when no fresh odometry for this long.
     -- cmd_topic         str    geometry_msgs/TwistStamped command topic.
     -- frame_id          str    frame_id of the commands (the robot's base frame).
+    -- approach_speed_mps  float  [m/s] Speed up to the object's face seen on the scan at the start (0: speed_mps
+                                  all the way; else at least speed_mps, and needs scan_topic).
+    -- scan_topic        str    sensor_msgs/LaserScan topic for the gap ahead ("" for none); its frame is taken as
+                                the base's (a lidar near the centre, as flex_nav_states.rear_clearance).
+    -- robot_radius_m    float  [m] Radius of the base: the gap is from its front (> 0).
+    -- contact_slack_m   float  [m] The last this far before the face is driven at speed_mps (>= 0).
+    -- scan_max_age_s    float  [s] An older scan gives no approach: speed_mps all the way.
 
     #> push_progress_m  float  [m] How far the robot got.
 
@@ -70,6 +88,11 @@ class PushState(MotionBase):
         odom_timeout_s: float = 0.5,
         cmd_topic: str = "cmd_vel_stamped",
         frame_id: str = "base_footprint",
+        approach_speed_mps: float = 0.0,
+        scan_topic: str = "",
+        robot_radius_m: float = 0.2,
+        contact_slack_m: float = 0.05,
+        scan_max_age_s: float = 0.5,
     ) -> None:
         owner = type(self).__name__
         super().__init__(
@@ -87,6 +110,10 @@ class PushState(MotionBase):
         self._stall = stall_watch(owner, stall_window_s, progress_name="stall_distance_m",
                                   min_progress=stall_distance_m, unit="m", slowest_speed=self._speed_mps)
         self._reader = ClassReader(owner, class_topic, class_max_age_s)
+        self._approach = _Approach(owner, approach_speed_mps, self._speed_mps, scan_topic, robot_radius_m,
+                                   contact_slack_m, scan_max_age_s)  # checked there
+        self._scan: Optional[SubscriptionLike] = None
+        self._approach_m = 0.0  # [m] of progress at approach_speed_mps (from the scan at the start)
         self._start: Optional[OdomSample] = None
         self._progress_m = 0.0
         self._checked = False
@@ -99,6 +126,8 @@ class PushState(MotionBase):
     def on_start(self) -> None:
         super().on_start()
         self._reader.start(self)
+        if self._approach.enabled:
+            self._scan = proxies_of(self).subscription(self._approach.scan_topic, LaserScan)
 
     def on_enter(self, userdata: UserDataView) -> None:
         super().on_enter(userdata)
@@ -141,6 +170,7 @@ class PushState(MotionBase):
         if self._start is None:
             self._start = sample
             self._stall.reset(0.0, now)
+            self._approach_m = self._gap_to_approach_m()
         start = self._start
         self._progress_m = (sample.x - start.x) * math.cos(start.yaw) + (sample.y - start.y) * math.sin(start.yaw)
         if self._progress_m >= self._distance_m:
@@ -154,8 +184,28 @@ class PushState(MotionBase):
             return "failed"
         heading_error = wrap_angle(sample.yaw - start.yaw)
         w = max(-MAX_HEADING_RATE, min(MAX_HEADING_RATE, -HEADING_GAIN * heading_error))
-        self.send(self._speed_mps, w)
+        speed = self._approach.speed_mps if self._progress_m < self._approach_m else self._speed_mps
+        self.send(speed, w)
         return None
+
+    def _gap_to_approach_m(self) -> float:
+        """[m] of the push to drive at approach_speed_mps: the gap to the face on a fresh scan less
+        contact_slack_m; 0 without an approach speed, a fresh scan or anything ahead within distance_m."""
+        approach = self._approach
+        if not approach.enabled or self._scan is None:
+            return 0.0
+        scan = self._scan.last()
+        if scan is None or message_age_s(scan, self._scan, self.now_s()) > approach.scan_max_age_s:
+            self.log_warn(f"push: no scan on {approach.scan_topic} newer than {approach.scan_max_age_s:g} s: "
+                          f"no faster approach")
+            return 0.0
+        gap = gap_ahead_m(scan, approach.robot_radius_m, 0.0, self._distance_m)
+        if gap is None:
+            return 0.0
+        approach_m = max(0.0, gap - approach.contact_slack_m)
+        self.log_info(f"push: the object is {gap:.2f} m ahead: {approach_m:.2f} m at {approach.speed_mps:g} m/s, "
+                      f"then {self._speed_mps:g} m/s")
+        return approach_m
 
     def _timed_out(self) -> str:
         """``done`` when the push got ``enough_fraction`` of the distance (the object moves, only slower than
@@ -166,3 +216,36 @@ class PushState(MotionBase):
             return "done"
         self.log_error(f"push timed out after {self._timeout_s:.1f} s at {at}")
         return "failed"
+
+
+@dataclass(frozen=True)
+class _Approach:
+    """PushState's checked approach parameters (see its docstring)."""
+
+    owner: str
+    speed_mps: float  # [m/s] 0: none
+    push_speed_mps: float  # [m/s] the push's own speed (checked already)
+    scan_topic: str
+    robot_radius_m: float  # [m]
+    contact_slack_m: float  # [m]
+    scan_max_age_s: float  # [s]
+
+    def __post_init__(self) -> None:
+        owner, speed = self.owner, self.speed_mps
+        validation.name(owner, "scan_topic", self.scan_topic, allow_empty=True)
+        validation.number(owner, "approach_speed_mps", speed, minimum=0.0, unit="[m/s]")
+        if speed > 0.0:
+            SPEED_LIMITS.linear(owner, "approach_speed_mps", speed)
+            if speed < self.push_speed_mps:
+                raise ConfigError(f"{owner}: approach_speed_mps {speed:g} m/s must be 0 or at least speed_mps "
+                                  f"{self.push_speed_mps:g} m/s")
+            if not self.scan_topic:
+                raise ConfigError(f"{owner}: approach_speed_mps {speed:g} m/s needs a scan_topic (the gap ahead)")
+        validation.number(owner, "robot_radius_m", self.robot_radius_m, positive=True, unit="[m]")
+        validation.number(owner, "contact_slack_m", self.contact_slack_m, minimum=0.0, unit="[m]")
+        validation.number(owner, "scan_max_age_s", self.scan_max_age_s, positive=True, unit="[s]")
+
+    @property
+    def enabled(self) -> bool:
+        """True with an approach speed (and so a scan topic)."""
+        return self.speed_mps > 0.0

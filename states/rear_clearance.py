@@ -1,6 +1,8 @@
-"""Is the way behind the robot free? A laser scan's points in the corridor a backing-up robot sweeps.
+"""Is the way behind (or ahead of) the robot free? A laser scan's points in the corridor a robot driving
+straight sweeps.
 
-Used by :class:`~flex_nav_states.move_distance_state.MoveDistanceState` when it backs up with a ``scan_topic``.
+Used by :class:`~flex_nav_states.move_distance_state.MoveDistanceState` when it backs up with a ``scan_topic``,
+and by :class:`~flex_nav_states.push_state.PushState` for the gap to the object it is about to push.
 The scan's frame is taken as the robot's base frame (x forward, y left): a lidar mounted near the centre of a
 round base, as on the TurtleBot 2 and 4, within a few centimetres that the clearance covers.
 """
@@ -17,16 +19,27 @@ def gap_behind_m(scan: Any, radius_m: float, clearance_m: float, reach_m: float)
     [m] more (width: 2 x (``radius_m`` + ``clearance_m``), length: ``reach_m`` + ``radius_m`` +
     ``clearance_m`` behind the centre), or None when that corridor is free. Returns that are not finite or
     outside [range_min, range_max] are no points."""
+    return _gap_m(scan, radius_m, clearance_m, reach_m, direction=-1.0)
+
+
+def gap_ahead_m(scan: Any, radius_m: float, clearance_m: float, reach_m: float) -> Optional[float]:
+    """[m] from the robot's front to the nearest scan point in the corridor it sweeps driving ``reach_m`` [m]
+    forward; the mirror image of :func:`gap_behind_m`."""
+    return _gap_m(scan, radius_m, clearance_m, reach_m, direction=1.0)
+
+
+def _gap_m(scan: Any, radius_m: float, clearance_m: float, reach_m: float, direction: float) -> Optional[float]:
+    """The gap along ``direction`` (+1 ahead, -1 behind) of :func:`gap_ahead_m` / :func:`gap_behind_m`."""
     ranges = np.asarray(scan.ranges, dtype=np.float64)
     if ranges.size == 0:
         return None
     angles = scan.angle_min + scan.angle_increment * np.arange(ranges.size)
     valid = np.isfinite(ranges) & (ranges >= scan.range_min) & (ranges <= scan.range_max)
     r = np.where(valid, ranges, 0.0)  # no inf x 0 for beams without a return
-    x = r * np.cos(angles)
+    along = direction * r * np.cos(angles)  # [m] the way the robot drives
     y = r * np.sin(angles)
     half_width = radius_m + clearance_m
-    in_way = valid & (x < 0.0) & (np.abs(y) <= half_width) & (-x <= reach_m + half_width)
+    in_way = valid & (along > 0.0) & (np.abs(y) <= half_width) & (along <= reach_m + half_width)
     if not in_way.any():
         return None
-    return max(0.0, float(np.min(-x[in_way])) - radius_m)
+    return max(0.0, float(np.min(along[in_way])) - radius_m)

@@ -104,16 +104,16 @@ def path(points: List[tuple], frame: str = "map", stamp_s: float = START_S) -> P
     return msg
 
 
-def rear_wall_scan(stamp_s: float, robot_x: float, wall_x: Optional[float] = None) -> LaserScan:
-    """A 360-beam scan from a robot at ``robot_x`` facing +x: a wall across the world at x = ``wall_x`` behind
-    it, or nothing at all (None)."""
+def wall_scan(stamp_s: float, robot_x: float, wall_x: Optional[float] = None) -> LaserScan:
+    """A 360-beam scan from a robot at ``robot_x`` facing +x: a wall across the world at x = ``wall_x`` (behind
+    or ahead of it), or nothing at all (None)."""
     scan = LaserScan()
     scan.header.stamp = genpy.Time.from_sec(stamp_s)
     scan.angle_min, scan.angle_increment = -math.pi, 2.0 * math.pi / 360
     scan.range_min, scan.range_max = 0.1, 12.0
     cosines = [math.cos(scan.angle_min + i * scan.angle_increment) for i in range(360)]
-    gap = robot_x - wall_x if wall_x is not None else 0.0
-    scan.ranges = [gap / -c if wall_x is not None and c < -1e-6 else math.inf for c in cosines]
+    gap = wall_x - robot_x if wall_x is not None else 0.0  # [m] signed, along +x
+    scan.ranges = [gap / c if wall_x is not None and abs(c) > 1e-6 and gap / c > 0.0 else math.inf for c in cosines]
     return scan
 
 

@@ -11,7 +11,7 @@ from actionlib_msgs.msg import GoalStatus
 from geometry_msgs.msg import PoseStamped
 from sensor_msgs.msg import LaserScan
 from unit.perception.shape_synth import box_corners, ranges_of
-from unit.states.states_testlib import Harness, KinematicRobot, path, pose_stamped, rear_wall_scan, twists
+from unit.states.states_testlib import Harness, KinematicRobot, path, pose_stamped, twists, wall_scan
 from unit.states.test_states_obstacles import Camera
 
 from flex_nav.behavior.yaml_loader import load_behavior
@@ -71,7 +71,7 @@ class Scene:
 
     def scan(self) -> LaserScan:
         """The robot's scan: the wall behind (if any) and the box ahead (if any)."""
-        scan = rear_wall_scan(self.h.clock.now(), self.robot.x, self.wall_behind_x)
+        scan = wall_scan(self.h.clock.now(), self.robot.x, self.wall_behind_x)
         if self.box_ahead_x is not None:
             angles = scan.angle_min + scan.angle_increment * np.arange(len(scan.ranges))
             face = self.box_ahead_x - self.robot.x

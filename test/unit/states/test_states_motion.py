@@ -7,7 +7,7 @@ import math
 import pytest
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import LaserScan
-from unit.states.states_testlib import Harness, KinematicRobot, odometry, path, rear_wall_scan, twists
+from unit.states.states_testlib import Harness, KinematicRobot, odometry, path, twists, wall_scan
 
 from flex_nav.behavior import Autonomy, BehaviorStatus, LogLevel, ManualClock, StateMachine
 from flex_nav.exceptions import ConfigError
@@ -15,7 +15,7 @@ from flex_nav.testing.fake_proxies import FakeProxies
 from flex_nav_states.messages import message_age_s
 from flex_nav_states.move_distance_state import MoveDistanceState
 from flex_nav_states.pure_pursuit_state import PurePursuitState
-from flex_nav_states.rear_clearance import gap_behind_m
+from flex_nav_states.rear_clearance import gap_ahead_m, gap_behind_m
 from flex_nav_states.rotate_angle_state import RotateAngleState
 from flex_nav_states.timed_stop_state import TimedStopState
 from flex_nav_states.timed_twist_state import TimedTwistState
@@ -67,7 +67,7 @@ def back_up_with_scan(wall_x, *, wall_from_s=0.0, scan=True):
     while h.clock.now() - start < 10.0:
         if scan:
             elapsed = h.clock.now() - start
-            sub.inject(rear_wall_scan(h.clock.now(), robot.x, wall_x if elapsed >= wall_from_s else None))
+            sub.inject(wall_scan(h.clock.now(), robot.x, wall_x if elapsed >= wall_from_s else None))
         if h.tick():
             return h, robot, h.executor.result()
         h.advance(0.05)
@@ -110,6 +110,15 @@ def test_gap_behind_sees_only_the_corridor_swept():
     assert gap_behind_m(scan, 0.2, 0.05, 1.0) is None
     scan.ranges = [0.04, 0.3, 0.4, 0.3]  # closer than range_min: no return
     assert gap_behind_m(scan, 0.2, 0.05, 1.0) is None
+
+
+def test_gap_ahead_is_the_mirror_image():
+    scan = LaserScan(angle_min=-math.pi, angle_increment=math.pi / 2, range_min=0.05, range_max=10.0,
+                     ranges=[0.5, 0.3, 0.4, 0.3])  # behind, right, ahead, left
+    assert gap_ahead_m(scan, 0.2, 0.05, 0.3) == pytest.approx(0.2)
+    assert gap_ahead_m(scan, 0.2, 0.05, 0.0) is None  # 0.4 m ahead of the centre: beyond 0.25 m
+    scan.ranges = [0.5, 0.3, math.inf, 0.3]
+    assert gap_ahead_m(scan, 0.2, 0.05, 1.0) is None
 
 
 def test_move_distance_holds_the_heading():

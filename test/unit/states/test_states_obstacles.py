@@ -6,7 +6,8 @@ from __future__ import annotations
 import genpy
 import pytest
 from actionlib_msgs.msg import GoalStatus
-from unit.states.states_testlib import Harness, KinematicRobot, path, twists
+from sensor_msgs.msg import LaserScan
+from unit.states.states_testlib import Harness, KinematicRobot, path, twists, wall_scan
 
 from flex_nav.behavior import LogLevel
 from flex_nav.exceptions import ConfigError
@@ -187,6 +188,52 @@ def test_push_stops_when_the_classifier_goes_silent_mid_push():
     assert twists(h)[-1] == (0.0, 0.0)
     assert robot.x < 0.2 + 0.2 * 1.0 + 0.03  # stopped within class_max_age_s (1 s) of the last class
     assert any("push stopped at" in t and "no fresh obstacle class" in t for t in h.texts(LogLevel.ERROR))
+
+
+def push_with_scan(face_x, *, scan=True):
+    """Pushes 1 m at 0.2 m/s with a 0.3 m/s approach; the object's face at x = ``face_x`` on the scan (None:
+    nothing ahead); ``scan`` False: no scan at all. The harness and the result."""
+    h, robot = push_harness(distance_m=1.0, speed_mps=0.2, approach_speed_mps=0.3, scan_topic="scan",
+                            robot_radius_m=0.2, contact_slack_m=0.05)
+    sub = h.proxies.subscription("scan", LaserScan)
+
+    def scanned(_t):
+        if scan:
+            sub.inject(wall_scan(h.clock.now(), robot.x, face_x))
+
+    scanned(0.0)
+    result = run(h.start(), Camera(h, "movable"), 10.0, on_step=scanned)
+    return h, result
+
+
+def test_push_approaches_the_face_faster_then_pushes_at_its_speed():
+    h, result = push_with_scan(face_x=0.5)  # 0.3 m from the front of a 0.2 m base
+    assert result.outcome == "done", h.log_text()
+    speeds = [v for v, _ in twists(h) if v > 0.0]
+    assert speeds[0] == pytest.approx(0.3)
+    first_push = speeds.index(pytest.approx(0.2))
+    assert all(v == pytest.approx(0.3) for v in speeds[:first_push])
+    assert all(v == pytest.approx(0.2) for v in speeds[first_push:])
+    assert first_push * 0.3 * STEP_S == pytest.approx(0.25, abs=0.03)  # up to contact_slack_m before the face
+    assert any("0.30 m ahead: 0.25 m at 0.3 m/s" in t for t in h.texts(LogLevel.INFO)), h.log_text()
+
+
+@pytest.mark.parametrize("face_x, scan", [(None, True), (0.5, False)])
+def test_push_without_a_face_on_a_fresh_scan_pushes_at_its_speed_all_the_way(face_x, scan):
+    h, result = push_with_scan(face_x=face_x, scan=scan)
+    assert result.outcome == "done", h.log_text()
+    assert {round(v, 6) for v, _ in twists(h) if v > 0.0} == {0.2}
+    assert scan or any("no faster approach" in t for t in h.texts(LogLevel.WARN)), h.log_text()
+
+
+@pytest.mark.parametrize("params, match", [
+    ({"approach_speed_mps": 0.1, "scan_topic": "scan"}, "approach_speed_mps 0.1 m/s must be 0 or at least"),
+    ({"approach_speed_mps": 0.3}, "needs a scan_topic"),
+    ({"approach_speed_mps": 9.0, "scan_topic": "scan"}, "approach_speed_mps"),
+    ({"contact_slack_m": -0.1}, "contact_slack_m")])
+def test_push_rejects_bad_approach_parameters(params, match):
+    with pytest.raises(ConfigError, match=match):
+        PushState(distance_m=0.5, speed_mps=0.2, **params)
 
 
 @pytest.mark.parametrize("params, field", [({"distance_m": 0.0}, "distance_m"), ({"distance_m": -0.3}, "distance_m"),
