@@ -65,6 +65,11 @@ ties: fewer looks asked (summed over the splits), then the earlier in the list (
 candidate becomes the defaults of ``fusion`` and ``lidar_shape``; the held-out sets are then measured once with it,
 whatever they show, and no other candidate is run on them.
 
+Chosen (``--rescore build/fused_val_dump.json`` on the dump of the nine validation splits, 3 150 scenes): P5N, a
+lidar ``person`` only for a moving object and row 7 only for an undecided camera; it is now the default of
+:class:`~flex_nav.perception.lidar_shape.ShapeParams` and :class:`~flex_nav.perception.fusion.FusionParams`, so this
+tool without options measures it (the first run's rule is candidate P0A).
+
 One process, one onnxruntime thread; no pool (the machine is shared).
 """
 

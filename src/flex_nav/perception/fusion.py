@@ -3,7 +3,7 @@
 The camera (:mod:`flex_nav.perception.classifier`, smoothed by :mod:`~flex_nav.perception.smoothing`) tells a
 person, a movable object and clear (fixed furniture, walls, nothing) apart from colour and texture, from one
 viewpoint; the lidar (:mod:`flex_nav.perception.lidar_shape`) sees the outline in its plane whatever the
-colour: a box, a person (legs, a round body, something that moves), unsure, or nothing (``none``).
+colour: a box, a person (by default only something that moves), unsure, or nothing (``none``).
 
 The camera is *unsure* when its vote is ``unknown``, its confidence is below ``camera_min_confidence`` or it
 has fewer than ``camera_min_votes`` votes; a lidar ``box`` below ``lidar_min_confidence`` counts as ``unsure``.
@@ -19,14 +19,19 @@ little, e.g. turn a few degrees or back off, and decide on fresh cues):
 | 4 | clear | box | < max | look again (the cues disagree) |
 | 5 | movable | none | < max | look again (the cues disagree: the lidar sees nothing there) |
 | 6 | movable (sure, or unsure after the looks) | box, unsure, none | any | movable |
-| 7 | clear or unknown | box | = max | movable (a box-like shape and no person cue) |
-| 8 | clear | unsure, none | any | clear |
+| 7 | unknown | box | = max | movable (a box-like shape and no person cue) |
+| 8 | clear (sure, or unsure after the looks) | box, unsure, none | any | clear |
 | 9 | unknown | unsure, none | = max | unknown |
 
-So a person on either cue is a person; movable needs the camera's movable or a box-like lidar shape, with no
-person cue; when the looks run out the lidar's box wins over the camera's clear (a push is stopped at once by
-a person and gives up within about a second on something heavy, while calling a light box furniture costs a
-detour). :meth:`FusedDecision.line` puts the decision and both cues on one log line.
+So a person on either cue is a person; movable needs the camera's movable or, with the camera undecided
+(``unknown``), a box-like lidar shape, with no person cue; a box the camera calls clear is looked at again, and
+when the looks run out the camera's clear stands. That is ``box_beats_clear`` ``"never"`` (the default since
+2026-11-29); with ``"unsure"`` row 7 also takes an unsure clear (below ``camera_min_confidence``) and with
+``"always"`` (the rule before) any clear, row 8 the rest. The lidar box beat the camera's clear before: on the
+classifier's validation scenes it turned box-shaped furniture, and a seated person's chair, cart or bench, into
+movable; of 18 candidate rules and lidar cues (``tools/perception/evaluate_fused.py``, "Choosing a rule") this
+one was chosen on the validation splits by a criterion stated before scoring (``models/README.md``).
+:meth:`FusedDecision.line` puts the decision and both cues on one log line.
 
 Pure, no ROS, no clock; the caller counts the looks.
 """
@@ -48,7 +53,7 @@ from flex_nav.perception.smoothing import Vote
 LOOK_AGAIN = "look_again"
 DECISIONS: Tuple[str, ...] = (PERSON, MOVABLE, CLEAR, UNKNOWN, LOOK_AGAIN)
 MAX_LOOKS = 10  # upper bound of max_looks: looking again is bounded
-BOX_BEATS_CLEAR: Tuple[str, ...] = ("always", "unsure", "never")  # which camera clear a lidar box beats (row 7)
+BOX_BEATS_CLEAR: Tuple[str, ...] = ("never", "unsure", "always")  # which camera clear a lidar box beats (row 7)
 
 
 @dataclass(frozen=True)
@@ -59,7 +64,7 @@ class FusionParams:
     camera_min_votes: int = 0  # a camera vote with fewer votes is unsure (0: any majority)
     lidar_min_confidence: float = 0.6  # [0..1] a lidar box below this counts as unsure
     max_looks: int = 2  # looks again before deciding without them (0: never look again)
-    box_beats_clear: str = "always"  # row 7: a lidar box beats any camera clear, an unsure one, or never
+    box_beats_clear: str = "never"  # row 7: a lidar box beats no camera clear, an unsure one, or any
 
     def __post_init__(self) -> None:
         validation.number("fusion", "camera_min_confidence", self.camera_min_confidence, minimum=0.0, maximum=1.0)
@@ -156,7 +161,7 @@ def fuse(camera: CameraCue, lidar: ShapeCue, looks: int, params: FusionParams = 
 
 class _Case(NamedTuple):
     """What the rule reads: the camera's label, a person in its vote or frame, unsure, the lidar's label (after
-    its confidence), looks left."""
+    its confidence), looks left, whether the camera's label gives way to a lidar box (``box_beats_clear``)."""
 
     camera: str
     camera_person: bool
@@ -177,6 +182,6 @@ _ROWS: Tuple[Tuple[int, Callable[[_Case], bool], str, str], ...] = (
      "the camera sees a movable object, the lidar nothing there"),
     (6, lambda c: c.camera == MOVABLE, MOVABLE, "the camera sees a movable object, no person cue"),
     (7, lambda c: c.lidar == BOX and c.yields_to_box, MOVABLE, "the lidar sees a box, no person cue"),
-    (8, lambda c: c.camera == CLEAR, CLEAR, "the camera sees clear, the lidar no box"),
+    (8, lambda c: c.camera == CLEAR, CLEAR, "the camera sees clear, no person cue"),
     (9, lambda c: True, UNKNOWN, "neither cue decides"),
 )

@@ -1,5 +1,5 @@
-"""The lidar's view of the object blocking the way: box-like (straight faces, corners) or person-like (two leg
-arcs, a round body), with a confidence and the features it was decided from.
+"""The lidar's view of the object blocking the way: box-like (straight faces, corners) or person-like (it moves;
+optionally two leg arcs, a round body), with a confidence and the features it was decided from.
 
 The camera decides what an object is from its colour and texture, from one viewpoint; a planar lidar sees the
 object's outline in its plane whatever its colour: a box shows one straight face or two faces meeting at a
@@ -21,22 +21,32 @@ The label, first rule that applies:
 
 1. ``none``: no hit within ``search_radius_m`` of the target;
 2. ``person``: the object moves (``speed_mps`` from a track, at least ``moving_speed_mps``): boxes stand still;
-3. ``person``: the object is leg-sized (at most ``leg_max_width_m`` across) and another leg-sized cluster lies
-   within ``leg_pair_max_gap_m`` of it with the background seen between them (at least one beam between the
-   two that has no return or ends farther: two pieces of one box's outline are neighbouring beams); one
-   leg-sized arc alone is a person only when it is curved (at least 3 hits, bulging toward the sensor, a
-   circle of at most leg size fitting ``curvature_ratio`` times better than a line, the line above the noise),
-   else ``unsure``;
+3. the object is leg-sized (``leg_min_width_m`` to ``leg_max_width_m`` across) and another leg-sized cluster
+   lies within ``leg_pair_max_gap_m`` of it with the background seen between them (at least one beam between
+   the two that has no return or ends farther: two pieces of one box's outline are neighbouring beams): two
+   static legs, ``person`` if ``two_legs_person``, else ``unsure``; one leg-sized arc alone that is curved (at
+   least 3 hits, bulging toward the sensor, a circle of at most leg size fitting ``curvature_ratio`` times
+   better than a line, the line above the noise): ``person`` if ``lone_leg_person``, else ``unsure``; one not
+   clearly curved: ``unsure``;
 4. fewer than ``min_points`` hits: ``unsure`` (too few to tell a corner from a curve);
-5. ``person``: a round body: the circle bulges toward the sensor, its radius is in
-   [``body_min_radius_m``, ``body_max_radius_m``], the single line does not fit within the noise, and the
-   circle's residual is at most ``curvature_ratio`` times that of the best box outline (the line, or the
-   corner if its angle is within 20 degrees of a right angle: a curve cut in two makes a blunter one);
+5. a static round body: the circle bulges toward the sensor, its radius is in [``body_min_radius_m``,
+   ``body_max_radius_m``], the single line does not fit within the noise, and the circle's residual is at most
+   ``curvature_ratio`` times that of the best box outline (the line, or the corner if its angle is within 20
+   degrees of a right angle: a curve cut in two makes a blunter one): ``person`` if ``round_body_person``, else
+   ``unsure``;
 6. a box outline (the line, or a right-angled corner, fits within ``straight_sigmas`` noise sigmas):
    ``box`` if it is ``box_min_size_m`` to ``box_max_size_m`` [m] across (larger: a wall or furniture, smaller:
    too little to tell, both ``unsure``); a right corner (0.9) or a face of at least 12 hits (0.85) gives more
    confidence than a short straight outline (0.7);
 7. otherwise ``unsure``.
+
+By default (since 2026-11-29) only a moving object is a ``person``: ``two_legs_person``, ``lone_leg_person`` and
+``round_body_person`` are off, so two static leg-like arcs, a lone curved arc and a static round body are
+``unsure`` (``leg_min_width_m`` 0). On the classifier's validation scenes a static person-like outline was as often a
+drum, a bin, a bag, a plant or a chair's or table's legs as a person; of 18 candidate lidar cues and fusion rules
+this one was chosen there by a criterion stated before scoring (``tools/perception/evaluate_fused.py``: "Choosing a
+rule"; figures in ``models/README.md``). Switch them on for a lidar that sees people's legs better than it sees such
+look-alikes.
 
 Pure numpy, no ROS, no clock: the caller passes points in one planar frame (e.g. the laser's), the sensor's
 position in it, and the track speed if the object is tracked.
@@ -86,9 +96,9 @@ class ShapeParams:
     box_max_size_m: float = 1.6  # [m] a straight object larger than this: a wall or furniture (unsure)
     moving_speed_mps: float = 0.2  # [m/s] a tracked object at least this fast moves
     leg_min_width_m: float = 0.0  # [m] a leg is at least this wide (0: any; a chair's or table's leg is thinner)
-    two_legs_person: bool = True  # two static leg-sized arcs are a person (False: unsure)
-    lone_leg_person: bool = True  # one static curved leg-sized arc is a person (False: unsure)
-    round_body_person: bool = True  # a static round body is a person (False: unsure)
+    two_legs_person: bool = False  # two static leg-sized arcs are a person (False: unsure)
+    lone_leg_person: bool = False  # one static curved leg-sized arc is a person (False: unsure)
+    round_body_person: bool = False  # a static round body is a person (False: unsure)
 
     def __post_init__(self) -> None:
         owner = "lidar shape"

@@ -159,7 +159,8 @@ def test_camera_cue_is_one_frame_window() -> None:
 
 
 @pytest.mark.parametrize("camera, shape, final, asked", [
-    (CameraCue(CLEAR, 0.9, 1, 1, CLEAR, 0.9), lidar(BOX), MOVABLE, True),  # disagree; the box wins at the end
+    (CameraCue(CLEAR, 0.9, 1, 1, CLEAR, 0.9), lidar(BOX), CLEAR, True),  # disagree; the camera's clear stands
+    (CameraCue(CLEAR, 0.5, 1, 1, CLEAR, 0.5), lidar(BOX), CLEAR, True),  # an unsure clear too
     (CameraCue(MOVABLE, 0.9, 1, 1, MOVABLE, 0.9), lidar(NONE), MOVABLE, True),  # nothing at lidar height
     (CameraCue(CLEAR, 0.5, 1, 1, CLEAR, 0.5), lidar(NONE), CLEAR, True),  # unsure camera, no box
     (CameraCue(PERSON, 0.9, 1, 1, PERSON, 0.9), lidar(BOX), PERSON, False),
@@ -319,3 +320,11 @@ def test_the_candidates_are_distinct_and_fix_every_switch() -> None:
     for candidate in CANDIDATES:  # a candidate's switches are its own, not the current defaults
         assert candidate.fusion.box_beats_clear == {"A": "always", "U": "unsure", "N": "never"}[candidate.name[-1]]
     assert tuple(s for s in SPLITS if s.startswith("val")) == VALIDATION and "val_extra8" in VALIDATION
+
+
+def test_the_defaults_are_the_candidate_chosen_on_validation() -> None:
+    """P5N (models/README.md, issue 28 second round): what the tool, the state and the node run by default."""
+    chosen = next(c for c in CANDIDATES if c.name == "P5N")
+    assert (chosen.shape, chosen.fusion) == (ShapeParams(), FusionParams())
+    first = next(c for c in CANDIDATES if c.name == "P0A")  # the first run's rule
+    assert first.shape != ShapeParams() and first.fusion != FusionParams()
