@@ -377,15 +377,16 @@ def start_recorder(stack: contextlib.ExitStack, bag: Path, robots: Sequence[str]
                    log_path: Path) -> ManagedProcess:
     """Record what replays the run in RViz -- /clock, /tf, /tf_static, /map, each robot's scan, footprint, global
     and local plans and costmaps (published at their ``publish_frequency``, 1 Hz) -- and what evaluates it:
-    ground truth, localization estimates and status, odometry, bumper hits, commands, behavior topics and the
-    world's events; to ``bag``, registered on ``stack`` so that it stops before what was registered earlier.
+    ground truth, localization estimates and status, odometry, bumper hits, commands, behavior topics, the
+    obstacle classifier's classes and fused lines, and the world's events; to ``bag``, registered on ``stack`` so that it stops before what was registered earlier.
     ``rosbag play run.bag`` then drives a use_sim_time RViz from the bag's own /clock (no ``--clock``)."""
     topics = [t for name in robots for t in (
         f"/{name}/ground_truth", f"/{name}/amcl_pose", f"/{name}/odom", f"/{name}/scan", f"/{name}/footprint",
         f"/{name}/get_path_server/plan", f"/{name}/follow_path_server/plan",
         f"/{name}/get_path_server/global_costmap/costmap", f"/{name}/pure_pursuit_path/local_costmap/costmap",
         f"/{name}/bumper_hits", f"/{name}/localizer/status",
-        f"/{name}/cmd_vel", f"/{name}/behavior_runner/transitions", f"/{name}/behavior_runner/status")]
+        f"/{name}/cmd_vel", f"/{name}/behavior_runner/transitions", f"/{name}/behavior_runner/status",
+        f"/{name}/obstacle_class", f"/{name}/obstacle_fusion")]
     # the recorder itself (not the rosbag wrapper script), so SIGINT reaches it and it closes the bag
     recorder = "/usr/lib/rosbag/record" if Path("/usr/lib/rosbag/record").is_file() else "rosbag"
     proc = ManagedProcess([recorder, *([] if recorder != "rosbag" else ["record"]), "-O", str(bag),
