@@ -219,13 +219,23 @@ def send_first_goal(monitor: ScenarioMonitor, lockstep: bool, wall_deadline: flo
     return None, 0.0
 
 
+def world_start_s(not_before_s: float, sim_s: float) -> float:
+    """[s] Where the world's script starts: WORLD_START_S, the same simulated time in every run, so not only the
+    sensors' schedule but every floating-point sum of absolute times agrees (a start 4 s later parted a run by
+    1e-17 m at the first step, and after a walker's close pass by 6 s); when the simulation (at ``sim_s`` [s]) is
+    nearly there or beyond, the first grid point from ``not_before_s`` [s] on that it has not nearly reached (half a
+    grid ahead)."""
+    grid_s = math.ceil(max(not_before_s, sim_s + START_GRID_S / 2.0) / START_GRID_S) * START_GRID_S
+    return max(grid_s, WORLD_START_S)
+
+
 def start_at_grid(monitor: ScenarioMonitor, not_before_s: float, wall_deadline: float) -> Tuple[Optional[str], float]:
-    """Lockstep: hold the simulation at the first multiple of START_GRID_S [s] from ``not_before_s`` on and start the
-    world's script there (``/sim/start_world``); hold it again WORLD_LEAD_S later, send the goal, let go. So the
-    run, its walkers and its noise begin at the same point of every sensor's schedule whatever the rtf or load, and
-    the goal comes as long after the world's start as it did after t = 0 when the world started with the
-    simulation (events such as "the person leaves at 25 s" keep their meaning). (The reason if it failed, else
-    None; the simulated time [s] the world's script started at.)"""
+    """Lockstep: hold the simulation at :func:`world_start_s` and start the world's script there
+    (``/sim/start_world``); hold it again WORLD_LEAD_S later, send the goal, let go. So the run, its walkers and its
+    noise begin at the same simulated time whatever the rtf or load, and the goal comes as long after the world's
+    start as it did after t = 0 when the world started with the simulation (events such as "the person leaves at
+    25 s" keep their meaning). (The reason if it failed, else None; the simulated time [s] the world's script
+    started at.)"""
     import rospy  # noqa: PLC0415
     from std_srvs.srv import Trigger  # noqa: PLC0415
 
@@ -246,16 +256,11 @@ def start_at_grid(monitor: ScenarioMonitor, not_before_s: float, wall_deadline: 
     try:
         if not hold.wait_connected(max(0.0, wall_deadline - time.monotonic())):
             return "the simulator did not subscribe to the lockstep holds", not_before_s
-        # a grid point the simulation has not nearly reached while the simulator subscribed (half a grid ahead);
-        # WORLD_START_S if that is later: the same simulated time in every run, so not only the sensors' schedule
-        # but every floating-point sum of absolute times agrees (a start 4 s later parted a run by 1e-17 m at the
-        # first step, and after a walker's close pass by 6 s)
-        world_s = math.ceil(max(not_before_s, monitor.sim_s() + START_GRID_S / 2.0) / START_GRID_S) * START_GRID_S
+        world_s = world_start_s(not_before_s, monitor.sim_s())
         if world_s > WORLD_START_S:
             print(f"scenario_run: the system was up only at {monitor.sim_s():.1f} s of simulated time: the world "
                   f"starts at {world_s:g} s, not at {WORLD_START_S:g} s (runs that start elsewhere may part)",
                   file=sys.stderr)
-        world_s = max(world_s, WORLD_START_S)
         problem = held_at(world_s)
         if problem is not None:
             return problem, world_s

@@ -26,6 +26,16 @@ def test_trips_go_to_the_goal_and_back_to_the_start_between_them():
                                                        ("start", START), ("goal", GOAL)]
 
 
+@pytest.mark.parametrize("not_before_s, sim_s, expected_s", [
+    (0.0, 3.0, scenario_run.WORLD_START_S),  # up early: the fixed start
+    (0.0, scenario_run.WORLD_START_S - 1.5, scenario_run.WORLD_START_S),
+    (0.0, scenario_run.WORLD_START_S - 0.5, scenario_run.WORLD_START_S + 2.0),  # nearly there: the next grid point
+    (0.0, 25.3, 28.0),  # up late: the grid point half a grid ahead
+    (31.0, 3.0, 32.0)])  # not before a later time
+def test_the_world_starts_at_one_simulated_time_when_the_system_is_up_by_then(not_before_s, sim_s, expected_s):
+    assert scenario_run.world_start_s(not_before_s, sim_s) == pytest.approx(expected_s)
+
+
 def test_scenario_run_reads_behavior_parameters_as_yaml_values():
     args = scenario_run.parse_args(["--world", "s5_heavy_box_short_route", "--behavior", "push_or_avoid",
                                     "--out", "/tmp/x", "--trips", "2", "--behavior-param", "remember_heavy=true",
