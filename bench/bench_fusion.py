@@ -3,7 +3,8 @@
     .venv/bin/python bench/bench_fusion.py [--runs 2000]
 
 Times, on a 360-beam scan (1 degree, 0.5 % range noise) of a 0.4 m box turned 30 degrees with its face 0.55 m
-ahead (where push_or_avoid stops and classifies) and of a person's round body there:
+ahead (where push_or_avoid stops and classifies) and of a round body there (a person's, or a bin's: standing
+still it is ``unsure`` to the lidar by default; the shape is fitted all the same):
 
 1. the lidar shape (:func:`flex_nav.perception.lidar_shape.classify_shape`: clusters, line/corner/circle fits);
 2. the fusion rule alone (:func:`flex_nav.perception.fusion.fuse`) and the one-line log of its decision;

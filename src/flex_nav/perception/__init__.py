@@ -17,6 +17,6 @@ ROS-free core (never imports rospy); the node is :mod:`flex_nav.nodes.obstacle_c
 | ``scan_segments`` | laser scan points cut into segments of small bodies (centre and radius from the visible front) |
 | ``static_mask`` | which scan points the static map explains (dropped before tracking) |
 | ``moving_obstacles`` | :class:`MovingObstacleTracker`: constant-velocity Kalman tracks (position, velocity, radius) |
-| ``lidar_shape`` | the lidar's cue of the object ahead: box-like (face, corner) or person-like (legs, body, moves) |
+| ``lidar_shape`` | the lidar's cue of the object ahead: box (face, corner) or a person (moves; legs, body by switch) |
 | ``fusion`` | camera class + lidar shape -> one decision by a documented rule (or look again, bounded) |
 """
