@@ -378,8 +378,9 @@ def start_recorder(stack: contextlib.ExitStack, bag: Path, robots: Sequence[str]
     """Record what replays the run in RViz -- /clock, /tf, /tf_static, /map, each robot's scan, footprint, global
     and local plans and costmaps (published at their ``publish_frequency``, 1 Hz) -- and what evaluates it:
     ground truth, localization estimates and status, odometry, bumper hits, commands, behavior topics, the
-    obstacle classifier's classes and fused lines, and the world's events; to ``bag``, registered on ``stack`` so that it stops before what was registered earlier.
-    ``rosbag play run.bag`` then drives a use_sim_time RViz from the bag's own /clock (no ``--clock``)."""
+    obstacle classifier's classes and fused lines, and the world's events; to ``bag``, registered on ``stack`` so
+    that it stops before what was registered earlier. ``rosbag play run.bag`` then drives a use_sim_time RViz
+    from the bag's own /clock (no ``--clock``)."""
     topics = [t for name in robots for t in (
         f"/{name}/ground_truth", f"/{name}/amcl_pose", f"/{name}/odom", f"/{name}/scan", f"/{name}/footprint",
         f"/{name}/get_path_server/plan", f"/{name}/follow_path_server/plan",
