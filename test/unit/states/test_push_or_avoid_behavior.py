@@ -7,6 +7,7 @@ from pathlib import Path
 from typing import Optional
 
 import numpy as np
+import pytest
 from actionlib_msgs.msg import GoalStatus
 from geometry_msgs.msg import PoseStamped
 from sensor_msgs.msg import LaserScan
@@ -132,32 +133,23 @@ def test_heavy_obstacle_push_stalls_then_backs_off_and_plans_around():
     assert len(scene.planner.goals) == 2
 
 
-def test_with_the_lidar_a_box_the_camera_calls_clear_is_looked_at_again_and_stays_clear():
+@pytest.mark.parametrize("camera, look_row, decided, pushed, x_range", [
     # the rule chosen on the validation splits (flex_nav.perception.fusion): a lidar box never beats the camera's
-    # clear, it only asks for the looks
-    scene = Scene("clear", BLOCKED_THEN_DONE, fuse_lidar=True, max_looks=2, look_again_m=-0.15,
+    # clear, it only asks for the looks; two looks back (0.13-0.15 m each), no push
+    ("clear", 4, "fused clear (row 8", False, (-0.31, -0.25)),
+    # an undecided camera: the box decides after the looks; the 0.5 m push and the 0.3 m back-off
+    ("unknown", 3, "fused movable (row 7", True, (-0.15, 0.0))])
+def test_with_the_lidar_a_box_is_looked_at_again_then_decided(camera, look_row, decided, pushed, x_range):
+    scene = Scene(camera, BLOCKED_THEN_DONE, fuse_lidar=True, max_looks=2, look_again_m=-0.15,
                   push_distance_m=0.5, push_speed_mps=0.2, backoff_m=-0.3)
     scene.box_ahead_x = 0.55
     scene.run_until("goal reached", 40.0)
     texts = scene.h.texts()
-    looks = [t for t in texts if "fused look_again (row 4" in t]
+    looks = [t for t in texts if f"fused look_again (row {look_row}" in t]
     assert len(looks) == 2, scene.h.log_text()
-    assert any("fused clear (row 8" in t for t in texts), scene.h.log_text()
-    assert not any("pushed" in t for t in texts)
-    assert -0.31 < scene.robot.x < -0.25  # two looks back (0.13-0.15 m each), no push
-
-
-def test_with_the_lidar_a_box_the_camera_cannot_decide_is_looked_at_again_then_pushed():
-    scene = Scene("unknown", BLOCKED_THEN_DONE, fuse_lidar=True, max_looks=2, look_again_m=-0.15,
-                  push_distance_m=0.5, push_speed_mps=0.2, backoff_m=-0.3)
-    scene.box_ahead_x = 0.55
-    scene.run_until("goal reached", 40.0)
-    texts = scene.h.texts()
-    looks = [t for t in texts if "fused look_again (row 3" in t]
-    assert len(looks) == 2, scene.h.log_text()
-    assert any("fused movable (row 7" in t for t in texts), scene.h.log_text()
-    assert any("pushed 0.5" in t for t in texts)
-    assert -0.15 < scene.robot.x < 0.0  # two looks back (0.13-0.15 m each), the 0.5 m push, the 0.3 m back-off
+    assert any(decided in t for t in texts), scene.h.log_text()
+    assert any("pushed 0.5" in t for t in texts) == pushed
+    assert x_range[0] < scene.robot.x < x_range[1]
 
 
 def test_with_the_lidar_a_box_the_camera_calls_movable_is_pushed_at_once():
