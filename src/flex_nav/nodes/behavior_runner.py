@@ -82,6 +82,7 @@ STOP_TIMEOUT_S = 5.0  # [s] bound on waiting for a preempted behavior to exit it
 LOAD_TIMEOUT_S = 10.0  # [s] bound on a load (read, build, validate); = the loader's own max_load_s
 LOCKSTEP_START_GRID_S = 1.0  # [s] lockstep: a behavior starts at a whole second of simulated time
 LOCKSTEP_START_WAIT_S = 10.0  # [s] wall: bound on waiting for that second (a stalled clock starts it anyway)
+LOCKSTEP_START_TOLERANCE_S = 0.005  # [s] the simulation held at the start second stands this close after it
 SHOWN_CHARS = 60  # characters of a remote argument repeated in an answer
 
 Loader = Callable[[BehaviorSource, Dict[str, Any], Sequence[Path]], Behavior]
@@ -99,6 +100,30 @@ def with_robot_profile(parameters: Dict[str, Any], declared: FrozenSet[str], rob
     if not robot_profile or "profile" in parameters or "profile" not in declared:
         return dict(parameters)
     return {**parameters, "profile": robot_profile}
+
+
+def wait_for_start_grid(clock: Any, name: str, wait_s: float = LOCKSTEP_START_WAIT_S) -> float:
+    """Lockstep: behavior ``name`` starts on the grid of whole seconds of simulated time (held there by ``clock``, a
+    RosClock with a lockstep participant), so its states tick at the same simulated times whenever its node came up
+    (each state's ticks follow from its entry). A grid point the simulation passed before the hold took (no /clock
+    yet: ROS time jumped from 0 to 1.16 s over the point 1 s, and the behavior started off the grid) does not count:
+    the next one is waited for. Bounded by ``wait_s`` [s] of wall time (a stalled clock starts it anyway, with a
+    warning). Returns the ROS time [s] it starts at."""
+    never = threading.Event()
+    wall_deadline = time.monotonic() + wait_s
+    start_s = next_grid_point(clock.now(), LOCKSTEP_START_GRID_S)
+    while not rospy.is_shutdown():
+        now_s = clock.now()
+        if now_s >= start_s:
+            if now_s <= start_s + LOCKSTEP_START_TOLERANCE_S:
+                return now_s
+            start_s = next_grid_point(now_s, LOCKSTEP_START_GRID_S)  # passed before the hold took
+        if time.monotonic() > wall_deadline:
+            rospy.logwarn(f"behavior {name!r}: simulated time did not stand at {start_s:.3f} s within {wait_s:g} s "
+                          f"of wall time: started at {now_s:.3f} s")
+            return now_s
+        clock.wait_until(start_s, never)
+    return clock.now()
 
 
 def flexbe_behavior_class(spec: str) -> type:
@@ -303,7 +328,7 @@ class BehaviorRunner:
         hold: Optional[LockstepParticipant] = getattr(clock, "lockstep", None)  # a RosClock's, in lockstep
         try:
             if hold is not None:
-                self._wait_for_start_grid(clock)
+                wait_for_start_grid(clock, self._name)
             result = executor.run()
         finally:
             proxies.shutdown()
@@ -312,20 +337,6 @@ class BehaviorRunner:
         rospy.loginfo(f"behavior {self._name!r} ended: {result.status.name} {result.outcome or ''} {result.reason}")
         if self.on_done is not None:
             self.on_done(result)
-
-    def _wait_for_start_grid(self, clock: Any) -> None:
-        """Lockstep: the behavior starts on the grid of whole seconds of simulated time (held there), so its states
-        tick at the same simulated times whenever its node came up (each state's ticks follow from its entry);
-        bounded by LOCKSTEP_START_WAIT_S of wall time (a stalled clock starts it anyway, with a warning)."""
-        start_s = next_grid_point(clock.now(), LOCKSTEP_START_GRID_S)
-        never = threading.Event()
-        wall_deadline = time.monotonic() + LOCKSTEP_START_WAIT_S
-        while clock.now() < start_s and not rospy.is_shutdown():
-            if time.monotonic() > wall_deadline:
-                rospy.logwarn(f"behavior {self._name!r}: simulated time did not reach {start_s:.3f} s within "
-                              f"{LOCKSTEP_START_WAIT_S:g} s of wall time: started at {clock.now():.3f} s")
-                return
-            clock.wait_until(start_s, never)
 
     def stop(self, timeout_s: float = STOP_TIMEOUT_S) -> str:
         """Cancel a load in progress, or preempt the running behavior and wait (bounded) until it exited its states."""
