@@ -55,6 +55,8 @@ class Subscription(Generic[MsgT]):
     ``lockstep`` (a behavior's subscriptions in a lockstep simulation): a stamped message is taken in only once ROS
     time has passed its stamp. A message stamped at the time the simulation stands at arrives before or after the
     reader's tick at that time by a wall-time race; so it is seen at the next tick either way, whatever the load.
+    Such a message is taken in before any later one (on the next arrival or read), so the newest message is never
+    an older one (a scan of 38.0 s that had waited would else have replaced the one of 38.9 s at the next read).
     (The extra callbacks still get every message as it arrives.)"""
 
     def __init__(self, topic: str, msg_type: type, buffer_size: int = 0, *, lockstep: bool = False) -> None:
@@ -76,6 +78,7 @@ class Subscription(Generic[MsgT]):
 
     def _callback(self, msg: MsgT) -> None:
         with self._lock:
+            self._take_due()  # before ``msg``: an early message taken later would replace a newer one
             if self._lockstep and 0.0 <= _stamp_s(msg) - rospy.get_time() < EARLY_WINDOW_S:
                 self._early.append(msg)
             else:
@@ -408,11 +411,8 @@ class RosProxies:
 
     def subscription(self, topic: str, msg_type: type, buffer_size: int = 0) -> Subscription[Any]:
         with self._lock:
-            # lockstep: only a buffered subscription (each message handed out once, in order: a goal) waits for its
-            # stamps; on the latest-message ones (scans) it starved the back-off states of a fresh scan in the
-            # 36-run bench (not understood yet), so they take every message as it comes
             sub = self._subscriptions.shared(topic, msg_type, lambda: Subscription(
-                topic, msg_type, buffer_size, lockstep=self._announce is not None and buffer_size > 0))
+                topic, msg_type, buffer_size, lockstep=self._announce is not None))
             if buffer_size > 0:  # a subscription made before without a buffer gets one (no-op when buffering)
                 sub.enable_buffer(buffer_size)
             return sub
