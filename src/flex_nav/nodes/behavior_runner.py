@@ -111,9 +111,10 @@ def wait_for_start_grid(clock: Any, name: str, wait_s: float = LOCKSTEP_START_WA
     warning). Returns the ROS time [s] it starts at."""
     never = threading.Event()
     wall_deadline = time.monotonic() + wait_s
-    start_s = next_grid_point(clock.now(), LOCKSTEP_START_GRID_S)
+    start_s = next_grid_point(float(clock.now()), LOCKSTEP_START_GRID_S)
+    now_s = start_s
     while not rospy.is_shutdown():
-        now_s = clock.now()
+        now_s = float(clock.now())
         if now_s >= start_s:
             if now_s <= start_s + LOCKSTEP_START_TOLERANCE_S:
                 return now_s
@@ -123,7 +124,7 @@ def wait_for_start_grid(clock: Any, name: str, wait_s: float = LOCKSTEP_START_WA
                           f"of wall time: started at {now_s:.3f} s")
             return now_s
         clock.wait_until(start_s, never)
-    return clock.now()
+    return now_s
 
 
 def flexbe_behavior_class(spec: str) -> type:

@@ -42,11 +42,11 @@ def arrive(sub: proxies.Subscription[Any], msg: Any) -> None:
 
 
 def stamp_of(msg: Any) -> float:
-    return round(msg.header.stamp.to_sec(), 4)
+    return round(float(msg.header.stamp.to_sec()), 4)
 
 
 def test_a_message_stamped_now_is_seen_once_time_has_passed_it(ros_time: List[float]) -> None:
-    sub = proxies.Subscription("scan", LaserScan, lockstep=True)
+    sub: proxies.Subscription[LaserScan] = proxies.Subscription("scan", LaserScan, lockstep=True)
     ros_time[0] = 38.0
     arrive(sub, scan(37.9))
     arrive(sub, scan(38.0))
@@ -58,7 +58,7 @@ def test_a_message_stamped_now_is_seen_once_time_has_passed_it(ros_time: List[fl
 def test_a_message_that_waited_does_not_replace_a_newer_one(ros_time: List[float]) -> None:
     """The scan of 38.0 s came while the simulation stood at 38.0 s; the scans after it came once time had passed
     their stamps. Read only at 39.05 s, the newest is the scan of 38.9 s (it was the one of 38.0 s)."""
-    sub = proxies.Subscription("scan", LaserScan, lockstep=True)
+    sub: proxies.Subscription[LaserScan] = proxies.Subscription("scan", LaserScan, lockstep=True)
     ros_time[0] = 38.0
     arrive(sub, scan(38.0))
     for stamp_s in (38.18, 38.37, 38.55, 38.73, 38.91):
@@ -69,7 +69,7 @@ def test_a_message_that_waited_does_not_replace_a_newer_one(ros_time: List[float
 
 
 def test_a_buffered_subscription_hands_out_in_stamp_order(ros_time: List[float]) -> None:
-    sub = proxies.Subscription("goal", LaserScan, buffer_size=5, lockstep=True)
+    sub: proxies.Subscription[LaserScan] = proxies.Subscription("goal", LaserScan, buffer_size=5, lockstep=True)
     ros_time[0] = 20.0
     arrive(sub, scan(20.0))
     ros_time[0] = 20.1
@@ -79,7 +79,7 @@ def test_a_buffered_subscription_hands_out_in_stamp_order(ros_time: List[float])
 
 
 def test_without_lockstep_every_message_is_taken_as_it_comes(ros_time: List[float]) -> None:
-    sub = proxies.Subscription("scan", LaserScan)
+    sub: proxies.Subscription[LaserScan] = proxies.Subscription("scan", LaserScan)
     ros_time[0] = 38.0
     arrive(sub, scan(38.0))
     assert stamp_of(sub.last()) == 38.0
