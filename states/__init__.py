@@ -23,7 +23,8 @@ Modules (one state or one small family each):
   :mod:`obstacle_class_state` (person / movable / clear from the obstacle classifier), :mod:`obstacle_fusion_state`
   (camera class + lidar shape, bounded looks again), :mod:`remember_obstacle_state` (a heavy obstacle's footprint
   for the costmap's obstacle memory), :mod:`push_state`
-  (push a distance, fails fast on a heavy object, never pushes a person), :mod:`wait_path_clear_state`;
+  (push a distance, fails fast on a heavy object, never pushes a person), :mod:`detour_check_state` (after a
+  push, the old plan kept once when the replan is a long detour), :mod:`wait_path_clear_state`;
 - operator: :mod:`operator_decision_state`, :mod:`log_state`, :mod:`wait_state`;
 - retries: :mod:`backoff_state` (a wait before the next try of a goal, doubling after each failed one);
 - exploration: :mod:`robot_pose_state` (the robot's pose from a pose topic into userdata),
@@ -67,6 +68,7 @@ STATE_MODULES = (
     "obstacle_fusion_state",
     "remember_obstacle_state",
     "push_state",
+    "detour_check_state",
     "wait_path_clear_state",
     "robot_pose_state",
     "find_frontier_state",

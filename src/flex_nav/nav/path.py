@@ -213,3 +213,13 @@ def prune_passed(
     if rest.shape[0] and rest[0, 0] == first[0] and rest[0, 1] == first[1]:
         return rest.copy(), closest.index  # the closest point is the next pose itself
     return np.vstack([first[None, :], rest]), closest.index
+
+
+def detour_m(old: np.ndarray, new: np.ndarray) -> float:
+    """[m] how much longer ``new`` (a replan from where the robot stands, its first point) is than the rest of
+    ``old`` from the point of ``old`` nearest that start (negative: shorter). A path of one point is 0 m long."""
+    if new.shape[0] == 0 or old.shape[0] == 0:
+        raise ConfigError(f"detour_m needs two paths with points ({old.shape[0]} and {new.shape[0]} given)")
+    lengths = cumulative_lengths(old)
+    start = closest_point(old, float(new[0, 0]), float(new[0, 1]), lengths=lengths, earliest_within=0.1)
+    return path_length(new) - (float(lengths[-1]) - start.s)

@@ -40,6 +40,7 @@ EXPECTED = {
     "OperatorDecisionState", "LogState", "WaitState", "GoalListState", "ReplanState", "FollowUntilBlockedState",
     "ObstacleClassState", "ObstacleFusionState", "PushState", "WaitPathClearState", "BackoffState", "RobotPoseState",
     "FindFrontierState", "MarkFailedGoalState", "SaveMapState", "RememberObstacleState",
+    "DetourCheckState",
 }
 
 
