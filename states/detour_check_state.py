@@ -2,7 +2,8 @@
 
 A push moves a light object by the push's distance; in a passage longer than that (issue 28's h4: a 0.8 m-wide
 box in a 1.2 m route 4 m long) it is still in the way, the replan goes round the block, and the robot that pushed
-arrives later than one that never tried. When the replan (``new_plan``, from where the robot stands) is more than
+arrives later than one that never tried. The same holds when a push was stopped (a camera frame taken for a
+person) and the way was then reported clear. When the replan (``new_plan``, from where the robot stands) is more than
 ``max_extra_m`` longer than the rest of the plan it replaces (``plan``, through the object), the old plan is kept:
 following it meets the object again, which is then classified and pushed on (a person or a heavy object there is
 handled as at the first meeting). At most ``max_keeps`` times per goal (counted in userdata ``keeps``, which the
