@@ -276,3 +276,36 @@ def test_planning_again_after_the_wait_is_bounded():
     # the first plan, around (none), 1 + 3 after the wait, then each further blocked episode's around and after-wait
     # plan, and the recovery chain's last plan: bounded well below the 31 answers scripted
     assert 6 <= len(scene.planner.goals) <= 16, scene.h.log_text()
+
+
+def test_after_a_push_a_long_detour_is_refused_once_and_the_object_pushed_on():
+    """Issue 28's h4: the box pushed along a passage longer than the push is still in the way, and the replan goes
+    round the block. The old plan is followed again (push_on_max 1): blocked at the box, pushed on; the next
+    detour is taken."""
+    blocked_twice = [(GoalStatus.ABORTED, FollowPathResult.FAILURE, BLOCKED)] * 2 + [
+        (GoalStatus.SUCCEEDED, FollowPathResult.SUCCESS, "goal reached")]
+    scene = Scene("movable", blocked_twice, plans=0, push_distance_m=0.5, push_speed_mps=0.2, backoff_m=-0.3)
+    through = GetPathResult(code=GetPathResult.SUCCESS, plan=path([(0, 0), (3, 0)]))
+    around = GetPathResult(code=GetPathResult.SUCCESS, plan=path([(0.2, 0), (0.2, 4), (3, 4), (3, 0)]))
+    scene.planner.respond(GoalStatus.SUCCEEDED, through, delay_s=0.1)  # the first plan
+    scene.planner.respond(GoalStatus.SUCCEEDED, around, delay_s=0.1)  # after the first push: 8.2 m vs 2.8 m
+    scene.planner.respond(GoalStatus.SUCCEEDED, around, delay_s=0.1)  # after the second: taken
+    scene.run_until("goal reached", 40.0)
+    texts = scene.h.texts()
+    assert sum("pushed 0.5" in t for t in texts) == 2, scene.h.log_text()
+    assert any("following the old plan to push it on" in t for t in texts)
+    assert any("kept 1 times for this goal already" in t for t in texts)
+    follows = scene.follower.goals
+    assert len(follows) == 3 and follows[1].path.poses == follows[0].path.poses  # the old plan again
+    assert len(follows[2].path.poses) == len(around.plan.poses)  # then the detour
+
+
+def test_with_push_on_max_0_the_detour_after_a_push_is_taken_at_once():
+    scene = Scene("movable", BLOCKED_THEN_DONE, plans=0, push_distance_m=0.5, push_on_max=0)
+    scene.planner.respond(GoalStatus.SUCCEEDED, GetPathResult(code=GetPathResult.SUCCESS, plan=path([(0, 0), (3, 0)])),
+                          delay_s=0.1)
+    around = GetPathResult(code=GetPathResult.SUCCESS, plan=path([(0.2, 0), (0.2, 4), (3, 4), (3, 0)]))
+    scene.planner.respond(GoalStatus.SUCCEEDED, around, delay_s=0.1)
+    scene.run_until("goal reached", 30.0)
+    assert len(scene.follower.goals) == 2 and len(scene.follower.goals[1].path.poses) == len(around.plan.poses)
+    assert not any("push it on" in t for t in scene.h.texts())
