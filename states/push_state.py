@@ -7,6 +7,12 @@ the whole push taking longer than ``distance_m / speed_mps + margin_s`` (progres
 perception seeing a person in front of the robot (the state never starts and never goes on pushing a
 person; it also refuses to start without a fresh class that is not person).
 
+With ``person_frames`` above 1, a single frame said person makes the robot stand (no push toward anyone on any
+frame), and the push ends only when that many classified frames in a row, or the vote, say person; otherwise it
+goes on. At contact the object fills the camera's view, out of the range the classifier was trained for (0.55-1.8
+m): issue 28's h4 (a green box) gave one person frame of confidence 0.45 there, then the wall-like "clear" of a face
+filling the view, and every push ended at once.
+
 With ``approach_speed_mps`` and a ``scan_topic``, the gap to the object's face on the scan at the start is driven
 faster, up to ``contact_slack_m`` before it; the push itself (contact, and a heavy object's stall) is at
 ``speed_mps`` (S5, where the robot stops ~0.5 m before the box: the failed push took 3.2 s with a 0.3 m/s approach,
@@ -41,7 +47,9 @@ class PushState(MotionBase):
     """Pushes straight forward by ``distance_m`` at ``speed_mps`` and stops; fails fast on a heavy object.
 
     Progress is the odometry displacement along the heading at the start. The class topic is read on
-    every tick: a person (by the vote or the latest frame) stops the push at once with ``person``; no
+    every tick: a person (by the vote or the latest frame) stops the robot at once; the push ends with
+    ``person`` then (``person_frames`` 1), or once ``person_frames`` frames in a row or the vote say person
+    (standing in between; the time stood does not count against the push's time or stall window); no
     fresh class, at entry or while pushing (the classifier or its camera went silent), also gives ``person``
     (unknown is treated as a person).
     The robot stops (zero twist) on every exit.
@@ -54,6 +62,8 @@ class PushState(MotionBase):
     -- stall_distance_m  float  [m] Least progress per stall window (> 0, below speed_mps x stall_window_s).
     -- class_topic       str    flex_nav/ObstacleClass topic of the obstacle classifier.
     -- class_max_age_s   float  [s] Older class messages do not count.
+    -- person_frames     int    Classified frames in a row said person that end the push (>= 1; the vote saying
+                                person always does); fewer make the robot stand.
     -- odom_topic        str    nav_msgs/Odometry topic.
     -- odom_timeout_s    float  [s] Fail when no fresh odometry for this long.
     -- cmd_topic         str    geometry_msgs/TwistStamped command topic.
@@ -84,6 +94,7 @@ class PushState(MotionBase):
         stall_distance_m: float = 0.02,
         class_topic: str = "obstacle_class",
         class_max_age_s: float = 1.0,
+        person_frames: int = 1,
         odom_topic: str = "odom",
         odom_timeout_s: float = 0.5,
         cmd_topic: str = "cmd_vel_stamped",
@@ -110,6 +121,11 @@ class PushState(MotionBase):
         self._stall = stall_watch(owner, stall_window_s, progress_name="stall_distance_m",
                                   min_progress=stall_distance_m, unit="m", slowest_speed=self._speed_mps)
         self._reader = ClassReader(owner, class_topic, class_max_age_s)
+        self._person_frames = validation.integer(owner, "person_frames", person_frames, minimum=1)
+        self._person_run = 0  # classified frames in a row said person (counted once per frame stamp)
+        self._person_stamp: Optional[float] = None  # [s] stamp of the last frame counted
+        self._stand_since: Optional[float] = None  # [s] when the robot stood for a person frame (None: pushing)
+        self._stood_s = 0.0  # [s] time stood so far (not counted against the timeout)
         self._approach = _Approach(owner, approach_speed_mps, self._speed_mps, scan_topic, robot_radius_m,
                                    contact_slack_m, scan_max_age_s)  # checked there
         self._scan: Optional[SubscriptionLike] = None
@@ -134,6 +150,8 @@ class PushState(MotionBase):
         self._start = None
         self._progress_m = 0.0
         self._checked = False
+        self._person_run, self._person_stamp = 0, None
+        self._stand_since, self._stood_s = None, 0.0
 
     def on_exit(self, userdata: UserDataView) -> None:
         super().on_exit(userdata)
@@ -154,8 +172,24 @@ class PushState(MotionBase):
         self._checked = True
         if PERSON in (msg.label, msg.frame_label):
             self.stop()
-            self.log_warn(f"push stopped: a person is in front of the robot (pushed {self._progress_m:.2f} m)")
-            return PERSON
+            stamp_s = msg.header.stamp.to_sec()
+            if stamp_s != self._person_stamp:
+                self._person_run, self._person_stamp = self._person_run + 1, stamp_s
+            if msg.label == PERSON or self._person_run >= self._person_frames:
+                self.log_warn(f"push stopped: a person is in front of the robot (pushed {self._progress_m:.2f} m)")
+                return PERSON
+            if self._stand_since is None:
+                self._stand_since = self.now_s()
+                self.log_info(f"push: a frame said person ({msg.frame_confidence:.2f}): standing "
+                              f"(pushed {self._progress_m:.2f} m)")
+            return None
+        self._person_run = 0
+        if self._stand_since is not None:  # the frame after it did not say person: push on
+            now = self.now_s()
+            self._stood_s += now - self._stand_since
+            self._stand_since = None
+            self._stall.restart_window(now)
+            self.log_info(f"push: the next frame said {msg.frame_label}: pushing on")
         return self._drive()
 
     def _drive(self) -> Optional[str]:
@@ -176,7 +210,7 @@ class PushState(MotionBase):
         if self._progress_m >= self._distance_m:
             self.log_info(f"pushed {self._progress_m:.2f} m")
             return "done"
-        if self.elapsed_s() > self._timeout_s:
+        if self.elapsed_s() - self._stood_s > self._timeout_s:
             return self._timed_out()
         if self._stall.stalled(self._progress_m, now):
             self.log_error(f"push stalled at {self._progress_m:.2f} m: less than {self._stall.min_progress:g} m "

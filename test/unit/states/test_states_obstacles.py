@@ -190,6 +190,34 @@ def test_push_stops_when_the_classifier_goes_silent_mid_push():
     assert any("push stopped at" in t and "no fresh obstacle class" in t for t in h.texts(LogLevel.ERROR))
 
 
+def test_with_person_frames_2_one_frame_said_person_stands_the_robot_then_the_push_goes_on():
+    """h4 at contact: one frame said person (confidence 0.45), the next ones clear (the face fills the view)."""
+    h, robot = push_harness(distance_m=0.6, speed_mps=0.2, person_frames=2, margin_s=0.5)
+    single = Camera(h, "movable", frame_label=lambda t: "person" if 1.0 <= t < 1.0 + STEP_S else "clear")
+    result = run(h.start(), single, 10.0)
+    assert result.outcome == "done", h.log_text()
+    assert result.outputs["push_progress_m"] >= 0.6 and robot.x >= 0.6
+    stood = [i for i, (v, _) in enumerate(twists(h)) if v == 0.0]
+    assert stood and stood[0] > 0 and stood[0] < len(twists(h)) - 1  # stood mid-push, then drove on
+    texts = h.texts()
+    assert any("a frame said person (" in t and "): standing" in t for t in texts), h.log_text()
+    assert any("the next frame said clear: pushing on" in t for t in texts)
+
+
+def test_with_person_frames_2_two_frames_in_a_row_end_the_push_having_stood_at_the_first():
+    h, robot = push_harness(distance_m=1.0, speed_mps=0.2, person_frames=2)
+    result = run(h.start(), Camera(h, "movable", frame_label=lambda t: "movable" if t < 1.0 else "person"), 10.0)
+    assert result.outcome == "person"
+    assert robot.x == pytest.approx(0.2, abs=0.03)  # not a step farther than with person_frames 1
+    assert twists(h)[-2:] == [(0.0, 0.0), (0.0, 0.0)]
+
+
+def test_with_person_frames_2_the_vote_said_person_ends_the_push_at_once():
+    h, robot = push_harness(distance_m=1.0, speed_mps=0.2, person_frames=2)
+    result = run(h.start(), Camera(h, lambda t: "movable" if t < 1.0 else "person", frame_label="movable"), 10.0)
+    assert result.outcome == "person" and robot.x == pytest.approx(0.2, abs=0.03)
+
+
 def push_with_scan(face_x, *, scan=True):
     """Pushes 1 m at 0.2 m/s with a 0.3 m/s approach; the object's face at x = ``face_x`` on the scan (None:
     nothing ahead); ``scan`` False: no scan at all. The harness and the result."""
@@ -240,7 +268,8 @@ def test_push_rejects_bad_approach_parameters(params, match):
                                            ({"distance_m": 0.5, "speed_mps": 5.0}, "speed_mps"),
                                            ({"distance_m": 0.5, "speed_mps": 0.1, "stall_distance_m": 0.2},
                                             "stall_distance_m"),
-                                           ({"distance_m": 0.5, "enough_fraction": 1.5}, "enough_fraction")])
+                                           ({"distance_m": 0.5, "enough_fraction": 1.5}, "enough_fraction"),
+                                           ({"distance_m": 0.5, "person_frames": 0}, "person_frames")])
 def test_push_rejects_bad_parameters(params, field):
     with pytest.raises(ConfigError, match=field):
         PushState(**params)
