@@ -284,7 +284,8 @@ def test_after_a_push_a_long_detour_is_refused_once_and_the_object_pushed_on():
     detour is taken."""
     blocked_twice = [(GoalStatus.ABORTED, FollowPathResult.FAILURE, BLOCKED)] * 2 + [
         (GoalStatus.SUCCEEDED, FollowPathResult.SUCCESS, "goal reached")]
-    scene = Scene("movable", blocked_twice, plans=0, push_distance_m=0.5, push_speed_mps=0.2, backoff_m=-0.3)
+    scene = Scene("movable", blocked_twice, plans=0, push_distance_m=0.5, push_speed_mps=0.2, backoff_m=-0.3,
+                  push_on_max=1)
     through = GetPathResult(code=GetPathResult.SUCCESS, plan=path([(0, 0), (3, 0)]))
     around = GetPathResult(code=GetPathResult.SUCCESS, plan=path([(0.2, 0), (0.2, 4), (3, 4), (3, 0)]))
     scene.planner.respond(GoalStatus.SUCCEEDED, through, delay_s=0.1)  # the first plan
@@ -300,8 +301,8 @@ def test_after_a_push_a_long_detour_is_refused_once_and_the_object_pushed_on():
     assert len(follows[2].path.poses) == len(around.plan.poses)  # then the detour
 
 
-def test_with_push_on_max_0_the_detour_after_a_push_is_taken_at_once():
-    scene = Scene("movable", BLOCKED_THEN_DONE, plans=0, push_distance_m=0.5, push_on_max=0)
+def test_by_default_the_detour_after_a_push_is_taken_at_once():
+    scene = Scene("movable", BLOCKED_THEN_DONE, plans=0, push_distance_m=0.5)  # push_on_max 0
     scene.planner.respond(GoalStatus.SUCCEEDED, GetPathResult(code=GetPathResult.SUCCESS, plan=path([(0, 0), (3, 0)])),
                           delay_s=0.1)
     around = GetPathResult(code=GetPathResult.SUCCESS, plan=path([(0.2, 0), (0.2, 4), (3, 4), (3, 0)]))
