@@ -56,7 +56,7 @@ class DetourCheckState(State):
         new_plan: Path = unwrap(userdata.new_plan)
         old_plan: Any = unwrap(userdata.plan)
         keeps = int(userdata.keeps or 0)
-        if not isinstance(old_plan, Path) or not old_plan.poses or not new_plan.poses:
+        if self._max_keeps == 0 or not isinstance(old_plan, Path) or not old_plan.poses or not new_plan.poses:
             userdata.plan = new_plan
             return "replanned"
         extra_m = detour_m(_points(old_plan), _points(new_plan))
