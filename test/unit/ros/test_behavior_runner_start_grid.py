@@ -7,7 +7,15 @@ from typing import List
 
 import pytest
 
+from flex_nav.nodes import behavior_runner
 from flex_nav.nodes.behavior_runner import wait_for_start_grid
+
+
+@pytest.fixture(autouse=True)
+def ros_running(monkeypatch: pytest.MonkeyPatch) -> None:
+    """rospy as in a running node: an earlier test in this process may have shut rospy down for good."""
+    monkeypatch.setattr(behavior_runner.rospy, "is_shutdown", lambda: False)
+    monkeypatch.setattr(behavior_runner.rospy, "logwarn", lambda *args, **kwargs: None)
 
 
 class ScriptedClock:
