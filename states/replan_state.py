@@ -6,6 +6,7 @@ from typing import Any, Optional
 
 from actionlib_msgs.msg import GoalStatus
 from nav_msgs.msg import Path
+from std_msgs.msg import Header
 
 from flex_nav.action_types import action_type
 from flex_nav.behavior.state import State
@@ -14,6 +15,7 @@ from flex_nav.msg import GetPathGoal, GetPathResult
 from flex_nav_states import validation
 from flex_nav_states.action_base import SERVER_LOST_S, ServerLossWatch
 from flex_nav_states.backoff_state import retry_delay_s
+from flex_nav_states.messages import to_stamp
 from flex_nav_states.proxy_types import ActionClientLike, PublisherLike, proxies_of
 
 GET_PATH = action_type("GetPath")
@@ -31,7 +33,10 @@ class ReplanState(State):
     ``backoff_max_s`` (a transient fault is not answered by back-to-back requests that all fail).
 
     -- action_name       str    GetPath server name, relative to the behavior's namespace.
-    -- plan_topic        str    nav_msgs/Path topic the plans are published on (latched).
+    -- plan_topic        str    nav_msgs/Path topic the plans are published on (latched), each stamped at its
+                                publication (the tick its answer was taken in; the planner stamped it at the
+                                request): a controller that takes a Path only at a step after its stamp then
+                                takes each plan at the same step whatever the load.
     -- period_s          float  [s] Time between the starts of two plans (> 0; move_base: 1 / planner_frequency).
     -- max_failures      int    Planning failures in a row before giving up (>= 1).
     -- server_timeout_s  float  [s] Fail if the server is not connected this long after entry.
@@ -94,7 +99,7 @@ class ReplanState(State):
                 self._failures = 0
                 self._plans += 1
                 userdata.plan = result.plan
-                self._publisher.publish(result.plan)
+                self._publisher.publish(published_now(result.plan, now))
             elif self._failed(result.message if result is not None else "no result"):
                 return "failed"
         if now < self._next_plan_s:
@@ -144,3 +149,9 @@ class ReplanState(State):
         if self._plan_in_flight and self._client is not None and self._client.is_active():
             self._client.cancel()
         self._plan_in_flight = False
+
+
+def published_now(plan: Path, now_s: float) -> Path:
+    """``plan`` (its poses shared, not copied) with its header stamped ``now_s`` [s], the time it is published."""
+    header = Header(seq=plan.header.seq, stamp=to_stamp(now_s), frame_id=plan.header.frame_id)
+    return Path(header=header, poses=plan.poses)

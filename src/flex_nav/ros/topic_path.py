@@ -56,10 +56,13 @@ class TopicPath:
 
     def new_for_tick(self, used: int, tick_s: float, defer_same_step: bool) -> bool:
         """(``wake`` held) Whether a loop that used Path number ``used`` takes the newest at its tick at ROS time
-        ``tick_s`` [s]. ``defer_same_step`` (lockstep): only a Path that arrived before the tick's simulated time --
-        one sent at the same step may arrive before or after the tick, so it waits for the next tick either way."""
-        return (self.msg is not None and self.count != used
-                and not (defer_same_step and self.arrived_s >= tick_s))
+        ``tick_s`` [s]. ``defer_same_step`` (lockstep): only a Path that arrived before the tick's simulated time and
+        is stamped before it -- one sent at the same step may arrive before or after the tick, so it waits for the
+        next tick either way. The stamp decides where the arrival time cannot: this node's clock may still show the
+        step before when a Path sent at the tick's step comes in (the Path and the clock come from two processes)."""
+        return self.msg is not None and takes_path(
+            self.count, used, arrived_s=self.arrived_s, stamp_s=self.msg.header.stamp.to_sec(), tick_s=tick_s,
+            defer_same_step=defer_same_step)
 
     def close(self) -> None:
         self.subscriber.unregister()
@@ -118,6 +121,13 @@ class TopicPaths:
                         break
                     self._wake.wait(self._clock.wall_wait_s(fresh_by_s, now_s))
         return source.msg is not None and not cancelled.is_set()
+
+
+def takes_path(count: int, used: int, *, arrived_s: float, stamp_s: float, tick_s: float,
+               defer_same_step: bool) -> bool:
+    """Whether a loop that used Path number ``used`` takes Path number ``count`` (arrived at ROS time ``arrived_s``,
+    stamped ``stamp_s`` [s]) at its tick at ``tick_s`` [s] (see :meth:`TopicPath.new_for_tick`)."""
+    return count != used and not (defer_same_step and max(arrived_s, stamp_s) >= tick_s)
 
 
 def fresh_from(goal_newer_than: rospy.Time) -> rospy.Time:

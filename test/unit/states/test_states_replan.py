@@ -24,6 +24,7 @@ def _goal() -> PoseStamped:
 
 def _plan(x_end: float) -> GetPathResult:
     result = GetPathResult(code=GetPathResult.SUCCESS, message="ok")
+    result.plan.header.frame_id = "map"  # stamped 0: the planner's stamp is not the publication's
     for x in (0.0, x_end):
         pose = PoseStamped()
         pose.header.frame_id = "map"
@@ -45,6 +46,10 @@ def test_plans_every_period_and_publishes_each_plan() -> None:
     published = h.proxies.publishers["mb/plan"].messages
     assert [m.poses[-1].pose.position.x for m in published] == [3.0, 2.9, 2.8]
     assert all(isinstance(m, Path) for m in published)
+    # each stamped at its publication: a tick that took the answer in (answered 0.1 s after the request)
+    for sent_s, plan in zip(client.sent_at, published):
+        assert sent_s + 0.1 - 1e-9 <= plan.header.stamp.to_sec() <= sent_s + 0.2 + 1e-9, (sent_s, plan.header)
+        assert plan.header.frame_id == "map"
 
 
 def test_gives_up_after_failures_in_a_row_with_the_reason() -> None:
