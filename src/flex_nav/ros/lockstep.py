@@ -23,6 +23,9 @@ from flex_nav.ros.private_ns import private_namespace
 HOLDS_TOPIC = "/lockstep/holds"
 CONNECT_POLL_S = 0.01  # [s] wall
 HOLDS_QUEUE = 100  # holds of one process in flight (several participants answer every scan)
+# [s] a stamp made from a ROS time compares equal to it within this: genpy.Time.from_sec truncates to whole
+# nanoseconds (20.2 s becomes 20.199999999 s), so a message stamped at the step would count as one before it
+STAMP_TOLERANCE_S = 1e-6
 
 
 def lockstep_enabled() -> bool:

@@ -26,7 +26,7 @@ from nav_msgs.msg import Path
 
 from flex_nav.behavior.proxies import Connections
 from flex_nav.exceptions import NotReadyError, TimedOutError
-from flex_nav.ros.lockstep import LockstepParticipant, accept_hold_name, accept_hold_param
+from flex_nav.ros.lockstep import STAMP_TOLERANCE_S, LockstepParticipant, accept_hold_name, accept_hold_param
 
 if TYPE_CHECKING:
     from flex_nav.behavior.proxies import Proxies
@@ -79,7 +79,7 @@ class Subscription(Generic[MsgT]):
     def _callback(self, msg: MsgT) -> None:
         with self._lock:
             self._take_due()  # before ``msg``: an early message taken later would replace a newer one
-            if self._lockstep and 0.0 <= _stamp_s(msg) - rospy.get_time() < EARLY_WINDOW_S:
+            if self._lockstep and -STAMP_TOLERANCE_S <= _stamp_s(msg) - rospy.get_time() < EARLY_WINDOW_S:
                 self._early.append(msg)
             else:
                 self._take(msg)
@@ -99,9 +99,9 @@ class Subscription(Generic[MsgT]):
         if not self._early:
             return
         now_s = rospy.get_time()
-        due = [msg for msg in self._early if _stamp_s(msg) < now_s]
+        due = [msg for msg in self._early if _stamp_s(msg) + STAMP_TOLERANCE_S < now_s]
         if due:
-            self._early = collections.deque(msg for msg in self._early if _stamp_s(msg) >= now_s)
+            self._early = collections.deque(msg for msg in self._early if _stamp_s(msg) + STAMP_TOLERANCE_S >= now_s)
             for msg in due:  # in the order they arrived
                 self._take(msg)
 

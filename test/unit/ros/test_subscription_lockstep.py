@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from typing import Any, List
 
+import genpy
 import pytest
 import rospy
 from sensor_msgs.msg import LaserScan
@@ -83,3 +84,18 @@ def test_without_lockstep_every_message_is_taken_as_it_comes(ros_time: List[floa
     ros_time[0] = 38.0
     arrive(sub, scan(38.0))
     assert stamp_of(sub.last()) == 38.0
+
+
+def test_a_message_stamped_by_genpy_from_the_time_now_counts_as_stamped_now(ros_time: List[float]) -> None:
+    """A state stamps with genpy.Time.from_sec, which truncates: 20.2 s becomes 20.199999999 s. A plan a behavior
+    published at its tick at 20.2 s was taken in at once (before the stamp), so another state of the same tick saw
+    it or not by a wall-time race (S4 seed 1 move_base_like: its FollowTopic goal went at 20.2 s or 20.3 s)."""
+    sub: proxies.Subscription[LaserScan] = proxies.Subscription("plan", LaserScan, lockstep=True)
+    ros_time[0] = 20.2
+    msg = LaserScan()
+    msg.header.stamp = genpy.Time.from_sec(20.2)
+    assert msg.header.stamp.to_sec() < 20.2  # the truncation this is about
+    arrive(sub, msg)
+    assert sub.last() is None
+    ros_time[0] = 20.2 + 1.0 / 240.0  # the next physics step
+    assert stamp_of(sub.last()) == 20.2

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import genpy
+
 from flex_nav.ros.topic_path import takes_path
 
 
@@ -21,3 +23,8 @@ def test_lockstep_defers_a_path_that_arrived_at_the_ticks_step_whatever_its_stam
     # stamped long before (a server's plan) but in at the tick's step: it may have come before or after the tick
     assert not takes_path(count=2, used=1, arrived_s=20.2, stamp_s=19.0, tick_s=20.2, defer_same_step=True)
     assert takes_path(count=2, used=1, arrived_s=20.15, stamp_s=19.0, tick_s=20.2, defer_same_step=True)
+
+
+def test_a_stamp_truncated_by_genpy_counts_as_the_tick_it_was_made_at() -> None:
+    stamp_s = genpy.Time.from_sec(20.2).to_sec()  # 20.199999999 s
+    assert not takes_path(count=2, used=1, arrived_s=20.1917, stamp_s=stamp_s, tick_s=20.2, defer_same_step=True)
