@@ -310,3 +310,35 @@ def test_by_default_the_detour_after_a_push_is_taken_at_once():
     scene.run_until("goal reached", 30.0)
     assert len(scene.follower.goals) == 2 and len(scene.follower.goals[1].path.poses) == len(around.plan.poses)
     assert not any("push it on" in t for t in scene.h.texts())
+
+
+def test_after_the_old_plan_was_kept_an_object_the_camera_calls_clear_is_pushed_on():
+    """h4 seeds 3-4 with push_on_max 1: after the push the box lay further along the passage and, up close, the
+    camera called its face clear; planning around it used up the tries and the goal was given up. Once the plan
+    through a pushed object was kept for the goal, "clear" is pushed as well."""
+    blocked_thrice = [(GoalStatus.ABORTED, FollowPathResult.FAILURE, BLOCKED)] * 3 + [
+        (GoalStatus.SUCCEEDED, FollowPathResult.SUCCESS, "goal reached")]
+    scene = Scene(lambda t: "movable" if t < 6.0 else "clear", blocked_thrice, plans=0, push_distance_m=0.5,
+                  push_speed_mps=0.2, backoff_m=-0.3, push_on_max=1)
+    through = GetPathResult(code=GetPathResult.SUCCESS, plan=path([(0, 0), (3, 0)]))
+    around = GetPathResult(code=GetPathResult.SUCCESS, plan=path([(0.2, 0), (0.2, 4), (3, 4), (3, 0)]))
+    for plan in (through, around, through, through):  # first; after push 1 (kept); after push 2; after push 3
+        scene.planner.respond(GoalStatus.SUCCEEDED, plan, delay_s=0.1)
+    scene.run_until("goal reached", 60.0)
+    texts = scene.h.texts()
+    assert sum("pushed 0.5" in t for t in texts) == 3, scene.h.log_text()
+    # what followed each class: the pushes after "clear" are the new rule's
+    after_clear = [texts[i + 1] for i, t in enumerate(texts) if t == "obstacle class: clear (camera only)"]
+    assert len(after_clear) == 2 and all(t.startswith("pushed 0.5") for t in after_clear), scene.h.log_text()
+    assert len(scene.follower.goals) == 4
+
+
+def test_without_a_kept_plan_an_object_the_camera_calls_clear_is_planned_around_not_pushed():
+    scene = Scene("clear", BLOCKED_THEN_DONE, plans=0, push_on_max=1)
+    scene.planner.respond(GoalStatus.SUCCEEDED, GetPathResult(code=GetPathResult.SUCCESS, plan=path([(0, 0), (3, 0)])),
+                          delay_s=0.1)
+    around = GetPathResult(code=GetPathResult.SUCCESS, plan=path([(0.2, 0), (0.2, 4), (3, 4), (3, 0)]))
+    scene.planner.respond(GoalStatus.SUCCEEDED, around, delay_s=0.1)
+    scene.run_until("goal reached", 30.0)
+    assert not any("pushed" in t for t in scene.h.texts()), scene.h.log_text()
+    assert len(scene.follower.goals[1].path.poses) == len(around.plan.poses)
