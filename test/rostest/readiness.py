@@ -16,6 +16,14 @@ def poll_until(predicate: Callable[[], object], timeout_s: float, period_s: floa
     return True
 
 
+def connected(*endpoints, timeout_s):
+    """Bounded wait until each publisher / subscriber has a connection: a message sent on an unlatched topic before
+    that is lost. AssertionError naming the endpoints still unconnected after ``timeout_s`` [s]."""
+    if not poll_until(lambda: all(e.get_num_connections() > 0 for e in endpoints), timeout_s, period_s=0.02):
+        missing = [e.resolved_name for e in endpoints if e.get_num_connections() == 0]
+        raise AssertionError(f"no connection within {timeout_s} s on {missing}")
+
+
 def wait_until_active(client, timeout_s):
     """Bounded wait until the server has accepted ``client``'s goal (an ActionClientProxy); a cancel sent before
     that recalls the goal instead of preempting it."""

@@ -9,6 +9,7 @@ import unittest
 import rospy
 import rostest
 from geometry_msgs.msg import PointStamped
+from readiness import connected
 
 from flex_nav.msg import BumperState, CreateBumper
 from flex_nav.ros.node import init_node
@@ -37,22 +38,12 @@ class Collector:
             return list(self.msgs)
 
 
-def connected(*endpoints):
-    """Bounded wait until each publisher / subscriber has a connection (the relay's side of it)."""
-    deadline = time.monotonic() + WAIT_S
-    while any(e.get_num_connections() == 0 for e in endpoints) and time.monotonic() < deadline:
-        time.sleep(0.02)
-    missing = [e.name for e in endpoints if e.get_num_connections() == 0]
-    if missing:
-        raise AssertionError(f"no connection to the relay within {WAIT_S} s on {missing}")
-
-
 class TestBumperRelay(unittest.TestCase):
     def test_zone_state_press_gives_one_contact_ahead(self):
         hits = Collector("/robot1/bumper_hits")
         other = Collector("/robot2/bumper_hits")
         pub = rospy.Publisher("/robot1/bumper_state", BumperState, queue_size=10)
-        connected(pub, hits.sub, other.sub)
+        connected(pub, hits.sub, other.sub, timeout_s=WAIT_S)
         for pressed in ([False, True, False], [False, True, False], [False, False, False]):
             pub.publish(BumperState(zones=["left", "center", "right"], pressed=pressed))
             time.sleep(0.05)
@@ -69,7 +60,7 @@ class TestBumperRelay(unittest.TestCase):
     def test_create_left_press(self):
         hits = Collector("/robot2/bumper_hits")
         pub = rospy.Publisher("/robot2/bumper", CreateBumper, queue_size=10)
-        connected(pub, hits.sub)
+        connected(pub, hits.sub, timeout_s=WAIT_S)
         pub.publish(CreateBumper(is_left_pressed=True, is_right_pressed=False))
         hits.wait(1)
         time.sleep(0.5)  # the press's other points (summing the first alone could give its sign; they would also

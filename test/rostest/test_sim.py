@@ -13,6 +13,7 @@ import tf2_ros
 import yaml
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
+from readiness import connected
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 
@@ -72,13 +73,8 @@ class TestSim(unittest.TestCase):
         # bumpers and contacts publish only on change, unlatched: a press sent before a subscription is connected
         # is lost (a loaded CI once connected /robot1/events/bumper after the head-on press; the first press seen was
         # the left zone's, ~9 s later, when the robot had turned against the wall)
-        endpoints = [*cls.events.values(), *cls.state.values(), cls.kobuki_bumper, cls.create_bumper]
-        deadline = time.monotonic() + WAIT_S
-        for endpoint in [e.sub for e in endpoints] + list(cls.cmd.values()):
-            while endpoint.get_num_connections() == 0:
-                if time.monotonic() > deadline:
-                    raise AssertionError(f"{endpoint.resolved_name}: not connected to the sim within {WAIT_S} s")
-                time.sleep(0.02)
+        logs = [*cls.events.values(), *cls.state.values(), cls.kobuki_bumper, cls.create_bumper]
+        connected(*[log.sub for log in logs], *cls.cmd.values(), timeout_s=WAIT_S)
 
     def test_1_clock_advances(self):
         first = self.clock.wait(2)

@@ -28,6 +28,11 @@ HOLDS_QUEUE = 100  # holds of one process in flight (several participants answer
 STAMP_TOLERANCE_S = 1e-6
 
 
+def stamped_before(stamp_s: float, time_s: float) -> bool:
+    """True for a stamp [s] before ROS time ``time_s`` [s] (not one made from that time: STAMP_TOLERANCE_S)."""
+    return stamp_s + STAMP_TOLERANCE_S < time_s
+
+
 def lockstep_enabled() -> bool:
     """``/lockstep`` (bool, false by default) on simulated time (a node on the wall clock, or none started, does not
     even ask the master; an unreachable master means off, with a warning)."""

@@ -26,7 +26,7 @@ from nav_msgs.msg import Path
 
 from flex_nav.behavior.proxies import Connections
 from flex_nav.exceptions import NotReadyError, TimedOutError
-from flex_nav.ros.lockstep import STAMP_TOLERANCE_S, LockstepParticipant, accept_hold_name, accept_hold_param
+from flex_nav.ros.lockstep import LockstepParticipant, accept_hold_name, accept_hold_param, stamped_before
 
 if TYPE_CHECKING:
     from flex_nav.behavior.proxies import Proxies
@@ -79,13 +79,19 @@ class Subscription(Generic[MsgT]):
     def _callback(self, msg: MsgT) -> None:
         with self._lock:
             self._take_due()  # before ``msg``: an early message taken later would replace a newer one
-            if self._lockstep and -STAMP_TOLERANCE_S <= _stamp_s(msg) - rospy.get_time() < EARLY_WINDOW_S:
+            if self._lockstep and self._is_early(msg):
                 self._early.append(msg)
             else:
                 self._take(msg)
             callbacks = list(self._callbacks)
         for callback in callbacks:  # outside the lock: a callback may read this subscription
             callback(msg)
+
+    @staticmethod
+    def _is_early(msg: Any) -> bool:
+        """Stamped at or after ROS time (and within EARLY_WINDOW_S of it): taken in once time has passed it."""
+        stamp_s, now_s = _stamp_s(msg), rospy.get_time()
+        return not stamped_before(stamp_s, now_s) and stamp_s - now_s < EARLY_WINDOW_S
 
     def _take(self, msg: MsgT) -> None:
         """(lock held) ``msg`` becomes the newest message (and is buffered)."""
@@ -99,11 +105,13 @@ class Subscription(Generic[MsgT]):
         if not self._early:
             return
         now_s = rospy.get_time()
-        due = [msg for msg in self._early if _stamp_s(msg) + STAMP_TOLERANCE_S < now_s]
-        if due:
-            self._early = collections.deque(msg for msg in self._early if _stamp_s(msg) + STAMP_TOLERANCE_S >= now_s)
-            for msg in due:  # in the order they arrived
+        waiting: Deque[MsgT] = collections.deque()
+        for msg in self._early:  # in the order they arrived
+            if stamped_before(_stamp_s(msg), now_s):
                 self._take(msg)
+            else:
+                waiting.append(msg)
+        self._early = waiting
 
     def add_callback(self, callback: Callable[[MsgT], None]) -> None:
         """Also call ``callback(msg)`` for every message (in rospy's thread, after caching it)."""

@@ -24,7 +24,7 @@ from typing import Optional
 import rospy
 from nav_msgs.msg import Path
 
-from flex_nav.ros.lockstep import STAMP_TOLERANCE_S, LockstepParticipant
+from flex_nav.ros.lockstep import LockstepParticipant, stamped_before
 from flex_nav.ros.ros_clock import RosClock
 
 STALE_GRACE_S = 1.0  # [s] ROS time: how long to wait for a Path newer than the goal before using an older one
@@ -127,7 +127,7 @@ def takes_path(count: int, used: int, *, arrived_s: float, stamp_s: float, tick_
                defer_same_step: bool) -> bool:
     """Whether a loop that used Path number ``used`` takes Path number ``count`` (arrived at ROS time ``arrived_s``,
     stamped ``stamp_s`` [s]) at its tick at ``tick_s`` [s] (see :meth:`TopicPath.new_for_tick`)."""
-    return count != used and not (defer_same_step and max(arrived_s, stamp_s + STAMP_TOLERANCE_S) >= tick_s)
+    return count != used and not (defer_same_step and (arrived_s >= tick_s or not stamped_before(stamp_s, tick_s)))
 
 
 def fresh_from(goal_newer_than: rospy.Time) -> rospy.Time:
