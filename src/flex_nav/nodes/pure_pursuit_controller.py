@@ -47,7 +47,9 @@ scan and give way to them, ``yielding/*`` and ``people_tracker/*``, see
 (:class:`flex_nav.nav.control.pure_pursuit.PurePursuitParams` by name; unknown names are rejected),
 ``social_distance/enabled`` (false; true: keep ``social_distance/min_distance_m`` (0.3 m) between the footprint
 and every tracked person while moving, slowing from ``slow_distance_m``; the other fields of
-:class:`flex_nav.nav.control.social_distance.SocialParams` by name; tracks people as ``yield_to_people`` does).
+:class:`flex_nav.nav.control.social_distance.SocialParams` by name; tracks people as ``yield_to_people`` does;
+with both, ``yielding/comfort_margin_m`` defaults to ``min_distance_m``: a walker's way is hurried across rather
+than crossed with less room).
 """
 
 from __future__ import annotations
@@ -161,7 +163,7 @@ class PurePursuitController(FollowNode):
         social = social_rule()
         self.people = (MovingObstaclesROS(self.tf_buffer, self.global_frame)
                        if yield_to_people or social is not None else None)
-        yielding = (yield_rule(self.costmap.inflation.inscribed_radius, params.desired_linear_vel)
+        yielding = (yield_rule(self.costmap.inflation.inscribed_radius, params.desired_linear_vel, social)
                     if yield_to_people else None)
         sensor_timeout_s = param_float("~sensor_timeout", 0.5, 0.01, 600.0)
         self.clock = RosClock(poll_s=min(self.period_s / 10.0, 0.005))

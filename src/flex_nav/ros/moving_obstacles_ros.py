@@ -59,13 +59,17 @@ def _carried(pose: Tuple[float, float, float], xs: np.ndarray, ys: np.ndarray) -
     return x + c * xs - s * ys, y + s * xs + c * ys
 
 
-def yield_rule(robot_radius_m: float, speed_mps: float) -> YieldRule:
-    """The YieldRule from ``~yielding/`` (defaults for the robot's radius and speed as given)."""
+def yield_rule(robot_radius_m: float, speed_mps: float, social: Optional[SocialDistanceRule] = None) -> YieldRule:
+    """The YieldRule from ``~yielding/`` (defaults for the robot's radius and speed as given; with a ``social``
+    distance rule, ``comfort_margin_m`` defaults to its ``min_distance_m``: a walker's way the robot would cross
+    with less room is hurried across when that keeps it)."""
     raw = rospy.get_param(private_name(YIELD_NS), {})
     if not isinstance(raw, dict):
         raise ConfigError(
             f"parameter {rospy.resolve_name(private_name(YIELD_NS))} must be a dictionary, got {raw!r}")
     values = {"robot_radius_m": robot_radius_m, "speed_mps": speed_mps, **raw}
+    if social is not None:
+        values.setdefault("comfort_margin_m", social.params.min_distance_m)
     try:
         return YieldRule(YieldParams.from_mapping(values))
     except (ConfigError, TypeError) as err:

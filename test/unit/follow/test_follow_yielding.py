@@ -260,3 +260,21 @@ def test_hurrying_across_only_when_enabled_and_only_that_clears():
     assert decide(hurried, 2.5, crossing, command=(0.1, 0.0)).mode is not YieldMode.HURRY  # not cruising
     late = [person(3.0, -1.5, 0.0, 0.8)]  # too close for any speed: no hurry
     assert decide(YieldRule(hurried.params), 2.5, late).mode is not YieldMode.HURRY
+
+
+def test_a_way_free_by_the_margin_but_not_the_comfort_margin_is_hurried_across_never_waited_for():
+    comfort = YieldRule(YieldParams(**{**PARAMS.__dict__, "hurry_speed_mps": 0.3, "comfort_margin_m": 0.3}))
+    tight = [person(3.0, -3.55, 0.0, 0.8)]  # at 0.26 m/s 0.15 m beyond the margin, at 0.30 m/s 0.31 m
+    d = decide(comfort, 2.5, tight)
+    assert d.mode is YieldMode.HURRY and d.v == pytest.approx(0.3)
+    plain = YieldRule(YieldParams(**{**PARAMS.__dict__, "hurry_speed_mps": 0.3}))
+    assert decide(plain, 2.5, tight).mode is YieldMode.FREE  # without the comfort margin the way is free
+    closer = [person(3.0, -3.2, 0.0, 0.8)]  # hurrying keeps only 0.19 m beyond the margin: free, not waited for
+    assert decide(YieldRule(comfort.params), 2.5, closer).mode is YieldMode.FREE
+    roomy = [person(3.0, -3.8, 0.0, 0.8)]  # 0.23 m beyond the margin at cruise: the comfort margin is kept
+    assert decide(YieldRule(comfort.params), 2.5, roomy).mode is YieldMode.FREE
+
+
+def test_comfort_margin_is_validated():
+    with pytest.raises(ConfigError, match="comfort_margin_m"):
+        YieldParams(comfort_margin_m=-0.1)
