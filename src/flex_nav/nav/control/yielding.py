@@ -73,8 +73,8 @@ class YieldParams:
     horizon_s: float = 6.0  # [s] prediction horizon (long enough to cross a person's way)
     time_step_s: float = 0.1  # [s] prediction step
     margin_m: float = 0.1  # [m] clearance kept beyond touching
-    # [m] > margin_m: a crossing free by margin_m but not by this is hurried when hurrying keeps it (0: off); S6
-    # with the social distance's 0.3 m as margin_m: the robot never crossed (seeds 0-4, 150 s, 0.2 m too)
+    # [m] > margin_m: a crossing free by margin_m but not by this is hurried when hurrying keeps it (0: off). Not
+    # a larger margin_m: with 0.3 m (S6 seeds 0-3) or 0.2 m (seeds 0-1) the robot never got across in 150 s
     comfort_margin_m: float = 0.0
     uncertainty_mps: float = 0.0  # [m/s] R grows by this per second of prediction (velocity error)
     min_track_speed_mps: float = 0.2  # [m/s] slower tracks are stationary (left to the costmap)
