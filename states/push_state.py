@@ -17,6 +17,12 @@ With ``approach_speed_mps`` and a ``scan_topic``, the gap to the object's face o
 faster, up to ``contact_slack_m`` before it; the push itself (contact, and a heavy object's stall) is at
 ``speed_mps`` (S5, where the robot stops ~0.5 m before the box: the failed push took 3.2 s with a 0.3 m/s approach,
 4.0 s without).
+
+With ``passage_extra_m`` and a ``scan_topic``, a push that has gone ``distance_m`` while the robot is still in a
+passage (a scan return on both sides, within ``passage_side_m`` of its centre line, beside or up to
+``passage_behind_m`` behind its centre) goes on until a side opens, at most ``passage_extra_m`` farther: the object
+leaves the passage with room behind it for the robot to get by (issue 28's h4: a 0.8 m-wide box pushed 2 m along a
+4 m, 1.2 m-wide route stayed at its end, and the replan was a 17.5 m detour).
 """
 
 from __future__ import annotations
@@ -37,7 +43,7 @@ from flex_nav_states.motion_base import MotionBase, stall_watch
 from flex_nav_states.motion_params import SPEED_LIMITS, CommandOutput, OdometryInput
 from flex_nav_states.obstacle_class_state import ClassReader
 from flex_nav_states.proxy_types import SubscriptionLike, proxies_of
-from flex_nav_states.rear_clearance import gap_ahead_m
+from flex_nav_states.rear_clearance import gap_ahead_m, walled_in
 
 HEADING_GAIN = 1.0  # [1/s] yaw rate per radian of heading error (pushes straight)
 MAX_HEADING_RATE = 0.3  # [rad/s] bound of the heading correction
@@ -74,7 +80,12 @@ class PushState(MotionBase):
                                 the base's (a lidar near the centre, as flex_nav_states.rear_clearance).
     -- robot_radius_m    float  [m] Radius of the base: the gap is from its front (> 0).
     -- contact_slack_m   float  [m] The last this far before the face is driven at speed_mps (>= 0).
-    -- scan_max_age_s    float  [s] An older scan gives no approach: speed_mps all the way.
+    -- scan_max_age_s    float  [s] An older scan gives no approach (speed_mps all the way) and ends a push at
+                                distance_m.
+    -- passage_extra_m   float  [m] Pushed this much farther at most while the robot is in a passage (0: off; needs
+                                scan_topic).
+    -- passage_side_m    float  [m] A scan return this close to the centre line on each side is a passage (> 0).
+    -- passage_behind_m  float  [m] ... beside the centre or up to this far behind it (>= 0).
 
     #> push_progress_m  float  [m] How far the robot got.
 
@@ -104,6 +115,9 @@ class PushState(MotionBase):
         robot_radius_m: float = 0.2,
         contact_slack_m: float = 0.05,
         scan_max_age_s: float = 0.5,
+        passage_extra_m: float = 0.0,
+        passage_side_m: float = 0.8,
+        passage_behind_m: float = 0.4,
     ) -> None:
         owner = type(self).__name__
         super().__init__(
@@ -115,7 +129,14 @@ class PushState(MotionBase):
         self._distance_m = validation.number(owner, "distance_m", distance_m, positive=True, unit="[m]")
         self._speed_mps = SPEED_LIMITS.linear(owner, "speed_mps", speed_mps)
         margin = validation.number(owner, "margin_s", margin_s, minimum=0.0, unit="[s]")
-        self._timeout_s = self._distance_m / self._speed_mps + margin
+        self._passage_extra_m = validation.number(owner, "passage_extra_m", passage_extra_m, minimum=0.0, unit="[m]")
+        self._passage_side_m = validation.number(owner, "passage_side_m", passage_side_m, positive=True, unit="[m]")
+        self._passage_behind_m = validation.number(owner, "passage_behind_m", passage_behind_m, minimum=0.0,
+                                                   unit="[m]")
+        if self._passage_extra_m > 0.0 and not scan_topic:
+            raise ConfigError(f"{owner}: passage_extra_m {passage_extra_m:g} m needs a scan_topic (the passage's "
+                              "sides)")
+        self._timeout_s = (self._distance_m + self._passage_extra_m) / self._speed_mps + margin
         self._enough_m = self._distance_m * validation.number(owner, "enough_fraction", enough_fraction,
                                                               minimum=0.0, maximum=1.0, unit="[0..1]")
         self._stall = stall_watch(owner, stall_window_s, progress_name="stall_distance_m",
@@ -133,16 +154,17 @@ class PushState(MotionBase):
         self._start: Optional[OdomSample] = None
         self._progress_m = 0.0
         self._checked = False
+        self._passage_logged = False  # the push past distance_m in a passage was logged
 
     @property
     def timeout_s(self) -> float:
-        """[s] distance_m / speed_mps + margin_s."""
+        """[s] (distance_m + passage_extra_m) / speed_mps + margin_s."""
         return self._timeout_s
 
     def on_start(self) -> None:
         super().on_start()
         self._reader.start(self)
-        if self._approach.enabled:
+        if self._approach.enabled or self._passage_extra_m > 0.0:
             self._scan = proxies_of(self).subscription(self._approach.scan_topic, LaserScan)
 
     def on_enter(self, userdata: UserDataView) -> None:
@@ -152,6 +174,7 @@ class PushState(MotionBase):
         self._checked = False
         self._person_run, self._person_stamp = 0, None
         self._stand_since, self._stood_s = None, 0.0
+        self._passage_logged = False
 
     def on_exit(self, userdata: UserDataView) -> None:
         super().on_exit(userdata)
@@ -207,7 +230,7 @@ class PushState(MotionBase):
             self._approach_m = self._gap_to_approach_m()
         start = self._start
         self._progress_m = (sample.x - start.x) * math.cos(start.yaw) + (sample.y - start.y) * math.sin(start.yaw)
-        if self._progress_m >= self._distance_m:
+        if self._progress_m >= self._distance_m and not self._in_passage():
             self.log_info(f"pushed {self._progress_m:.2f} m")
             return "done"
         if self.elapsed_s() - self._stood_s > self._timeout_s:
@@ -221,6 +244,22 @@ class PushState(MotionBase):
         speed = self._approach.speed_mps if self._progress_m < self._approach_m else self._speed_mps
         self.send(speed, w)
         return None
+
+    def _in_passage(self) -> bool:
+        """True while a push past distance_m goes on: within passage_extra_m more, with a fresh scan that shows the
+        robot walled in (logged once per push when it starts)."""
+        if self._progress_m >= self._distance_m + self._passage_extra_m or self._scan is None \
+                or self._passage_extra_m <= 0.0:
+            return False
+        scan = self._scan.last()
+        if scan is None or message_age_s(scan, self._scan, self.now_s()) > self._approach.scan_max_age_s:
+            return False
+        inside = walled_in(scan, self._passage_side_m, self._passage_behind_m)
+        if inside and not self._passage_logged:
+            self._passage_logged = True
+            self.log_info(f"push: {self._progress_m:.2f} m pushed and the robot is still in a passage: pushing on "
+                          f"until a side opens, at most to {self._distance_m + self._passage_extra_m:.2f} m")
+        return inside
 
     def _gap_to_approach_m(self) -> float:
         """[m] of the push to drive at approach_speed_mps: the gap to the face on a fresh scan less

@@ -2,7 +2,8 @@
 straight sweeps.
 
 Used by :class:`~flex_nav_states.move_distance_state.MoveDistanceState` when it backs up with a ``scan_topic``,
-and by :class:`~flex_nav_states.push_state.PushState` for the gap to the object it is about to push.
+and by :class:`~flex_nav_states.push_state.PushState` for the gap to the object it is about to push and whether
+it is still in a passage.
 The scan's frame is taken as the robot's base frame (x forward, y left): a lidar mounted near the centre of a
 round base, as on the TurtleBot 2 and 4, within a few centimetres that the clearance covers.
 """
@@ -43,3 +44,18 @@ def _gap_m(scan: Any, radius_m: float, clearance_m: float, reach_m: float, direc
     if not in_way.any():
         return None
     return max(0.0, float(np.min(along[in_way])) - radius_m)
+
+
+def walled_in(scan: Any, side_m: float, behind_m: float) -> bool:
+    """True when the scan has a return on both sides of the robot (left: y > 0, right: y < 0) within ``side_m``
+    [m] of its centre line, beside or behind its centre down to ``behind_m`` [m] (x in [-behind_m, 0]): the robot
+    is in a passage. What is ahead of the centre (an object being pushed) does not count."""
+    ranges = np.asarray(scan.ranges, dtype=np.float64)
+    if ranges.size == 0:
+        return False
+    angles = scan.angle_min + scan.angle_increment * np.arange(ranges.size)
+    valid = np.isfinite(ranges) & (ranges >= scan.range_min) & (ranges <= scan.range_max)
+    r = np.where(valid, ranges, 0.0)
+    x, y = r * np.cos(angles), r * np.sin(angles)
+    beside = valid & (x <= 0.0) & (x >= -behind_m) & (np.abs(y) <= side_m)
+    return bool((beside & (y > 0.0)).any() and (beside & (y < 0.0)).any())

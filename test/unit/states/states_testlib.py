@@ -117,6 +117,20 @@ def wall_scan(stamp_s: float, robot_x: float, wall_x: Optional[float] = None) ->
     return scan
 
 
+def passage_scan(stamp_s: float, robot_x: float, end_x: float, half_width_m: float = 0.6) -> LaserScan:
+    """A 360-beam scan from a robot at ``robot_x`` facing +x on the centre line of a passage: walls at y =
+    +-``half_width_m`` from far behind to x = ``end_x``, open beyond."""
+    scan = wall_scan(stamp_s, robot_x)
+    ranges = []
+    for i in range(360):
+        angle = scan.angle_min + i * scan.angle_increment
+        s = math.sin(angle)
+        r = half_width_m / abs(s) if abs(s) > 1e-6 else math.inf
+        ranges.append(r if robot_x + r * math.cos(angle) <= end_x else math.inf)
+    scan.ranges = ranges
+    return scan
+
+
 def twists(harness: Harness, topic: str = "cmd_vel_stamped") -> List[tuple]:
     """(v, w) of every twist published on ``topic``."""
     return [(m.twist.linear.x, m.twist.angular.z) for m in harness.proxies.pub(topic).messages]

@@ -7,7 +7,7 @@ import genpy
 import pytest
 from actionlib_msgs.msg import GoalStatus
 from sensor_msgs.msg import LaserScan
-from unit.states.states_testlib import Harness, KinematicRobot, path, twists, wall_scan
+from unit.states.states_testlib import Harness, KinematicRobot, passage_scan, path, twists, wall_scan
 
 from flex_nav.behavior import LogLevel
 from flex_nav.exceptions import ConfigError
@@ -15,6 +15,7 @@ from flex_nav.msg import FollowPathAction, FollowPathResult, ObstacleClass
 from flex_nav_states.follow_until_blocked_state import FollowUntilBlockedState
 from flex_nav_states.obstacle_class_state import ObstacleClassState
 from flex_nav_states.push_state import PushState
+from flex_nav_states.rear_clearance import walled_in
 from flex_nav_states.wait_path_clear_state import WaitPathClearState
 
 STEP_S = 0.05  # [s]
@@ -254,7 +255,48 @@ def test_push_without_a_face_on_a_fresh_scan_pushes_at_its_speed_all_the_way(fac
     assert scan or any("no faster approach" in t for t in h.texts(LogLevel.WARN)), h.log_text()
 
 
+def push_in_passage(end_x, *, extra_m=1.0):
+    """Pushes 1 m at 0.2 m/s with ``passage_extra_m`` ``extra_m`` along a passage (walls 0.6 m to each side)
+    that ends at x = ``end_x``; the harness, the robot and the result."""
+    h, robot = push_harness(distance_m=1.0, speed_mps=0.2, scan_topic="scan", passage_extra_m=extra_m,
+                            passage_behind_m=0.4)
+    sub = h.proxies.subscription("scan", LaserScan)
+
+    def scanned(_t):
+        sub.inject(passage_scan(h.clock.now(), robot.x, end_x))
+
+    scanned(0.0)
+    return h, robot, run(h.start(), Camera(h, "movable"), 20.0, on_step=scanned)
+
+
+def test_a_push_in_a_passage_goes_on_until_a_side_opens_behind_the_robot():
+    h, robot, result = push_in_passage(end_x=1.2)
+    assert result.outcome == "done", h.log_text()
+    assert robot.x == pytest.approx(1.2 + 0.4, abs=0.03)  # the walls end 0.4 m behind the centre
+    assert result.outputs["push_progress_m"] == pytest.approx(1.6, abs=0.03)
+    assert twists(h)[-1] == (0.0, 0.0)
+    assert any("still in a passage" in t for t in h.texts(LogLevel.INFO)), h.log_text()
+
+
+@pytest.mark.parametrize("end_x, extra_m, pushed_m", [(0.5, 1.0, 1.0), (5.0, 0.5, 1.5), (5.0, 0.0, 1.0)])
+def test_a_push_past_its_distance_is_bounded_and_only_in_a_passage(end_x, extra_m, pushed_m):
+    h, robot, result = push_in_passage(end_x=end_x, extra_m=extra_m)
+    assert result.outcome == "done", h.log_text()
+    assert robot.x == pytest.approx(pushed_m, abs=0.03)
+
+
+def test_walled_in_needs_both_sides_beside_or_behind_the_centre():
+    assert walled_in(passage_scan(0.0, 0.0, end_x=0.0), 0.8, 0.4)
+    assert not walled_in(passage_scan(0.0, 0.0, end_x=-0.5), 0.8, 0.4)  # ends 0.5 m behind: open
+    assert not walled_in(passage_scan(0.0, 0.0, end_x=5.0, half_width_m=0.9), 0.8, 0.4)  # wider than side_m
+    ahead = wall_scan(0.0, 0.0, wall_x=0.3)  # an object ahead fills the view: no sides
+    assert not walled_in(ahead, 0.8, 0.4)
+
+
 @pytest.mark.parametrize("params, match", [
+    ({"passage_extra_m": 0.5}, "passage_extra_m 0.5 m needs a scan_topic"),
+    ({"passage_extra_m": -0.5, "scan_topic": "scan"}, "passage_extra_m"),
+    ({"passage_side_m": 0.0, "scan_topic": "scan"}, "passage_side_m"),
     ({"approach_speed_mps": 0.1, "scan_topic": "scan"}, "approach_speed_mps 0.1 m/s must be 0 or at least"),
     ({"approach_speed_mps": 0.3}, "needs a scan_topic"),
     ({"approach_speed_mps": 9.0, "scan_topic": "scan"}, "approach_speed_mps"),
