@@ -48,6 +48,11 @@ this one was chosen there by a criterion stated before scoring (``tools/percepti
 rule"; figures in ``models/README.md``). Switch them on for a lidar that sees people's legs better than it sees such
 look-alikes.
 
+The same outline rules, without motion, tell which tracks of the moving-obstacle tracker are boxes
+(:func:`box_outlines`, :func:`without_boxes`): the tracker keeps anything small enough that the static map does
+not explain, so a box the robot has just pushed is a standing "person" to the social distance rule, which then
+kept the robot from the way past it (S4, every seed, with the rule on).
+
 Pure numpy, no ROS, no clock: the caller passes points in one planar frame (e.g. the laser's), the sensor's
 position in it, and the track speed if the object is tracked.
 """
@@ -490,3 +495,43 @@ def footprint_ahead(ranges: np.ndarray, angle_min: float, angle_increment: float
     unit = near / np.hypot(near[:, 0], near[:, 1])[:, None]
     hull = _hull(np.concatenate((near, near + depth * unit)))
     return hull if len(hull) >= 3 else None
+
+
+# ---------------------------------------------------------------------------------------------- boxes among tracks
+@dataclass(frozen=True)
+class BoxOutline:
+    """A cluster of a scan whose outline is a box's: the mean of its hits (x, y) [m] and half its extent [m]."""
+
+    x: float
+    y: float
+    half_size_m: float
+
+
+def box_outlines(xs: np.ndarray, ys: np.ndarray, sensor: Tuple[float, float], params: ShapeParams = ShapeParams(), *,
+                 wrap: bool = True) -> List[BoxOutline]:
+    """The clusters of a scan's end points (NaN: no return) that rules 4-7 call ``box`` (a straight outline or a
+    right corner within the noise, box-sized), motion not asked: what stands there is a box whether or not it was
+    just pushed."""
+    xs = np.asarray(xs, dtype=np.float64)
+    ys = np.asarray(ys, dtype=np.float64)
+    found: List[BoxOutline] = []
+    for run in clusters(xs, ys, sensor, params, wrap=wrap):
+        if len(run) < params.min_points:
+            continue
+        feats = features_of(xs[run], ys[run], sensor, params)
+        if _outline(feats, params).label == BOX:
+            found.append(BoxOutline(feats.centre[0], feats.centre[1], 0.5 * feats.size_m))
+    return found
+
+
+def without_boxes(tracks: Sequence[Track], outlines: Sequence[BoxOutline], moving_speed_mps: float) -> List[Track]:
+    """``tracks`` less those standing on a box outline: slower than ``moving_speed_mps`` [m/s] with their centre
+    within half the outline's extent plus their radius of its hits' mean (same frame). A moving track stays: boxes
+    stand still, and a person walking past a box is not it."""
+    kept: List[Track] = []
+    for track in tracks:
+        on_box = track.speed < moving_speed_mps and any(
+            math.hypot(track.x - box.x, track.y - box.y) <= box.half_size_m + track.radius for box in outlines)
+        if not on_box:
+            kept.append(track)
+    return kept

@@ -14,7 +14,9 @@ by name under ``~yielding/``; ``robot_radius_m`` defaults to the local costmap's
 ``speed_mps`` to pure pursuit's ``desired_linear_vel``. Publishes std_msgs/Bool ``~yielding``: True on every
 control tick spent giving way, False once when that ends (for a progress monitor, see ``StuckMonitorState``), and,
 when someone listens (the operator console's map), geometry_msgs/PoseArray ``~people``: the confirmed tracks at
-each scan's stamp in the tracking frame, each facing its direction of motion.
+each scan's stamp in the tracking frame, each facing its direction of motion. Unless
+``~people_tracker/drop_boxes`` is false, a track standing on a cluster of the newest scan whose outline is a box's
+(:func:`flex_nav.perception.lidar_shape.without_boxes`) is no person: neither handed to the controller nor shown.
 """
 
 from __future__ import annotations
@@ -36,19 +38,20 @@ from flex_nav.exceptions import ConfigError, choices_message
 from flex_nav.nav.control.social_distance import SocialDistanceRule, SocialLimit, SocialParams
 from flex_nav.nav.control.yielding import YieldDecision, YieldMode, YieldParams, YieldRule
 from flex_nav.nav.pose_checks import yaw_of_quaternion
+from flex_nav.perception.lidar_shape import BoxOutline, ShapeParams, box_outlines, without_boxes
 from flex_nav.perception.moving_obstacles import MovingObstacleTracker, Track, TrackerParams
 from flex_nav.perception.static_mask import StaticMask
 from flex_nav.ros.conversions import grid_map_of
 from flex_nav.ros.frames import TF_ERRORS, lookup_bounded
 from flex_nav.ros.latest_worker import LatestWorker
 from flex_nav.ros.lockstep import LockstepParticipant
-from flex_nav.ros.params import param_float, param_str, reject_unknown
+from flex_nav.ros.params import param_bool, param_float, param_str, reject_unknown
 from flex_nav.ros.private_ns import private_name, private_namespace
 
 TRACKER_NS = "~people_tracker/"
 YIELD_NS = "~yielding"
 TRACKER_FIELDS = tuple(f.name for f in dataclasses.fields(TrackerParams))
-TRACKER_PARAMETERS = ("scan_topic", "map_topic", "static_tolerance", "tracking_frame", *TRACKER_FIELDS)
+TRACKER_PARAMETERS = ("scan_topic", "map_topic", "static_tolerance", "tracking_frame", "drop_boxes", *TRACKER_FIELDS)
 TF_WAIT_S = 0.1  # [s] wait for the scan's transform
 
 
@@ -125,6 +128,9 @@ class MovingObstaclesROS:
         self.tracking_frame = param_str(TRACKER_NS + "tracking_frame", "").lstrip("/") or global_frame.lstrip("/")
         self.static_mask: Optional[StaticMask] = None  # in the global frame
         self.static_tolerance_m = param_float(TRACKER_NS + "static_tolerance", 0.15, 0.0, 5.0)
+        self.drop_boxes = param_bool(TRACKER_NS + "drop_boxes", True)
+        self.shape_params = ShapeParams()
+        self._boxes: List[BoxOutline] = []  # the newest scan's box outlines (tracking frame)
         raw = {name: rospy.get_param(private_name(TRACKER_NS + name)) for name in TRACKER_FIELDS
                if rospy.has_param(private_name(TRACKER_NS + name))}
         try:
@@ -183,10 +189,12 @@ class MovingObstaclesROS:
             gx, gy = _carried(to_global, xs, ys)
             keep = ~mask.explained(gx, gy)
             xs, ys = np.where(keep, xs, np.nan), np.where(keep, ys, np.nan)
+        boxes = box_outlines(xs, ys, (lx, ly), self.shape_params, wrap=bool(full_circle)) if self.drop_boxes else []
         with self.lock:
             self.tracker.update_scan(xs, ys, (lx, ly), msg.header.stamp.to_sec(), wrap=bool(full_circle))
+            self._boxes = boxes
             listened = self.people_publisher.get_num_connections() > 0
-            shown = self.tracker.tracks(msg.header.stamp.to_sec()) if listened else None
+            shown = self._people(msg.header.stamp.to_sec()) if listened else None
         if shown is not None:
             self.people_publisher.publish(people_message(shown, self.tracking_frame, msg.header.stamp))
 
@@ -219,12 +227,17 @@ class MovingObstaclesROS:
                 rospy.loginfo(f"{self.name}: yielding ended")
             self._last_kind = kind
 
+    def _people(self, now_s: float) -> List[Track]:
+        """The tracker's tracks at ``now_s`` [s] less those standing on a box outline (tracking frame; under the
+        lock)."""
+        return without_boxes(self.tracker.tracks(now_s), self._boxes, self.shape_params.moving_speed_mps)
+
     def tracks(self) -> List[Track]:
         """The confirmed tracks predicted to now (``rospy.get_time()``), in the global frame (none while the newest
         transform from the tracking frame is missing)."""
         now = rospy.get_time()
         with self.lock:
-            tracks = self.tracker.tracks(now)
+            tracks = self._people(now)
         if not tracks or self.tracking_frame == self.global_frame.lstrip("/"):
             return tracks
         try:

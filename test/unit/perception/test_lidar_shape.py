@@ -19,11 +19,14 @@ from flex_nav.perception.lidar_shape import (
     NONE,
     PERSON,
     UNSURE,
+    BoxOutline,
     ShapeParams,
+    box_outlines,
     classify_shape,
     cue_ahead,
     footprint_ahead,
     object_speed,
+    without_boxes,
 )
 from flex_nav.perception.moving_obstacles import Track
 
@@ -310,3 +313,24 @@ def test_a_box_one_cluster_with_the_walls_beside_the_robot_is_remembered_ahead_o
     assert footprint[:, 0].min() > 0.48 - 0.25 - 1e-6  # nothing behind the box's face (less the gap)
     assert footprint[:, 0].min() > 0.171  # the robot (radius 0.171 m) is outside it
     assert np.hypot(footprint[:, 0] - 0.48, footprint[:, 1]).max() < 1.6 * 2.0  # within reach of the object
+
+
+def test_box_outlines_find_the_box_and_not_the_round_body_beside_it() -> None:
+    rng = np.random.default_rng(8)
+    box = box_in_front(0.6, 0.5, 20.0)  # a pushed box just ahead
+    xs, ys = noisy_scan(SENSOR, [box], circles=[(0.2, 1.5, 0.2)], rng=rng)  # a person 1.5 m to the left
+    outlines = box_outlines(xs, ys, SENSOR)
+    assert len(outlines) == 1, outlines
+    centre = box.mean(axis=0)  # the outline's centre is its visible faces' hits: nearer than the box's centre
+    assert math.hypot(outlines[0].x - centre[0], outlines[0].y - centre[1]) < 0.6 / math.sqrt(2.0)
+    assert 0.2 < outlines[0].half_size_m < 0.5
+
+
+def test_without_boxes_drops_only_still_tracks_standing_on_a_box() -> None:
+    outline = BoxOutline(1.0, 0.0, 0.3)
+    on_box = Track(1, 1.1, 0.05, 0.0, 0.0, 0.25, 0.0, 10)
+    walking_past = Track(2, 1.1, 0.05, 0.0, 0.8, 0.2, 0.0, 10)  # moving: a person, even beside a box
+    elsewhere = Track(3, 3.0, 1.0, 0.0, 0.0, 0.2, 0.0, 10)  # standing, but on no box
+    kept = without_boxes([on_box, walking_past, elsewhere], [outline], moving_speed_mps=0.2)
+    assert [t.track_id for t in kept] == [2, 3]
+    assert without_boxes([on_box], [], moving_speed_mps=0.2) == [on_box]
