@@ -5,7 +5,8 @@ navigation and behavior runner (TurtleBot 4 profile) and the ``obstacle_classifi
 namespace; sets ``pure_pursuit_path``'s ``~blocked_distance`` (blocked-path detection, used by
 push_or_avoid; move_base_like drives with ``pure_pursuit_topic``, which keeps it off) and its
 ``~yield_to_people`` (give way to moving people, :mod:`flex_nav.nav.control.yielding`; also push_or_avoid only)
-and, for both behaviors, a bumper memory of 5 s in the costmaps (the default 60 s would keep the contacts of a pushed
+and its ``~social_distance`` (``--social-distance``, 0.3 m by default, 0: off;
+:mod:`flex_nav.nav.control.social_distance`) and, for both behaviors, a bumper memory of 5 s in the costmaps (the default 60 s would keep the contacts of a pushed
 box as obstacles in the door it was pushed through; no scenario has obstacles only the bumper finds). Sends the world's
 ``goal`` once the behavior waits for one and records until the behavior is done with it or ``--sim-limit``
 seconds of simulated time pass. ``--trips N`` drives from the start to the goal N times, back to the world's
@@ -54,6 +55,7 @@ PROFILE = "turtlebot4"
 ROBOT = "robot1"
 BLOCKED_DISTANCE_M = 0.7  # [m] pure_pursuit_path's blocked-path detection distance
 STARTUP_TIMEOUT_S = 90.0  # [s] wall
+SOCIAL_DISTANCE_M = 0.3  # [m] kept from tracked people while moving (issue 28), unless --social-distance says else
 HURRY_SPEED_MPS = 0.3  # [m/s] giving way: cross a walker's way at this speed when only that clears (max 0.306)
 BUMPER_MEMORY_S = 5.0  # [s] bumper marks (both behaviors): a pushed box's contacts must not close the door
 SETTLE_S = 2.0  # [s] simulated time between the behavior waiting for a goal and sending it
@@ -84,9 +86,9 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     parser.add_argument("--lockstep", action=argparse.BooleanOptionalAction, default=True,
                         help="the simulator waits for the nodes' work (flex_nav_sim.lockstep), so a run ends the same "
                              "at any rtf and load (default); --no-lockstep: it keeps its rtf whatever the nodes do")
-    parser.add_argument("--social-distance", type=float, default=0.0, metavar="M",
+    parser.add_argument("--social-distance", type=float, default=SOCIAL_DISTANCE_M, metavar="M",
                         help="[m] keep this distance from tracked people while moving (push_or_avoid's follower; "
-                             "0: off, the default)")
+                             f"default {SOCIAL_DISTANCE_M:g}; 0: off)")
     parser.add_argument("--trips", type=int, default=1,
                         help="start -> goal this many times, driving back to the start between them (default 1)")
     parser.add_argument("--clear-between-trips", action="store_true",

@@ -75,9 +75,9 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
                         help="an earlier results.csv: start the runs longest first by its times")
     parser.add_argument("--localization", choices=("localizer", "oracle"), default="localizer",
                         help="map -> odom from flex_nav's localizer (default) or the simulator's ground truth")
-    parser.add_argument("--social-distance", type=float, default=0.0, metavar="M",
+    parser.add_argument("--social-distance", type=float, default=None, metavar="M",
                         help="[m] keep this distance from tracked people while moving (scenario_run --social-distance; "
-                             "0: off, the default)")
+                             "default: scenario_run's, 0.3; 0: off)")
     parser.add_argument("--workers", type=int, default=os.cpu_count() or 1,
                         help="runs at once on this machine (default: one per core; 1: one after another)")
     parser.add_argument("--cluster", default="", metavar="ADDRESS",
@@ -105,7 +105,7 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
         args.behavior_params.setdefault(behavior, []).append(setting)
     if args.seeds < 1:
         parser.error(f"--seeds {args.seeds} must be >= 1")
-    if not args.social_distance >= 0.0:
+    if args.social_distance is not None and not args.social_distance >= 0.0:
         parser.error(f"--social-distance {args.social_distance} [m] must be >= 0 (0: off)")
     if args.workers < 1:
         parser.error(f"--workers {args.workers} must be >= 1")
@@ -130,7 +130,7 @@ def run_one(args: argparse.Namespace, world: str, behavior: str, seed: int, out:
                "--localization", args.localization, "--lockstep" if args.lockstep else "--no-lockstep"]
     for setting in args.behavior_params.get(behavior, []):
         command += ["--behavior-param", setting]
-    if args.social_distance > 0.0:
+    if args.social_distance is not None:
         command += ["--social-distance", str(args.social_distance)]
     out.mkdir(parents=True, exist_ok=True)
     with open(out / "run.log", "w") as log:
