@@ -6,8 +6,9 @@ namespace; sets ``pure_pursuit_path``'s ``~blocked_distance`` (blocked-path dete
 push_or_avoid; move_base_like drives with ``pure_pursuit_topic``, which keeps it off) and its
 ``~yield_to_people`` (give way to moving people, :mod:`flex_nav.nav.control.yielding`; also push_or_avoid only)
 and its ``~social_distance`` (``--social-distance``, 0.3 m by default, 0: off;
-:mod:`flex_nav.nav.control.social_distance`) and, for both behaviors, a bumper memory of 5 s in the costmaps (the default 60 s would keep the contacts of a pushed
-box as obstacles in the door it was pushed through; no scenario has obstacles only the bumper finds). Sends the world's
+:mod:`flex_nav.nav.control.social_distance`) and, for both behaviors, a bumper memory of 5 s in the costmaps (the
+default 60 s would keep the contacts of a pushed box as obstacles in the door it was pushed through; no scenario
+has obstacles only the bumper finds). Sends the world's
 ``goal`` once the behavior waits for one and records until the behavior is done with it or ``--sim-limit``
 seconds of simulated time pass. ``--trips N`` drives from the start to the goal N times, back to the world's
 ``start`` between trips (untimed), in one system: what the robot learnt on a trip (the obstacle memory, with the
