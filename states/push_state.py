@@ -117,7 +117,7 @@ class PushState(MotionBase):
         scan_max_age_s: float = 0.5,
         passage_extra_m: float = 0.0,
         passage_side_m: float = 0.8,
-        passage_behind_m: float = 0.8,
+        passage_behind_m: float = 0.4,
     ) -> None:
         owner = type(self).__name__
         super().__init__(
