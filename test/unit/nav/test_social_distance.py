@@ -234,3 +234,12 @@ def test_a_walker_predicted_to_pass_within_escape_miss_may_be_stepped_away_from(
     assert RULE.limit((0.0, 0.0, 0.0), ROUND, -0.2, 0.0, grazing).stopped  # default 0: it stands
     lenient = SocialDistanceRule(SocialParams(escape_miss_m=0.1))  # within the tracking error: may step away
     assert lenient.limit((0.0, 0.0, 0.0), ROUND, -0.2, 0.0, grazing).scale == 1.0
+
+
+def test_stepping_aside_across_a_walkers_way_is_not_slowed_by_the_speed_cap() -> None:
+    # a walker 0.43 m from the footprint coming straight at the robot's centre: standing, it would be walked into;
+    # driving across their way (not toward them) goes at full speed, where a person standing there caps it
+    walking_in = RULE.limit((0.0, 0.0, 0.0), ROUND, 0.26, 0.0, [person(0.0, -0.8, vy=0.7)])
+    assert walking_in.scale == 1.0, walking_in.reason
+    standing = RULE.limit((0.0, 0.0, 0.0), ROUND, 0.26, 0.0, [person(0.0, -0.8)])  # the same place, standing
+    assert standing.scale < 0.5 and "capped" in standing.reason, standing.reason

@@ -25,8 +25,10 @@ tracker's centre and radius, :class:`~flex_nav.perception.moving_obstacles.Track
   get out of their way (it would be touched otherwise);
 - inside ``slow_distance_m`` the robot's speed (not only its closing speed) is capped at ``max_speed_mps``
   scaled linearly from 1 at ``slow_distance_m`` to 0 at ``min_distance_m``, unless it is moving away
-  from the person (closing speed below ``-stopped_speed_mps``): it slows down passing people, and may
-  leave one who stands or comes slower than it goes (also from inside the distance: the gap must not shrink).
+  from the person (closing speed below ``-stopped_speed_mps``) or out of the way of one who would walk into it
+  standing (not toward them): it slows down passing people, and may leave one who stands or comes slower than it
+  goes (also from inside the distance: the gap must not shrink). Capped while stepping aside across a walker's
+  way, the robot had slowed to a stand in it and was walked into (h6, every seed).
 
 A contact with a person is the robot's doing only when the robot was moving and the point that touched moved
 toward the person (:func:`contact_cause`): a person who walks into a stopped robot, or into its back while it
@@ -250,6 +252,8 @@ class SocialDistanceRule:
                        f"before they are within {p.min_distance_m:.2f} m")
         if closing < -p.stopped_speed_mps:
             return scale, why or "moving away"
+        if not passes and closing <= p.stopped_speed_mps:  # getting out of the way of someone walking into it
+            return scale, why or "out of their way"
         if distance < p.slow_distance_m and abs(v) > EPSILON_MPS:
             fraction = max(0.0, (distance - p.min_distance_m) / (p.slow_distance_m - p.min_distance_m))
             cap = p.max_speed_mps * fraction
