@@ -245,14 +245,22 @@ class PushState(MotionBase):
         self.send(speed, w)
         return None
 
+    def _fresh_scan(self) -> Optional[LaserScan]:
+        """The newest scan if it is at most scan_max_age_s old (None: none, or none subscribed)."""
+        if self._scan is None:
+            return None
+        scan = self._scan.last()
+        if scan is None or message_age_s(scan, self._scan, self.now_s()) > self._approach.scan_max_age_s:
+            return None
+        return scan
+
     def _in_passage(self) -> bool:
         """True while a push past distance_m goes on: within passage_extra_m more, with a fresh scan that shows the
         robot walled in (logged once per push when it starts)."""
-        if self._progress_m >= self._distance_m + self._passage_extra_m or self._scan is None \
-                or self._passage_extra_m <= 0.0:
+        if self._passage_extra_m <= 0.0 or self._progress_m >= self._distance_m + self._passage_extra_m:
             return False
-        scan = self._scan.last()
-        if scan is None or message_age_s(scan, self._scan, self.now_s()) > self._approach.scan_max_age_s:
+        scan = self._fresh_scan()
+        if scan is None:
             return False
         inside = walled_in(scan, self._passage_side_m, self._passage_behind_m)
         if inside and not self._passage_logged:
@@ -265,10 +273,10 @@ class PushState(MotionBase):
         """[m] of the push to drive at approach_speed_mps: the gap to the face on a fresh scan less
         contact_slack_m; 0 without an approach speed, a fresh scan or anything ahead within distance_m."""
         approach = self._approach
-        if not approach.enabled or self._scan is None:
+        if not approach.enabled:
             return 0.0
-        scan = self._scan.last()
-        if scan is None or message_age_s(scan, self._scan, self.now_s()) > approach.scan_max_age_s:
+        scan = self._fresh_scan()
+        if scan is None:
             self.log_warn(f"push: no scan on {approach.scan_topic} newer than {approach.scan_max_age_s:g} s: "
                           f"no faster approach")
             return 0.0

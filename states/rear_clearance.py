@@ -10,7 +10,7 @@ round base, as on the TurtleBot 2 and 4, within a few centimetres that the clear
 
 from __future__ import annotations
 
-from typing import Any, Optional
+from typing import Any, Optional, Tuple
 
 import numpy as np
 
@@ -29,18 +29,22 @@ def gap_ahead_m(scan: Any, radius_m: float, clearance_m: float, reach_m: float) 
     return _gap_m(scan, radius_m, clearance_m, reach_m, direction=1.0)
 
 
-def _gap_m(scan: Any, radius_m: float, clearance_m: float, reach_m: float, direction: float) -> Optional[float]:
-    """The gap along ``direction`` (+1 ahead, -1 behind) of :func:`gap_ahead_m` / :func:`gap_behind_m`."""
+def _returns(scan: Any) -> Tuple[np.ndarray, np.ndarray]:
+    """(x, y) [m] of the scan's returns in its frame; returns that are not finite or outside [range_min,
+    range_max] are no points."""
     ranges = np.asarray(scan.ranges, dtype=np.float64)
-    if ranges.size == 0:
-        return None
     angles = scan.angle_min + scan.angle_increment * np.arange(ranges.size)
     valid = np.isfinite(ranges) & (ranges >= scan.range_min) & (ranges <= scan.range_max)
-    r = np.where(valid, ranges, 0.0)  # no inf x 0 for beams without a return
-    along = direction * r * np.cos(angles)  # [m] the way the robot drives
-    y = r * np.sin(angles)
+    r, a = ranges[valid], angles[valid]
+    return r * np.cos(a), r * np.sin(a)
+
+
+def _gap_m(scan: Any, radius_m: float, clearance_m: float, reach_m: float, direction: float) -> Optional[float]:
+    """The gap along ``direction`` (+1 ahead, -1 behind) of :func:`gap_ahead_m` / :func:`gap_behind_m`."""
+    x, y = _returns(scan)
+    along = direction * x  # [m] the way the robot drives
     half_width = radius_m + clearance_m
-    in_way = valid & (along > 0.0) & (np.abs(y) <= half_width) & (along <= reach_m + half_width)
+    in_way = (along > 0.0) & (np.abs(y) <= half_width) & (along <= reach_m + half_width)
     if not in_way.any():
         return None
     return max(0.0, float(np.min(along[in_way])) - radius_m)
@@ -50,12 +54,6 @@ def walled_in(scan: Any, side_m: float, behind_m: float) -> bool:
     """True when the scan has a return on both sides of the robot (left: y > 0, right: y < 0) within ``side_m``
     [m] of its centre line, beside or behind its centre down to ``behind_m`` [m] (x in [-behind_m, 0]): the robot
     is in a passage. What is ahead of the centre (an object being pushed) does not count."""
-    ranges = np.asarray(scan.ranges, dtype=np.float64)
-    if ranges.size == 0:
-        return False
-    angles = scan.angle_min + scan.angle_increment * np.arange(ranges.size)
-    valid = np.isfinite(ranges) & (ranges >= scan.range_min) & (ranges <= scan.range_max)
-    r = np.where(valid, ranges, 0.0)
-    x, y = r * np.cos(angles), r * np.sin(angles)
-    beside = valid & (x <= 0.0) & (x >= -behind_m) & (np.abs(y) <= side_m)
+    x, y = _returns(scan)
+    beside = (x <= 0.0) & (x >= -behind_m) & (np.abs(y) <= side_m)
     return bool((beside & (y > 0.0)).any() and (beside & (y < 0.0)).any())

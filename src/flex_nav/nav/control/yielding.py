@@ -17,7 +17,7 @@ Each control tick (:meth:`YieldRule.decide`):
    robot cruises along its path -> HURRY: that speed (the turn rate scaled with it); with a
    ``comfort_margin_m`` above ``margin_m`` (0: none), a way that is free by ``margin_m`` but not by the comfort
    margin is hurried across too when hurrying keeps the comfort margin (never waited for: the social distance's
-   margin, :mod:`flex_nav.nav.control.social_distance`, as the yield margin kept the robot from ever crossing S6's
+   margin, :mod:`flex_nav.nav.control.social_distance`, as a larger margin_m kept the robot from ever crossing S6's
    walkers' ways);
 2. otherwise, if standing still keeps R (less ``escape_tolerance_m``) to every predicted person: while
    the path ahead enters a conflicting person's corridor farther than ``stop_buffer_m`` [m] ahead -> SLOW:
