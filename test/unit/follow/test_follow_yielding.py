@@ -61,15 +61,32 @@ def test_at_the_corridor_edge_the_robot_waits_and_only_turns_in_place():
     assert d.mode is YieldMode.WAIT and d.v == 0.0
 
 
-def test_resumes_only_after_the_way_stayed_clear():
+def test_a_stopped_robot_resumes_only_after_the_way_stayed_clear():
     rule = YieldRule(PARAMS)
-    assert decide(rule, 2.4, [person(3.0, -1.0, 0.0, 0.8)], now_s=0.0).mode is not YieldMode.FREE
+    waited = decide(rule, 2.5, [person(3.0, -1.0, 0.0, 0.8)], now_s=0.0)
+    assert waited.mode is YieldMode.WAIT and waited.v == 0.0
     passed = [person(3.0, 1.5, 0.0, 0.8)]  # crossed and walking away
     held = decide(rule, 2.4, passed, now_s=0.2)
     assert held.mode is YieldMode.WAIT and held.v == 0.0 and "resuming" in held.reason
     assert decide(rule, 2.4, passed, now_s=0.8).mode is YieldMode.FREE
     rule.reset()
     assert decide(rule, 2.4, passed, now_s=0.81).mode is YieldMode.FREE
+
+
+def test_a_robot_still_driving_when_the_way_clears_drives_on():
+    rule = YieldRule(PARAMS)
+    slowed = decide(rule, 2.2, [person(3.0, -2.0, 0.0, 0.8)], now_s=0.0)
+    assert slowed.mode is YieldMode.SLOW and slowed.v > 0.05  # braking for the corridor, not yet stopped
+    passed = [person(3.0, 1.5, 0.0, 0.8)]
+    assert decide(rule, 2.2, passed, now_s=0.1).mode is YieldMode.FREE  # no stop for resume_after_s
+
+
+def test_going_on_along_the_path_is_driven_at_the_speed_it_was_checked_at():
+    rule = YieldRule(PARAMS)
+    # a person comes up fast behind the robot; the controller has slowed near their costmap marks
+    d = decide(rule, 3.0, [person(2.0, 0.0, 0.9, 0.0)], command=(0.1, 0.05))
+    assert d.mode is YieldMode.ESCAPE and "along the path" in d.reason, d
+    assert d.v == pytest.approx(PARAMS.speed_mps) and d.w == pytest.approx(0.05 * PARAMS.speed_mps / 0.1)
 
 
 @pytest.mark.parametrize("x, y, vx, vy", [(3.4, -1.5, 0.0, 0.8), (6.0, 0.0, -0.8, 0.0), (4.0, -1.0, -0.55, 0.55)])
@@ -106,6 +123,22 @@ def test_going_on_is_an_escape_when_the_person_comes_from_behind():
     assert d.v >= 0.0
     if d.mode is YieldMode.ESCAPE:
         assert "along the path" in d.reason or "forward" in d.reason
+
+
+def test_going_on_out_of_one_persons_way_stops_short_of_the_next_ones():
+    rule = YieldRule(PARAMS)
+    geometry = CostmapGeometry(100, 100, 0.05, 0.0, -2.5)
+    costs = np.zeros(geometry.shape, dtype=np.uint8)
+    rows, cols = geometry.world_to_cells(np.array([2.88, 2.88]), np.array([-0.5, 0.5]))
+    costs[rows[0]:rows[1] + 1, cols[0]] = LETHAL  # a wall behind: no backing up
+    coming = person(3.0, -2.5, 0.0, 0.7, track_id=1)  # walks through where the robot stands
+    ahead = person(4.5, -3.3, 0.0, 0.6, track_id=2)  # crosses the path 1.5 m ahead as the robot would get there
+    d = decide(rule, 3.0, [coming, ahead], command=(0.1, 0.0), costs=costs, geometry=geometry)
+    assert d.mode is YieldMode.ESCAPE and "along the path" in d.reason and d.v > 0.0, d
+    # the next tick out of the first person's way, the robot brakes before the second one's way
+    later = decide(rule, 3.6, [person(3.0, -1.8, 0.0, 0.7, track_id=1), person(4.5, -2.7, 0.0, 0.6, track_id=2)],
+                   now_s=1.0, costs=costs, geometry=geometry)
+    assert later.mode in (YieldMode.SLOW, YieldMode.WAIT) and later.track_id == 2, later
 
 
 def test_an_obstacle_behind_forbids_backing_up():

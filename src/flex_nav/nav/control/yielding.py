@@ -11,8 +11,9 @@ robot is predicted along its path, speeding up from its odometry speed to ``spee
 Each control tick (:meth:`YieldRule.decide`):
 
 1. the robot going on along its path stays farther than R from every predicted person -> FREE: the
-   controller's command goes out unchanged (after yielding: only with ``start_margin_m`` [m] more and after
-   ``resume_after_s`` [s] without a conflict, so a wobbling estimate does not start and stop the robot);
+   controller's command goes out unchanged (after yielding: only with ``start_margin_m`` [m] more, and a robot
+   that had stopped starts again only after ``resume_after_s`` [s] without a conflict, so a wobbling estimate
+   does not start and stop it; one still driving forward drives on);
    If only crossing at ``hurry_speed_mps`` (when > ``speed_mps``; off by default) clears everyone while the
    robot cruises along its path -> HURRY: that speed (the turn rate scaled with it); with a
    ``comfort_margin_m`` above ``margin_m`` (0: none), a way that is free by ``margin_m`` but not by the comfort
@@ -26,7 +27,8 @@ Each control tick (:meth:`YieldRule.decide`):
 3. at the corridor's edge -> WAIT (no forward motion; the controller's turn in place is kept: a round robot
    turning takes no more room);
 4. otherwise (standing still would be met) the robot is in an approaching person's way -> ESCAPE: of a
-   few short motions (back up straight or on a gentle arc, go on along the path) the one that keeps the
+   few short motions (back up straight or on a gentle arc, go on along the path at ``speed_mps`` as far as
+   the way of the next person that standing still keeps clear of) the one that keeps the
    largest predicted clearance (ties: the one that meets the person latest; the motion of the previous tick
    is preferred by a little, so the robot does not dither between two ways out) is commanded, but only a
    motion that never carries the robot toward a person: into the predicted way of anyone that standing
@@ -60,6 +62,7 @@ LATER_WEIGHT = 0.05  # [m/s] a later first violation is worth this much clearanc
 COMMIT_BONUS_M = 0.05  # [m] the escape motion chosen on the previous tick is worth this much more
 OWN_MARKS_MARGIN_M = 0.15  # [m] costmap cells this far beyond a moving track's body are its own marks
 TRAIL_S = 0.5  # [s] a moving track's marks may lag this far behind it
+DRIVING_MPS = 0.05  # [m/s] a decision sending more than this forward keeps the robot driving (no resume hold)
 
 
 @dataclass(frozen=True)
@@ -196,11 +199,13 @@ class YieldRule:
         self.times = np.arange(count) * params.time_step_s
         self._last_conflict_s: Optional[float] = None
         self._last_escape = ""  # the escape motion of the previous tick ("" = none)
+        self._last_v = 0.0  # [m/s] the speed the previous tick's decision sent
 
     def reset(self) -> None:
-        """Forget the last conflict and escape (a new goal starts free)."""
+        """Forget the last conflict, escape and speed (a new goal starts free)."""
         self._last_conflict_s = None
         self._last_escape = ""
+        self._last_v = 0.0
 
     def moving(self, pose: Pose2D, tracks: Sequence[Track]) -> List[Track]:
         """The tracks the rule gives way to: fast enough and near enough."""
@@ -240,6 +245,25 @@ class YieldRule:
         """The command to send instead of the controller's ``command`` (v [m/s], w [rad/s]); ``path`` (N, 2|3)
         with cumulative ``lengths`` (N,), the robot at arc length ``s_robot`` [m], driving forward at ``speed``
         [m/s] (odometry; negative while backing up; None: the command's); see the module docstring."""
+        decision = self._decide(now_s, pose, command, path=path, lengths=lengths, s_robot=s_robot, tracks=tracks,
+                                costs=costs, geometry=geometry, speed=speed)
+        self._last_v = decision.v
+        return decision
+
+    def _decide(
+        self,
+        now_s: float,
+        pose: Pose2D,
+        command: Tuple[float, float],
+        *,
+        path: np.ndarray,
+        lengths: np.ndarray,
+        s_robot: float,
+        tracks: Sequence[Track],
+        costs: Optional[np.ndarray],
+        geometry: Optional[CostmapGeometry],
+        speed: Optional[float],
+    ) -> YieldDecision:
         p = self.params
         v_cmd, w_cmd = command
         people = _People(self.moving(pose, tracks), self.times, p)
@@ -278,13 +302,21 @@ class YieldRule:
             return YieldDecision(0.0, w_cmd, YieldMode.WAIT,
                                  f"yielding: waiting for track {track.track_id} ({track.speed:.2f} m/s) to pass",
                                  track.track_id)
-        return self._escape(pose, (v_cmd, w_cmd), go, people, stand_clear=stand_clear, costs=costs,
+        stand_each = stand_clear.min(axis=1)
+        others = np.flatnonzero(stand_each >= 0.0)  # the people standing still keeps clear of
+        stop_s = (self._corridor_entry(path, lengths, s_robot, people, others) - p.stop_buffer_m if others.size
+                  else math.inf)
+        go_on = self._along_path(path, lengths, s_robot, v_now, p.speed_mps, stop_s=max(stop_s, s_robot))
+        return self._escape(pose, (v_cmd, w_cmd), go_on, people, stand_clear=stand_clear, costs=costs,
                             geometry=geometry)
 
     # ------------------------------------------------------------------ pieces
     def _free(self, now_s: float, v_cmd: float, w_cmd: float) -> YieldDecision:
+        """The controller's command; after a conflict a robot that had stopped (or was backing up) waits
+        ``resume_after_s`` [s] first, one still driving forward (slowing before a corridor, hurrying, going on
+        along its path) drives on: stopping it would only cost it the time it has to get across."""
         last = self._last_conflict_s
-        if last is not None and now_s - last < self.params.resume_after_s:
+        if last is not None and self._last_v <= DRIVING_MPS and now_s - last < self.params.resume_after_s:
             return YieldDecision(0.0, w_cmd, YieldMode.WAIT,
                                  f"yielding: way clear for {now_s - last:.2f} s, resuming after "
                                  f"{self.params.resume_after_s:g} s")
@@ -305,17 +337,17 @@ class YieldRule:
         return YieldDecision(p.hurry_speed_mps, w_cmd * p.hurry_speed_mps / v_cmd, YieldMode.HURRY,
                              f"yielding: hurrying across at {p.hurry_speed_mps:.2f} m/s before the people come")
 
-    def _along_path(self, path: np.ndarray, lengths: np.ndarray, s_robot: float, v_now: float,
-                    cruise: float) -> np.ndarray:
+    def _along_path(self, path: np.ndarray, lengths: np.ndarray, s_robot: float, v_now: float,  # noqa: PLR0917
+                    cruise: float, stop_s: float = math.inf) -> np.ndarray:
         """(K, 2) robot positions along the path, speeding up from ``v_now`` [m/s] (negative: backing up, it
-        first has to stop) to ``cruise`` [m/s] at ``accel_mps2``."""
+        first has to stop) to ``cruise`` [m/s] at ``accel_mps2``, standing at arc length ``stop_s`` [m]."""
         p = self.params
         v0 = min(v_now, cruise)
         t_up = (cruise - v0) / p.accel_mps2
         t = self.times
         travelled = np.where(t < t_up, v0 * t + 0.5 * p.accel_mps2 * t * t,
                              v0 * t_up + 0.5 * p.accel_mps2 * t_up * t_up + cruise * (t - t_up))
-        s = np.minimum(s_robot + travelled, float(lengths[-1]))
+        s = np.minimum(s_robot + travelled, min(float(lengths[-1]), stop_s))
         return np.stack((np.interp(s, lengths, path[:, 0]), np.interp(s, lengths, path[:, 1])), axis=1)
 
     def _corridor_entry(self, path: np.ndarray, lengths: np.ndarray, s_robot: float, people: _People,
@@ -333,7 +365,7 @@ class YieldRule:
         found = np.flatnonzero(inside)
         return float(samples[found[0]]) if found.size else end
 
-    def _escape(self, pose: Pose2D, command: Tuple[float, float], go: np.ndarray, people: _People, *,
+    def _escape(self, pose: Pose2D, command: Tuple[float, float], go_on: np.ndarray, people: _People, *,
                 stand_clear: np.ndarray, costs: Optional[np.ndarray],
                 geometry: Optional[CostmapGeometry]) -> YieldDecision:
         p = self.params
@@ -345,7 +377,7 @@ class YieldRule:
             (f"backing up at {ve:.2f} m/s", -ve, 0.0, arc_positions(pose, -ve, 0.0, self.times)),
             ("backing up, turning right", -ve, -we, arc_positions(pose, -ve, -we, self.times)),
             ("backing up, turning left", -ve, we, arc_positions(pose, -ve, we, self.times)),
-            ("going on along the path", max(command[0], 0.0), command[1], go),
+            ("going on along the path", *self._at_cruise(command), go_on),
         ]
         stand_each = stand_clear.min(axis=1)  # (M,) per person
         best: Optional[Tuple[float, str, float, float]] = None
@@ -373,6 +405,17 @@ class YieldRule:
         return YieldDecision(v, w, YieldMode.ESCAPE,
                              f"yielding: out of the way of track {track.track_id} ({track.speed:.2f} m/s): {name}",
                              track.track_id)
+
+    def _at_cruise(self, command: Tuple[float, float]) -> Tuple[float, float]:
+        """The controller's command (v [m/s], w [rad/s]) at least at ``speed_mps``, the speed its prediction
+        ``go`` was checked at (the controller slows near the walker's own costmap marks; an escape driven slower
+        than it was checked is no escape), turning on the same arc; (0, w) when the controller does not drive
+        forward (turning in place: no way along the path)."""
+        v_cmd, w_cmd = command
+        if v_cmd <= 0.0:
+            return 0.0, w_cmd
+        v = max(v_cmd, self.params.speed_mps)
+        return v, w_cmd * v / v_cmd
 
     def _score(self, clearance: np.ndarray) -> float:
         """Smallest predicted clearance [m], plus a little for meeting later (ties between no-way-out motions)."""
