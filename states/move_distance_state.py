@@ -17,7 +17,9 @@ from flex_nav_states.motion_params import SPEED_LIMITS, CommandOutput, OdometryI
 from flex_nav_states.proxy_types import SubscriptionLike, proxies_of
 from flex_nav_states.rear_clearance import gap_behind_m
 
-SLOWDOWN_GAIN = 1.5  # [1/s] commanded speed = gain x remaining distance near the end (capped at speed_mps)
+# [1/s] commanded speed = gain x remaining distance near the end (capped at speed_mps); braking asked of the base:
+# gain x speed (0.9 m/s^2 at 0.3 m/s). With 1.5 a 0.3 m back-off crept for over a second near its end
+SLOWDOWN_GAIN = 3.0
 MIN_SPEED_MPS = 0.05  # [m/s] slowest commanded speed (below this many bases do not move)
 HEADING_GAIN = 1.0  # [1/s] yaw rate per radian of heading error (keeps the line straight)
 MAX_HEADING_RATE = 0.5  # [rad/s] bound of the heading correction
