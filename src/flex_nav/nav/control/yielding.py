@@ -302,8 +302,7 @@ class YieldRule:
             return YieldDecision(0.0, w_cmd, YieldMode.WAIT,
                                  f"yielding: waiting for track {track.track_id} ({track.speed:.2f} m/s) to pass",
                                  track.track_id)
-        stand_each = stand_clear.min(axis=1)
-        others = np.flatnonzero(stand_each >= 0.0)  # the people standing still keeps clear of
+        others = np.flatnonzero(stand_clear.min(axis=1) >= 0.0)  # the people standing still keeps clear of
         stop_s = (self._corridor_entry(path, lengths, s_robot, people, others) - p.stop_buffer_m if others.size
                   else math.inf)
         go_on = self._along_path(path, lengths, s_robot, v_now, p.speed_mps, stop_s=max(stop_s, s_robot))
@@ -407,8 +406,8 @@ class YieldRule:
                              track.track_id)
 
     def _at_cruise(self, command: Tuple[float, float]) -> Tuple[float, float]:
-        """The controller's command (v [m/s], w [rad/s]) at least at ``speed_mps``, the speed its prediction
-        ``go`` was checked at (the controller slows near the walker's own costmap marks; an escape driven slower
+        """The controller's command (v [m/s], w [rad/s]) at least at ``speed_mps``, the speed the way along the
+        path was predicted at (the controller slows near the walker's own costmap marks; an escape driven slower
         than it was checked is no escape), turning on the same arc; (0, w) when the controller does not drive
         forward (turning in place: no way along the path)."""
         v_cmd, w_cmd = command
