@@ -224,9 +224,11 @@ class TestClockFaults(unittest.TestCase):
         self.assertEqual(self.controller.get_state(), GoalStatus.ACTIVE)
 
     def wait_done(self, client, timeout_s=5.0):
+        """True once the goal has ended and its result arrived (the status topic may tell the end before the
+        result topic brings the result: get_result() is None until then), False after ``timeout_s`` [s]."""
         deadline = time.monotonic() + timeout_s
         while time.monotonic() < deadline:
-            if client.get_state() not in (GoalStatus.PENDING, GoalStatus.ACTIVE):
+            if client.get_state() not in (GoalStatus.PENDING, GoalStatus.ACTIVE) and client.get_result() is not None:
                 return True
             time.sleep(0.02)
         return False
