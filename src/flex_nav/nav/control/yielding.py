@@ -245,30 +245,11 @@ class YieldRule:
         """The command to send instead of the controller's ``command`` (v [m/s], w [rad/s]); ``path`` (N, 2|3)
         with cumulative ``lengths`` (N,), the robot at arc length ``s_robot`` [m], driving forward at ``speed``
         [m/s] (odometry; negative while backing up; None: the command's); see the module docstring."""
-        decision = self._decide(now_s, pose, command, path=path, lengths=lengths, s_robot=s_robot, tracks=tracks,
-                                costs=costs, geometry=geometry, speed=speed)
-        self._last_v = decision.v
-        return decision
-
-    def _decide(
-        self,
-        now_s: float,
-        pose: Pose2D,
-        command: Tuple[float, float],
-        *,
-        path: np.ndarray,
-        lengths: np.ndarray,
-        s_robot: float,
-        tracks: Sequence[Track],
-        costs: Optional[np.ndarray],
-        geometry: Optional[CostmapGeometry],
-        speed: Optional[float],
-    ) -> YieldDecision:
         p = self.params
         v_cmd, w_cmd = command
         people = _People(self.moving(pose, tracks), self.times, p)
         if not people.tracks:
-            return self._free(now_s, v_cmd, w_cmd)
+            return self._sent(self._free(now_s, v_cmd, w_cmd))
         v_now = v_cmd if speed is None else speed
         go = self._along_path(path, lengths, s_robot, v_now, p.speed_mps)
         go_clear = people.clearance(go).min(axis=1)  # (M,)
@@ -278,10 +259,10 @@ class YieldRule:
             comfort = needed + p.comfort_margin_m - p.margin_m  # the clearance beyond margin_m it asks
             hurry = (self._hurry(people, path, lengths, s_robot, v_now, (v_cmd, w_cmd), comfort)
                      if p.comfort_margin_m > p.margin_m and float(go_clear.min()) < comfort else None)
-            return hurry if hurry is not None else self._free(now_s, v_cmd, w_cmd)
+            return self._sent(hurry if hurry is not None else self._free(now_s, v_cmd, w_cmd))
         hurry = self._hurry(people, path, lengths, s_robot, v_now, (v_cmd, w_cmd), needed)
         if hurry is not None:
-            return hurry
+            return self._sent(hurry)
         self._last_conflict_s = now_s
         worst = int(conflicting[np.argmin(go_clear[conflicting])])
         track = people.tracks[worst]
@@ -294,22 +275,27 @@ class YieldRule:
             cap = math.sqrt(2.0 * p.decel_mps2 * (ahead - p.stop_buffer_m))
             v = min(v_cmd, cap)
             w = w_cmd * (v / v_cmd) if v_cmd > 1e-9 else w_cmd
-            return YieldDecision(v, w, YieldMode.SLOW,
-                                 f"yielding: stopping {ahead:.2f} m ahead, before the way of track {track.track_id} "
-                                 f"({track.speed:.2f} m/s)", track.track_id)
+            return self._sent(YieldDecision(
+                v, w, YieldMode.SLOW, f"yielding: stopping {ahead:.2f} m ahead, before the way of track "
+                f"{track.track_id} ({track.speed:.2f} m/s)", track.track_id))
         if standing_keeps_clear:
             self._last_escape = ""
-            return YieldDecision(0.0, w_cmd, YieldMode.WAIT,
-                                 f"yielding: waiting for track {track.track_id} ({track.speed:.2f} m/s) to pass",
-                                 track.track_id)
+            return self._sent(YieldDecision(
+                0.0, w_cmd, YieldMode.WAIT, f"yielding: waiting for track {track.track_id} ({track.speed:.2f} m/s) "
+                f"to pass", track.track_id))
         others = np.flatnonzero(stand_clear.min(axis=1) >= 0.0)  # the people standing still keeps clear of
         stop_s = (self._corridor_entry(path, lengths, s_robot, people, others) - p.stop_buffer_m if others.size
                   else math.inf)
         go_on = self._along_path(path, lengths, s_robot, v_now, p.speed_mps, stop_s=max(stop_s, s_robot))
-        return self._escape(pose, (v_cmd, w_cmd), go_on, people, stand_clear=stand_clear, costs=costs,
-                            geometry=geometry)
+        return self._sent(self._escape(pose, (v_cmd, w_cmd), go_on, people, stand_clear=stand_clear, costs=costs,
+                                       geometry=geometry))
 
     # ------------------------------------------------------------------ pieces
+    def _sent(self, decision: YieldDecision) -> YieldDecision:
+        """``decision``, its speed remembered for the next tick's resume hold (see :meth:`_free`)."""
+        self._last_v = decision.v
+        return decision
+
     def _free(self, now_s: float, v_cmd: float, w_cmd: float) -> YieldDecision:
         """The controller's command; after a conflict a robot that had stopped (or was backing up) waits
         ``resume_after_s`` [s] first, one still driving forward (slowing before a corridor, hurrying, going on
