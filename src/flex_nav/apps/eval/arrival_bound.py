@@ -11,7 +11,7 @@ passes, at both ends of the step (the issue-28 metric: the closest approach whil
 ``standing_gap_m`` [m] after the step (0: a person may pass a standing robot as close as they like, but not walk
 through it). The set of cells reachable at each step is grown until the goal's cell is in it.
 
-    python -m flex_nav.apps.eval.oracle --world test/data/issue28/variants/h6_people_crossing.yaml
+    python -m flex_nav.apps.eval.arrival_bound --world test/data/issue28/variants/h6_people_crossing.yaml
 
 prints the earliest arrival [s] after the goal is sent (scenario_run sends it ``WORLD_LEAD_S`` after the
 world's script starts), or how far along the route any admissible profile gets in ``limit_s``. Issue 28 used it to
@@ -37,7 +37,7 @@ OCCUPIED_THRESHOLD = 50  # occupancy above this is a wall
 
 
 @dataclass(frozen=True)
-class OracleResult:
+class ArrivalBound:
     """``arrival_s`` [s] after the start (None: not within the limit), ``farthest_m`` [m] along the route that
     some admissible profile reached, and when it arrived one earliest profile (``profile_m``, every ``step_s``)."""
 
@@ -56,17 +56,17 @@ class OracleResult:
 
 def earliest_arrival(world: Any, route: np.ndarray, *, start_world_s: float, moving_gap_m: float = 0.3,
                      standing_gap_m: float = 0.0, speed_mps: float = 0.26, robot_radius_m: float = ROBOT_RADIUS_M,
-                     step_s: float = 0.1, limit_s: float = 150.0) -> OracleResult:
+                     step_s: float = 0.1, limit_s: float = 150.0) -> ArrivalBound:
     """The search of the module docstring along ``route`` ((N >= 2, 2) [m]) for ``world``'s people, the robot
     starting at the first point at ``start_world_s`` [s] of the world's script."""
     for name, value in (("speed_mps", speed_mps), ("step_s", step_s), ("limit_s", limit_s)):
-        number("oracle", name, value, positive=True)
-    number("oracle", "robot_radius_m", robot_radius_m, minimum=0.0, unit="[m]")
-    number("oracle", "standing_gap_m", standing_gap_m, minimum=0.0, unit="[m]")
-    number("oracle", "moving_gap_m", moving_gap_m, minimum=0.0, unit="[m]")
+        number("arrival bound", name, value, positive=True)
+    number("arrival bound", "robot_radius_m", robot_radius_m, minimum=0.0, unit="[m]")
+    number("arrival bound", "standing_gap_m", standing_gap_m, minimum=0.0, unit="[m]")
+    number("arrival bound", "moving_gap_m", moving_gap_m, minimum=0.0, unit="[m]")
     route = np.asarray(route, dtype=np.float64)
     if route.ndim != 2 or route.shape[0] < 2 or route.shape[1] != 2 or not np.all(np.isfinite(route)):
-        raise ConfigError(f"oracle: route must be (N >= 2, 2) finite points [m], got shape {route.shape}")
+        raise ConfigError(f"arrival bound: route must be (N >= 2, 2) finite points [m], got shape {route.shape}")
     lengths = np.concatenate(([0.0], np.cumsum(np.hypot(*np.diff(route, axis=0).T))))
     cell_m = speed_mps * step_s / MOVES
     arc = np.append(np.arange(0.0, lengths[-1], cell_m), lengths[-1])
@@ -99,12 +99,12 @@ def earliest_arrival(world: Any, route: np.ndarray, *, start_world_s: float, mov
         came_by.append(move_into)
         reached, now_gap = move_into >= 0, next_gap
         if reached[-1]:
-            return OracleResult(k * step_s, float(lengths[-1]), float(lengths[-1]),
+            return ArrivalBound(k * step_s, float(lengths[-1]), float(lengths[-1]),
                                 _profile(came_by, arc, len(cells) - 1))
         if not reached.any():  # a person walks through every place the robot could be
             break
         farthest_m = max(farthest_m, float(arc[np.flatnonzero(reached).max()]))
-    return OracleResult(None, farthest_m, float(lengths[-1]))
+    return ArrivalBound(None, farthest_m, float(lengths[-1]))
 
 
 def _profile(came_by: Sequence[np.ndarray], arc: np.ndarray, goal: int) -> Tuple[float, ...]:
@@ -121,11 +121,12 @@ def _route(text: Optional[str], world: Any) -> np.ndarray:
         try:
             return np.array([[float(v) for v in point.split(",")] for point in text.split(";")])
         except ValueError as err:
-            raise ConfigError(f"oracle: --route must be 'x,y;x,y;...' [m], got {text!r}") from err
+            raise ConfigError(f"arrival bound: --route must be 'x,y;x,y;...' [m], got {text!r}") from err
     start = world.spawns[0].pose if world.spawns else world.goals.get("start")
     goal = world.goals.get("goal")
     if start is None or goal is None:
-        raise ConfigError(f"oracle: {world.source} has no start (robots or goals.start) and goals.goal: give --route")
+        raise ConfigError(f"arrival bound: {world.source} has no start (robots or goals.start) and goals.goal: "
+                          "give --route")
     return np.array([start[:2], goal[:2]], dtype=np.float64)
 
 
@@ -145,8 +146,8 @@ def check_route(grid: Any, route: np.ndarray, clearance_m: float) -> None:
         dx = np.maximum(np.abs(near[:, 0] - x) - res / 2.0, 0.0)
         dy = np.maximum(np.abs(near[:, 1] - y) - res / 2.0, 0.0)
         if np.any(np.hypot(dx, dy) < clearance_m):
-            raise ConfigError(f"oracle: the route passes within {clearance_m:g} m of a wall at ({x:.2f}, {y:.2f}) m: "
-                              "give --route around it")
+            raise ConfigError(f"arrival bound: the route passes within {clearance_m:g} m of a wall at ({x:.2f}, "
+                              f"{y:.2f}) m: give --route around it")
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:
@@ -154,7 +155,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     from flex_nav_sim.static_map import static_map  # noqa: PLC0415
     from flex_nav_sim.world import load_world  # noqa: PLC0415
 
-    parser = argparse.ArgumentParser(prog="python -m flex_nav.apps.eval.oracle", description=__doc__.split("\n")[0])
+    parser = argparse.ArgumentParser(prog="python -m flex_nav.apps.eval.arrival_bound",
+                                     description=__doc__.split("\n")[0])
     parser.add_argument("--world", required=True, help="world name (sim/worlds) or path")
     parser.add_argument("--route", help="'x,y;x,y;...' [m] (default: the world's start to its goal, straight)")
     parser.add_argument("--moving-gap", type=float, default=0.3, help="[m] kept from every person while moving")

@@ -1,5 +1,6 @@
-"""The scenario oracle: the earliest arrival along a route that keeps a distance from the scripted people while
-moving, checked against the people's own replay (metrics.person_position) and against cases with a known answer."""
+"""The arrival bound of a scenario world: the earliest arrival along a route that keeps a distance from the
+scripted people while moving, checked against the people's own replay (metrics.person_position) and against
+cases with a known answer."""
 
 import math
 from pathlib import Path
@@ -7,8 +8,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from flex_nav.apps.eval.arrival_bound import check_route, earliest_arrival, main
 from flex_nav.apps.eval.metrics import ROBOT_RADIUS_M, person_position, walking_intervals
-from flex_nav.apps.eval.oracle import check_route, earliest_arrival, main
 from flex_nav.exceptions import ConfigError
 from flex_nav_sim.static_map import static_map
 from flex_nav_sim.world import load_world
@@ -18,9 +19,9 @@ H6 = Path(__file__).resolve().parents[2] / "data" / "issue28" / "variants" / "h6
 
 
 def _world(tmp_path: Path, people: str) -> Path:
-    path = tmp_path / "oracle_world.yaml"
+    path = tmp_path / "bound_world.yaml"
     path.write_text(
-        "name: oracle_world\n"
+        "name: bound_world\n"
         "map: {resolution: 0.05, min_height: 0.12, padding: 0.5}\n"
         "defaults: {wall_height: 0.8, wall_thickness: 0.1}\n"
         "rooms:\n  - {name: room, min: [0.0, 0.0], max: [9.0, 8.0]}\n"
