@@ -49,6 +49,7 @@ def _closest_while_moving(world, profile, start_world_s: float, step_s: float = 
 def test_without_people_it_drives_at_full_speed(tmp_path):
     world = load_world(_world(tmp_path, "  []\n"))
     result = earliest_arrival(world, ROUTE, start_world_s=4.0, speed_mps=0.26)
+    assert result.arrival_s is not None
     assert result.arrival_s == pytest.approx(math.ceil(7.4 / 0.026 - 1e-9) * 0.1)
     assert result.profile_m[0] == 0.0 and result.profile_m[-1] == pytest.approx(7.4)
     assert len(result.profile_m) == round(result.arrival_s / 0.1) + 1
