@@ -129,9 +129,9 @@ class TestGoalServer(unittest.TestCase):
 
     def test_back_to_back_goals_all_end_and_the_last_succeeds(self):
         handles = []
-        # actionlib's client publishes goals with a queue of 10 (actionlib_client_pub_queue_size): on a loaded
-        # machine a burst of 31 lost its oldest goals before they left this process (12 of them, CI 2026-12-07),
-        # which says nothing about the server under test; the queue holds the whole burst
+        # actionlib's client publishes goals with a drop-oldest queue of 10 (actionlib_client_pub_queue_size): in
+        # CI (2026-12-07) the oldest 12 of this burst of 31 were never acknowledged, most likely dropped there
+        # before they left this process (not reproduced locally); the queue holds the whole burst
         rospy.set_param("actionlib_client_pub_queue_size", BURST_GOALS + 1)
         self.addCleanup(rospy.delete_param, "actionlib_client_pub_queue_size")
         client = actionlib.ActionClient("scripted", FollowPathAction)
