@@ -26,10 +26,12 @@ import sys
 from dataclasses import dataclass
 from typing import Any, List, Optional, Sequence, Tuple
 
+import cv2
 import numpy as np
 
 from flex_nav.apps.eval.metrics import ROBOT_RADIUS_M, person_position, walking_intervals
 from flex_nav.exceptions import ConfigError, FlexNavError
+from flex_nav.nav.path import as_path, cumulative_lengths, path_length
 from flex_nav.validation import number
 
 MOVES = 3  # a step drives at most this many cells
@@ -64,13 +66,10 @@ def earliest_arrival(world: Any, route: np.ndarray, *, start_world_s: float, mov
     number("arrival bound", "robot_radius_m", robot_radius_m, minimum=0.0, unit="[m]")
     number("arrival bound", "standing_gap_m", standing_gap_m, minimum=0.0, unit="[m]")
     number("arrival bound", "moving_gap_m", moving_gap_m, minimum=0.0, unit="[m]")
-    route = np.asarray(route, dtype=np.float64)
-    if route.ndim != 2 or route.shape[0] < 2 or route.shape[1] != 2 or not np.all(np.isfinite(route)):
-        raise ConfigError(f"arrival bound: route must be (N >= 2, 2) finite points [m], got shape {route.shape}")
-    lengths = np.concatenate(([0.0], np.cumsum(np.hypot(*np.diff(route, axis=0).T))))
-    cell_m = speed_mps * step_s / MOVES
-    arc = np.append(np.arange(0.0, lengths[-1], cell_m), lengths[-1])
-    cells = np.stack((np.interp(arc, lengths, route[:, 0]), np.interp(arc, lengths, route[:, 1])), axis=1)
+    route = checked_route(route)
+    length_m = path_length(route)
+    arc = np.append(np.arange(0.0, length_m, speed_mps * step_s / MOVES), length_m)
+    cells = _along(route, arc)
     intervals = [walking_intervals(p, world.events) for p in world.people]
 
     def gaps(world_s: float) -> np.ndarray:
@@ -99,12 +98,25 @@ def earliest_arrival(world: Any, route: np.ndarray, *, start_world_s: float, mov
         came_by.append(move_into)
         reached, now_gap = move_into >= 0, next_gap
         if reached[-1]:
-            return ArrivalBound(k * step_s, float(lengths[-1]), float(lengths[-1]),
-                                _profile(came_by, arc, len(cells) - 1))
+            return ArrivalBound(k * step_s, length_m, length_m, _profile(came_by, arc, len(cells) - 1))
         if not reached.any():  # a person walks through every place the robot could be
             break
         farthest_m = max(farthest_m, float(arc[np.flatnonzero(reached).max()]))
-    return ArrivalBound(None, farthest_m, float(lengths[-1]))
+    return ArrivalBound(None, farthest_m, length_m)
+
+
+def checked_route(route: object) -> np.ndarray:
+    """``route`` as (N >= 2, 2) points [m]; ConfigError naming what is wrong otherwise."""
+    points = as_path(route, what="arrival bound: route")[:, :2]
+    if len(points) < 2:
+        raise ConfigError(f"arrival bound: route needs at least 2 points, got {len(points)}")
+    return points
+
+
+def _along(route: np.ndarray, arc: np.ndarray) -> np.ndarray:
+    """(K, 2) points [m] of ``route`` at arc lengths ``arc`` (K,) [m]."""
+    lengths = cumulative_lengths(route)
+    return np.stack((np.interp(arc, lengths, route[:, 0]), np.interp(arc, lengths, route[:, 1])), axis=1)
 
 
 def _profile(came_by: Sequence[np.ndarray], arc: np.ndarray, goal: int) -> Tuple[float, ...]:
@@ -132,22 +144,21 @@ def _route(text: Optional[str], world: Any) -> np.ndarray:
 
 def check_route(grid: Any, route: np.ndarray, clearance_m: float) -> None:
     """ConfigError when a point of ``route`` ((N, 2) [m], sampled every half map cell) comes within
-    ``clearance_m`` [m] of an occupied cell of ``grid`` (a GridMap: the world's static map)."""
-    lengths = np.concatenate(([0.0], np.cumsum(np.hypot(*np.diff(route, axis=0).T))))
-    arc = np.arange(0.0, lengths[-1] + 1e-9, grid.resolution / 2.0)
-    points = np.stack((np.interp(arc, lengths, route[:, 0]), np.interp(arc, lengths, route[:, 1])), axis=1)
+    ``clearance_m`` [m] of an occupied cell of ``grid`` (a GridMap: the world's static map); outside the map
+    counts as free."""
     res = grid.resolution
-    reach = math.ceil(clearance_m / res)
-    rows, cols = np.nonzero(grid.occupancy > OCCUPIED_THRESHOLD)
-    walls = np.stack((grid.origin[0] + (cols + 0.5) * res, grid.origin[1] + (rows + 0.5) * res), axis=1)
-    for x, y in points:
-        near = walls[(np.abs(walls[:, 0] - x) <= (reach + 1) * res) & (np.abs(walls[:, 1] - y) <= (reach + 1) * res)]
-        # a wall cell is a square: its nearest point, not its centre
-        dx = np.maximum(np.abs(near[:, 0] - x) - res / 2.0, 0.0)
-        dy = np.maximum(np.abs(near[:, 1] - y) - res / 2.0, 0.0)
-        if np.any(np.hypot(dx, dy) < clearance_m):
-            raise ConfigError(f"arrival bound: the route passes within {clearance_m:g} m of a wall at ({x:.2f}, "
-                              f"{y:.2f}) m: give --route around it")
+    points = _along(route, np.arange(0.0, path_length(route) + 1e-9, res / 2.0))
+    free = (grid.occupancy <= OCCUPIED_THRESHOLD).astype(np.uint8)
+    # from each cell's centre to the nearest occupied centre, less half a cell: to the occupied square's edge
+    to_wall_m = cv2.distanceTransform(free, cv2.DIST_L2, cv2.DIST_MASK_PRECISE) * res - res / 2.0
+    cols = np.floor((points[:, 0] - grid.origin[0]) / res).astype(int)
+    rows = np.floor((points[:, 1] - grid.origin[1]) / res).astype(int)
+    inside = (rows >= 0) & (rows < free.shape[0]) & (cols >= 0) & (cols < free.shape[1])
+    near = np.flatnonzero(inside)[to_wall_m[rows[inside], cols[inside]] < clearance_m]
+    if near.size:
+        x, y = points[near[0]]
+        raise ConfigError(f"arrival bound: the route passes within {clearance_m:g} m of a wall at ({x:.2f}, "
+                          f"{y:.2f}) m: give --route around it")
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:
@@ -168,7 +179,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     args = parser.parse_args(argv)
     try:
         world = load_world(args.world)
-        route = _route(args.route, world)
+        route = checked_route(_route(args.route, world))
         check_route(static_map(world), route, ROBOT_RADIUS_M)
         result = earliest_arrival(world, route, start_world_s=args.start_at,
                                   moving_gap_m=args.moving_gap, standing_gap_m=args.standing_gap,
