@@ -49,6 +49,7 @@ from flex_nav.apps.nav_demo import (
     write_picture,
 )
 from flex_nav.exceptions import FlexNavError
+from flex_nav.nav.control.yielding import PLANNERS
 from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.testing.process import ManagedProcess
 
@@ -56,6 +57,10 @@ PROFILE = "turtlebot4"
 ROBOT = "robot1"
 BLOCKED_DISTANCE_M = 0.7  # [m] pure_pursuit_path's blocked-path detection distance
 STARTUP_TIMEOUT_S = 90.0  # [s] wall
+# --yield-planner space_time: the follower's ~yielding/ (a horizon and range long enough to see a walker come back
+# from a lane's end; the gaps are yielding's defaults) and its social slow-down only this far beyond the distance
+SPACE_TIME_YIELDING = {"planner": "space_time", "horizon_s": 8.0, "max_range_m": 8.0}
+SPACE_TIME_SLOW_EXTRA_M = 0.05  # [m]
 SOCIAL_DISTANCE_M = 0.3  # [m] kept from tracked people while moving (issue 28), unless --social-distance says else
 HURRY_SPEED_MPS = 0.3  # [m/s] giving way: cross a walker's way at this speed when only that clears (max 0.306)
 BUMPER_MEMORY_S = 5.0  # [s] bumper marks (both behaviors): a pushed box's contacts must not close the door
@@ -90,6 +95,9 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     parser.add_argument("--social-distance", type=float, default=SOCIAL_DISTANCE_M, metavar="M",
                         help="[m] keep this distance from tracked people while moving (push_or_avoid's follower; "
                              f"default {SOCIAL_DISTANCE_M:g}; 0: off)")
+    parser.add_argument("--yield-planner", choices=PLANNERS, default="rules",
+                        help="how push_or_avoid's follower gives way to walkers: 'rules' (the default) or "
+                             "'space_time' (its speed along the path planned around the walkers' learnt lanes)")
     parser.add_argument("--trips", type=int, default=1,
                         help="start -> goal this many times, driving back to the start between them (default 1)")
     parser.add_argument("--clear-between-trips", action="store_true",
@@ -188,9 +196,14 @@ def start(stack: contextlib.ExitStack, args: argparse.Namespace, run: RobotRun) 
         f"/{ROBOT}/pure_pursuit_path/yield_to_people": True,  # push_or_avoid's follower
         f"/{ROBOT}/pure_pursuit_path/yielding/hurry_speed_mps": HURRY_SPEED_MPS,
     }
+    if args.yield_planner == "space_time":  # the planner times its crossings itself (issue 28, h6)
+        params.update({f"/{ROBOT}/pure_pursuit_path/yielding/{key}": value
+                       for key, value in SPACE_TIME_YIELDING.items()})
     if args.social_distance > 0.0:
-        params[f"/{ROBOT}/pure_pursuit_path/social_distance"] = {"enabled": True,
-                                                                  "min_distance_m": args.social_distance}
+        social: Dict[str, object] = {"enabled": True, "min_distance_m": args.social_distance}
+        if args.yield_planner == "space_time":  # its slow-down near people would break the plan's timing
+            social["slow_distance_m"] = args.social_distance + SPACE_TIME_SLOW_EXTRA_M
+        params[f"/{ROBOT}/pure_pursuit_path/social_distance"] = social
     if args.lockstep:
         params["/lockstep"] = True
         params["/sim/world_start"] = "on_request"  # start_at_grid starts the world's script with the goal

@@ -165,6 +165,8 @@ class PurePursuitController(FollowNode):
                        if yield_to_people or social is not None else None)
         yielding = (yield_rule(self.costmap.inflation.inscribed_radius, params.desired_linear_vel, social)
                     if yield_to_people else None)
+        if self.people is not None and yielding is not None:
+            self.people.share_lanes(yielding)
         sensor_timeout_s = param_float("~sensor_timeout", 0.5, 0.01, 600.0)
         self.clock = RosClock(poll_s=min(self.period_s / 10.0, 0.005))
         self.lockstep = LockstepParticipant("control")  # a goal's ticks hold a lockstep simulation

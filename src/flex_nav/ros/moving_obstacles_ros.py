@@ -36,11 +36,13 @@ from std_msgs.msg import Bool
 
 from flex_nav.exceptions import ConfigError, choices_message
 from flex_nav.nav.control.social_distance import SocialDistanceRule, SocialLimit, SocialParams
+from flex_nav.nav.control.space_time_yield import SpaceTimeYield
 from flex_nav.nav.control.yielding import YieldDecision, YieldMode, YieldParams, YieldRule
 from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.perception.lidar_shape import BoxOutline, ShapeParams, box_outlines, without_boxes
 from flex_nav.perception.moving_obstacles import MovingObstacleTracker, Track, TrackerParams
 from flex_nav.perception.static_mask import StaticMask
+from flex_nav.perception.walker_lanes import WalkerLanes
 from flex_nav.ros.conversions import grid_map_of
 from flex_nav.ros.frames import TF_ERRORS, lookup_bounded
 from flex_nav.ros.latest_worker import LatestWorker
@@ -53,6 +55,7 @@ YIELD_NS = "~yielding"
 TRACKER_FIELDS = tuple(f.name for f in dataclasses.fields(TrackerParams))
 TRACKER_PARAMETERS = ("scan_topic", "map_topic", "static_tolerance", "tracking_frame", "drop_boxes", *TRACKER_FIELDS)
 TF_WAIT_S = 0.1  # [s] wait for the scan's transform
+MOVING_GAP_EXTRA_M = 0.1  # [m] the space-time planner keeps the social distance plus this (the predictions' error)
 
 
 def _carried(pose: Tuple[float, float, float], xs: np.ndarray, ys: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
@@ -65,7 +68,8 @@ def _carried(pose: Tuple[float, float, float], xs: np.ndarray, ys: np.ndarray) -
 def yield_rule(robot_radius_m: float, speed_mps: float, social: Optional[SocialDistanceRule] = None) -> YieldRule:
     """The YieldRule from ``~yielding/`` (defaults for the robot's radius and speed as given; with a ``social``
     distance rule, ``comfort_margin_m`` defaults to its ``min_distance_m``: a walker's way the robot would cross
-    with less room is hurried across when that keeps it)."""
+    with less room is hurried across when that keeps it, and the space-time planner's ``moving_gap_m`` to it
+    plus ``MOVING_GAP_EXTRA_M``)."""
     raw = rospy.get_param(private_name(YIELD_NS), {})
     if not isinstance(raw, dict):
         raise ConfigError(
@@ -73,8 +77,10 @@ def yield_rule(robot_radius_m: float, speed_mps: float, social: Optional[SocialD
     values = {"robot_radius_m": robot_radius_m, "speed_mps": speed_mps, **raw}
     if social is not None:
         values.setdefault("comfort_margin_m", social.params.min_distance_m)
+        values.setdefault("moving_gap_m", social.params.min_distance_m + MOVING_GAP_EXTRA_M)
     try:
-        return YieldRule(YieldParams.from_mapping(values))
+        params = YieldParams.from_mapping(values)
+        return SpaceTimeYield(params) if params.planner == "space_time" else YieldRule(params)
     except (ConfigError, TypeError) as err:
         raise ConfigError(f"{rospy.resolve_name(private_name(YIELD_NS))}: {err}") from err
 
@@ -141,6 +147,8 @@ class MovingObstaclesROS:
         self.tracker = MovingObstacleTracker(params)
         self._last_kind: Optional[Tuple[YieldMode, Optional[int]]] = None  # (mode, track) last logged
         self._last_social: Optional[int] = None  # the track the social distance limited the last tick for
+        # the walkers' lanes a space-time yield rule predicts with (:meth:`share_lanes`), in the global frame
+        self.lanes: Optional[WalkerLanes] = None
         self.yielding_publisher = rospy.Publisher(private_name("~yielding"), Bool, queue_size=1)
         self.people_publisher = rospy.Publisher(private_name("~people"), PoseArray, queue_size=1)
         scan_topic = param_str(TRACKER_NS + "scan_topic", "scan")
@@ -150,6 +158,13 @@ class MovingObstaclesROS:
         self._subscribers = [self.scan_worker.subscribe(scan_topic, LaserScanMsg, tracker_scans)]
         if map_topic:
             self._subscribers.append(rospy.Subscriber(map_topic, OccupancyGrid, self._on_map, queue_size=1))
+
+    def share_lanes(self, rule: YieldRule) -> None:
+        """Learn the lanes ``rule`` predicts with (a :class:`SpaceTimeYield` with lanes) from every scan's tracks,
+        and not only while the rule decides (during goals)."""
+        if isinstance(rule, SpaceTimeYield) and rule.lanes is not None:
+            self.lanes = rule.lanes
+            rule.learns_in_decide = False
 
     def _on_map(self, msg: OccupancyGrid) -> None:
         if msg.header.frame_id.lstrip("/") not in ("", self.global_frame.lstrip("/")):
@@ -197,6 +212,8 @@ class MovingObstaclesROS:
             shown = self._people(msg.header.stamp.to_sec()) if listened else None
         if shown is not None:
             self.people_publisher.publish(people_message(shown, self.tracking_frame, msg.header.stamp))
+        if self.lanes is not None:  # learnt from every scan, also between goals (only this thread updates them)
+            self.lanes.update(msg.header.stamp.to_sec(), self.tracks())
 
     def _planar(self, target: str, source: str, stamp: rospy.Time) -> Tuple[float, float, float]:
         if target == source.lstrip("/"):

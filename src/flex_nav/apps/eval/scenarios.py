@@ -37,6 +37,7 @@ from typing import Any, Callable, Dict, List, Optional, Protocol, Sequence, Tupl
 from flex_nav.apps.eval.metrics import RunResult
 from flex_nav.apps.eval.table import to_csv, to_markdown
 from flex_nav.exceptions import FlexNavError, choices_message
+from flex_nav.nav.control.yielding import PLANNERS
 from flex_nav.resources import behaviors_dir
 
 REPO_ROOT = Path(__file__).resolve().parents[4]  # a source checkout: the scenario runs start tools/ scripts
@@ -75,6 +76,9 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
                         help="an earlier results.csv: start the runs longest first by its times")
     parser.add_argument("--localization", choices=("localizer", "oracle"), default="localizer",
                         help="map -> odom from flex_nav's localizer (default) or the simulator's ground truth")
+    parser.add_argument("--yield-planner", choices=PLANNERS, default=None,
+                        help="push_or_avoid's way of giving way to walkers (scenario_run --yield-planner; default: "
+                             "scenario_run's, rules)")
     parser.add_argument("--social-distance", type=float, default=None, metavar="M",
                         help="[m] keep this distance from tracked people while moving (scenario_run --social-distance; "
                              "default: scenario_run's, 0.3; 0: off)")
@@ -132,6 +136,8 @@ def run_one(args: argparse.Namespace, world: str, behavior: str, seed: int, out:
         command += ["--behavior-param", setting]
     if args.social_distance is not None:
         command += ["--social-distance", str(args.social_distance)]
+    if args.yield_planner is not None:
+        command += ["--yield-planner", args.yield_planner]
     out.mkdir(parents=True, exist_ok=True)
     with open(out / "run.log", "w") as log:
         try:

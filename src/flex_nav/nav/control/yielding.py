@@ -49,7 +49,7 @@ from __future__ import annotations
 import enum
 import math
 from dataclasses import dataclass
-from typing import List, Optional, Sequence, Tuple
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -62,6 +62,7 @@ LATER_WEIGHT = 0.05  # [m/s] a later first violation is worth this much clearanc
 COMMIT_BONUS_M = 0.05  # [m] the escape motion chosen on the previous tick is worth this much more
 OWN_MARKS_MARGIN_M = 0.15  # [m] costmap cells this far beyond a moving track's body are its own marks
 TRAIL_S = 0.5  # [s] a moving track's marks may lag this far behind it
+PLANNERS = ("rules", "space_time")  # YieldParams.planner
 DRIVING_MPS = 0.05  # [m/s] a decision sending more than this forward keeps the robot driving (no resume hold)
 
 
@@ -92,10 +93,19 @@ class YieldParams:
     escape_tolerance_m: float = 0.05  # [m] standing this far inside R still waits (no back-and-forth on noise)
     start_margin_m: float = 0.05  # [m] extra clearance the way must have to start again after yielding
     patience_s: float = 60.0  # [s] giving way this long without a break aborts the goal (0: no limit)
+    # "rules": this module's rule; "space_time": the speed along the path planned in space and time
+    # (:mod:`flex_nav.nav.control.space_time_yield`), with the six parameters below
+    planner: str = "rules"
+    moving_gap_m: float = 0.4  # [m] space_time: predicted gap to every person kept while moving
+    standing_gap_m: float = 0.1  # [m] space_time: predicted gap to every person kept while standing
+    plan_step_s: float = 0.2  # [s] space_time: the plan's time step
+    back_m: float = 0.5  # [m] space_time: how far behind the robot the plan may back up (0: never)
+    score_cap_m: float = 0.3  # [m] space_time: more room than this buys nothing over progress
+    lanes: bool = True  # space_time: predict walkers along the lanes they were seen to walk (False: straight on)
 
     def __post_init__(self) -> None:
         positive = ("robot_radius_m", "speed_mps", "accel_mps2", "horizon_s", "time_step_s", "min_track_speed_mps",
-                    "max_range_m", "decel_mps2", "escape_speed_mps", "check_s")
+                    "max_range_m", "decel_mps2", "escape_speed_mps", "check_s", "plan_step_s", "score_cap_m")
         for name in positive:
             value = getattr(self, name)
             if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value) \
@@ -103,11 +113,19 @@ class YieldParams:
                 raise ConfigError(f"yield parameter {name} must be a finite number > 0, got {value!r}")
         for name in ("hurry_speed_mps", "margin_m", "comfort_margin_m", "uncertainty_mps", "stop_buffer_m",
                      "escape_turn_radps",
-                     "min_gain_m", "resume_after_s", "start_margin_m", "escape_tolerance_m", "patience_s"):
+                     "min_gain_m", "resume_after_s", "start_margin_m", "escape_tolerance_m", "patience_s",
+                     "moving_gap_m", "standing_gap_m", "back_m"):
             value = getattr(self, name)
             if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value) \
                     or value < 0.0:
                 raise ConfigError(f"yield parameter {name} must be a finite number >= 0, got {value!r}")
+        if not isinstance(self.lanes, bool):
+            raise ConfigError(f"yield parameter lanes must be true or false, got {self.lanes!r}")
+        if self.planner not in PLANNERS:
+            raise ConfigError(f"yield parameter planner must be one of {', '.join(PLANNERS)}, got {self.planner!r}")
+        if self.plan_step_s > self.horizon_s:
+            raise ConfigError(f"yield parameter plan_step_s ({self.plan_step_s!r}) must not exceed horizon_s "
+                              f"({self.horizon_s!r})")
         if self.time_step_s > self.horizon_s:
             raise ConfigError(f"yield parameter time_step_s ({self.time_step_s!r}) must not exceed horizon_s "
                               f"({self.horizon_s!r})")
@@ -119,8 +137,9 @@ class YieldParams:
         unknown = sorted(set(values) - set(valid))
         if unknown:
             raise ConfigError(f"unknown yield parameter(s) {', '.join(unknown)} (valid: {', '.join(valid)})")
-        return cls(**{k: float(v) if isinstance(v, int) and not isinstance(v, bool) else v
-                      for k, v in values.items()})
+        converted: Dict[str, Any] = {k: float(v) if isinstance(v, int) and not isinstance(v, bool) else v
+                                     for k, v in values.items()}
+        return cls(**converted)
 
 
 class YieldMode(enum.Enum):
@@ -147,7 +166,7 @@ class YieldDecision:
         return self.mode is not YieldMode.FREE
 
 
-class _People:
+class PredictedPeople:
     """The moving tracks predicted over the horizon: positions (M, K, 2) at times (K,), radii R (M,) growing by
     ``uncertainty_mps`` per second of prediction (``grown`` (M, K))."""
 
@@ -247,7 +266,7 @@ class YieldRule:
         [m/s] (odometry; negative while backing up; None: the command's); see the module docstring."""
         p = self.params
         v_cmd, w_cmd = command
-        people = _People(self.moving(pose, tracks), self.times, p)
+        people = PredictedPeople(self.moving(pose, tracks), self.times, p)
         if not people.tracks:
             return self._sent(self._free(now_s, v_cmd, w_cmd))
         v_now = v_cmd if speed is None else speed
@@ -308,7 +327,7 @@ class YieldRule:
         self._last_conflict_s = None
         return YieldDecision(v_cmd, w_cmd, YieldMode.FREE)
 
-    def _hurry(self, people: _People, path: np.ndarray, lengths: np.ndarray, s_robot: float,  # noqa: PLR0917
+    def _hurry(self, people: PredictedPeople, path: np.ndarray, lengths: np.ndarray, s_robot: float,  # noqa: PLR0917
                v_now: float, command: Tuple[float, float], needed: float) -> Optional[YieldDecision]:
         """Crossing at ``hurry_speed_mps`` when the robot cruises along its path and only that speed clears
         everyone (None otherwise)."""
@@ -335,7 +354,7 @@ class YieldRule:
         s = np.minimum(s_robot + travelled, min(float(lengths[-1]), stop_s))
         return np.stack((np.interp(s, lengths, path[:, 0]), np.interp(s, lengths, path[:, 1])), axis=1)
 
-    def _corridor_entry(self, path: np.ndarray, lengths: np.ndarray, s_robot: float, people: _People,
+    def _corridor_entry(self, path: np.ndarray, lengths: np.ndarray, s_robot: float, people: PredictedPeople,
                         conflicting: np.ndarray) -> float:
         """Arc length [m] of the first path point (from the robot on) inside a conflicting corridor."""
         p = self.params
@@ -350,7 +369,7 @@ class YieldRule:
         found = np.flatnonzero(inside)
         return float(samples[found[0]]) if found.size else end
 
-    def _escape(self, pose: Pose2D, command: Tuple[float, float], go_on: np.ndarray, people: _People, *,
+    def _escape(self, pose: Pose2D, command: Tuple[float, float], go_on: np.ndarray, people: PredictedPeople, *,
                 stand_clear: np.ndarray, costs: Optional[np.ndarray],
                 geometry: Optional[CostmapGeometry]) -> YieldDecision:
         p = self.params
@@ -409,7 +428,7 @@ class YieldRule:
         first_s = float(self.times[violated[0]]) if violated.size else float(self.times[-1])
         return float(worst.min()) + LATER_WEIGHT * first_s
 
-    def _free_of_obstacles(self, positions: np.ndarray, people: _People, costs: Optional[np.ndarray],
+    def _free_of_obstacles(self, positions: np.ndarray, people: PredictedPeople, costs: Optional[np.ndarray],
                            geometry: Optional[CostmapGeometry]) -> bool:
         if costs is None or geometry is None:
             return True
