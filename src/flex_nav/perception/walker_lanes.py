@@ -184,7 +184,7 @@ class WalkerLanes:
         return None
 
     def _refit(self, lane: Lane, now_s: float, track: Track) -> None:
-        position = np.array([track.x, track.y])
+        """The lane's line, stretch (its points hold the track's position), speed and directions, with ``track``."""
         velocity = np.array([track.vx, track.vy])
         lane.seen_s = now_s
         if len(lane.points) >= 3:
@@ -194,8 +194,6 @@ class WalkerLanes:
             lane.origin, lane.direction = centroid, direction
             along = (np.array(lane.points) - centroid) @ direction
             lane.low_m, lane.high_m = float(along.min()), float(along.max())
-        s = lane.along(position)
-        lane.low_m, lane.high_m = min(lane.low_m, s), max(lane.high_m, s)
         speed_along = float(velocity @ lane.direction)
         lane.speed_sum_mps += abs(speed_along)
         lane.speed_count += 1
@@ -233,10 +231,13 @@ class WalkerLanes:
         """(lane, signed speed [m/s] along it) for a track within ``TURN_REACH_M`` of an end of a lane walked
         both ways (and within ``line_tolerance_m`` of its line) that is slow or walks toward that end: a walker
         turning there, about to walk back at the lane's speed (or their own, if faster); None otherwise."""
+        return self._turning(track, self.lane_of(track))
+
+    def _turning(self, track: Track, own: Optional[Lane]) -> Optional[Tuple[Lane, float]]:
+        """:meth:`turning_at` for a track on lane ``own`` (None: on none; every lane is then looked at)."""
         p = self.params
         position = np.array([track.x, track.y])
         velocity = np.array([track.vx, track.vy])
-        own = self.lane_of(track)
         with self._lock:
             lanes = [own] if own is not None else list(self.lanes)
         for lane in lanes:
@@ -260,8 +261,9 @@ class WalkerLanes:
     def _predict(self, track: Track, times: np.ndarray) -> np.ndarray:
         position = np.array([track.x, track.y])
         velocity = np.array([track.vx, track.vy])
-        turning = self.turning_at(track)
-        lane = self.lane_of(track) if turning is None else turning[0]
+        own = self.lane_of(track)
+        turning = self._turning(track, own)
+        lane = own if turning is None else turning[0]
         if lane is None:
             return np.asarray(position[None, :] + velocity[None, :] * times[:, None])
         s0 = lane.along(position)
