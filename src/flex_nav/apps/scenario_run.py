@@ -59,8 +59,7 @@ BLOCKED_DISTANCE_M = 0.7  # [m] pure_pursuit_path's blocked-path detection dista
 STARTUP_TIMEOUT_S = 90.0  # [s] wall
 # --yield-planner space_time: the follower's ~yielding/ (a horizon and range long enough to see a walker come back
 # from a lane's end; the gaps are yielding's defaults) and its social slow-down only this far beyond the distance
-# --yield-planner space_time: the planner, handing a crossing it has waited at for 20 s to the rules (S6)
-SPACE_TIME_YIELDING = {"planner": "space_time", "horizon_s": 8.0, "max_range_m": 8.0, "fallback_after_s": 20.0}
+SPACE_TIME_YIELDING = {"planner": "space_time", "horizon_s": 8.0, "max_range_m": 8.0}
 SPACE_TIME_SLOW_EXTRA_M = 0.05  # [m]
 SOCIAL_DISTANCE_M = 0.3  # [m] kept from tracked people while moving (issue 28), unless --social-distance says else
 HURRY_SPEED_MPS = 0.3  # [m/s] giving way: cross a walker's way at this speed when only that clears (max 0.306)

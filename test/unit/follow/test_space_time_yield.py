@@ -108,39 +108,3 @@ def test_decide_is_free_without_people_and_waits_or_slows_before_a_crossing():
 def test_planner_parameters_are_validated_by_name(values, words):
     with pytest.raises(ConfigError, match=words):
         YieldParams(**values)
-
-
-def test_a_plan_does_not_end_where_a_walker_arrives_just_after_the_horizon():
-    # the robot can reach x = 0.52 m in the 2 s horizon; a walker crosses x = 0.5 m at t = 3 s (after it)
-    walker = Track(1, 0.5, -3.0, 0.0, 1.0, PERSON_R, 0.0, 10)
-    ends = {}
-    for terminal_s in (0.0, 4.0):
-        params = YieldParams(robot_radius_m=ROBOT_R, speed_mps=0.26, planner="space_time", horizon_s=2.0,
-                             max_range_m=8.0, lanes=False, back_m=0.0, terminal_s=terminal_s)
-        rule = SpaceTimeYield(params)
-        _first, score, _who = rule.plan((0.0, 0.0, 0.0), PATH, LENGTHS, 0.0, [walker])
-        assert score >= 0.0
-        ends[terminal_s] = float(rule.last_plan[-1, 0])
-    assert ends[0.0] > 0.45  # without the terminal check the plan stands in the walker's way at the horizon
-    assert ends[4.0] < 0.05  # with it, it waits where the walker passes clear of it
-
-
-def test_a_plan_stuck_for_fallback_after_s_hands_the_crossing_to_the_rules_until_released():
-    params = YieldParams(robot_radius_m=ROBOT_R, speed_mps=0.26, planner="space_time", horizon_s=4.0,
-                         max_range_m=8.0, lanes=False, fallback_after_s=3.0, fallback_release_m=1.0)
-    rule = SpaceTimeYield(params)
-    x = 1.0
-
-    def decide(t):  # a walker keeps coming at the robot 1.2 m ahead of it, which does not get on
-        walker = Track(1, x + 1.2, 0.0, -0.5, 0.0, PERSON_R, t, 10)
-        return rule.decide(t, (x, 0.0, 0.0), (0.26, 0.0), path=PATH, lengths=LENGTHS, s_robot=x, tracks=[walker])
-
-    before = [decide(k * 0.2) for k in range(15)]  # 0 .. 2.8 s
-    assert all(d.active and "the rules" not in d.reason for d in before)
-    after = decide(3.2)
-    assert after.active and "(the rules: the plan had not got on for 3 s)" in after.reason
-    x = 2.1  # 1.1 m farther: released, the planner decides again
-    assert "the rules" not in decide(3.4).reason
-    rule.reset()  # a new goal starts with the planner
-    x = 1.0
-    assert "the rules" not in decide(3.6).reason

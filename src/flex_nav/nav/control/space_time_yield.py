@@ -23,10 +23,6 @@ about to walk back. A plan's *score* is its smallest step score, where a step
   way at less than the social distance beats standing in it. A shortfall predicted later scores ``LATER_MPS``
   per second better, but stays a shortfall (when nothing keeps clear, the robot puts the meeting off).
 
-A plan's last place must also stay free to stand in for ``terminal_s`` [s] after the horizon (scored as standing
-steps): a plan that ends in a walker's way just before they come scored as well as one that ends clear of it,
-and executed one step at a time it drove into the way and back out again (S6, tenth session).
-
 Of the plans whose score is >= 0 the one ending farthest along the path is taken (ties: the one starting
 faster); when none keeps its score >= 0, the one with the best score (farthest among equals). Scores are capped
 at ``score_cap_m`` so that more room than that buys nothing over progress. Only its first step is driven:
@@ -34,11 +30,6 @@ forward at its speed (the controller's command when that is as fast: FREE; slowe
 to keep the curvature), standing (WAIT: the controller's turn in place is kept) or backing up straight
 (ESCAPE); the next tick plans again from what the tracker then says. :attr:`SpaceTimeYield.last_plan` keeps the
 chosen plan's positions.
-
-With ``fallback_after_s`` > 0, a robot that has given way that long without getting ``PROGRESS_M`` farther along
-its path hands the crossing to the rules (:meth:`YieldRule.decide`) until it is ``fallback_release_m`` farther
-on (or has a new path or goal): when the predictions leave no window the plan trusts, the rules, which stand in
-a walker's way and let them pass (a person passing a standing robot is their doing), still get across (S6).
 
 Why a plan rather than rules: with three people looping across the robot's way (the h6 variant of S6) the
 rules of :mod:`~flex_nav.nav.control.yielding` stop the robot where the first conflict tells it to, and that can
@@ -54,8 +45,7 @@ Pure: numpy, no ROS, no clock (times [s] are passed in); poses and tracks in the
 from __future__ import annotations
 
 import math
-from dataclasses import replace
-from typing import Any, List, Optional, Sequence, Tuple
+from typing import List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -73,7 +63,6 @@ LATER_MPS = 0.05  # [m/s] a shortfall predicted this many seconds later scores t
 SHORT_M = 1e-6  # [m] a shortfall scores at least this much below 0, however late
 TIE_M = 1e-6  # [m] per cell of the first step: of two plans scoring the same, the one starting faster wins
 SAME_SPEED_MPS = 1e-3  # [m/s] a planned speed this close to the controller's is the controller's
-PROGRESS_M = 0.3  # [m] getting this much farther along the path is getting on (fallback_after_s)
 NOT_YET, DROVE = 0, 1  # plan states: not driven forward yet (may back up), driven forward (may not)
 
 
@@ -87,18 +76,12 @@ class SpaceTimeYield(YieldRule):
         super().__init__(params)
         self.step_s = params.plan_step_s
         self.steps = max(1, round(params.horizon_s / params.plan_step_s))
-        self.terminal_steps = round(params.terminal_s / params.plan_step_s)  # standing on after the horizon
         self.cell_m = params.speed_mps * params.plan_step_s / FORWARD_CELLS
         backs = BACK_CELLS if params.back_m > 0.0 else 0
         self.moves = np.arange(-backs, FORWARD_CELLS + 1)  # cells per step
         self.lanes = lanes if lanes is not None else (WalkerLanes() if params.lanes else None)
         self.learns_in_decide = True  # False once the tracker's owner updates the lanes
         self.last_plan = np.zeros((0, 2))  # (K+1, 2) [m] the last chosen plan's positions, one per step
-        self._stuck_since_s: Optional[float] = None  # [s] since when the robot has not got PROGRESS_M farther
-        self._farthest_m = 0.0  # [m] the arc length it had then
-        self._path: Optional[np.ndarray] = None  # the path those are on
-        self._rules_until_m: Optional[float] = None  # [m] handed to the rules until this arc length
-        self._rules_path: Optional[np.ndarray] = None  # on this path
 
     def decide(
         self,
@@ -116,43 +99,6 @@ class SpaceTimeYield(YieldRule):
     ) -> YieldDecision:
         """The command to send instead of the controller's ``command`` (v [m/s], w [rad/s]); the arguments are
         those of :meth:`YieldRule.decide` (``speed`` is not needed: a plan's steps start at any speed)."""
-        if self._stuck_since_s is None or s_robot > self._farthest_m + PROGRESS_M or path is not self._path:
-            self._stuck_since_s, self._farthest_m, self._path = now_s, s_robot, path
-        if self._rules_until_m is not None:
-            if s_robot < self._rules_until_m and path is self._rules_path:
-                return self._by_rules(now_s, pose, command, path=path, lengths=lengths, s_robot=s_robot,
-                                      tracks=tracks, costs=costs, geometry=geometry, speed=speed)
-            self._rules_until_m, self._rules_path = None, None
-            self._stuck_since_s, self._farthest_m = now_s, s_robot
-        planned = self._planned(now_s, pose, command, path, lengths, s_robot, tracks, costs, geometry)
-        if not planned.active:
-            self._stuck_since_s, self._farthest_m = now_s, s_robot
-            return planned
-        after_s = self.params.fallback_after_s
-        if after_s <= 0.0 or now_s - self._stuck_since_s < after_s:
-            return planned
-        self._rules_until_m, self._rules_path = s_robot + self.params.fallback_release_m, path
-        return self._by_rules(now_s, pose, command, path=path, lengths=lengths, s_robot=s_robot, tracks=tracks,
-                              costs=costs, geometry=geometry, speed=speed)
-
-    def reset(self) -> None:
-        """Forget the rules' memory and the planner's: how long it has not got on, and any hand-over."""
-        super().reset()
-        self._stuck_since_s, self._farthest_m, self._path = None, 0.0, None
-        self._rules_until_m, self._rules_path = None, None
-
-    def _by_rules(self, now_s: float, pose: Pose2D, command: Tuple[float, float], **kwargs: Any) -> YieldDecision:
-        """The rules' decision (:meth:`YieldRule.decide`), its reason saying why they decide."""
-        decision = super().decide(now_s, pose, command, **kwargs)
-        if not decision.active:
-            return decision
-        return replace(decision, reason=f"{decision.reason} (the rules: the plan had not got on for "
-                                        f"{self.params.fallback_after_s:g} s)")
-
-    def _planned(self, now_s: float, pose: Pose2D, command: Tuple[float, float],  # noqa: PLR0917
-                 path: np.ndarray, lengths: np.ndarray, s_robot: float, tracks: Sequence[Track],
-                 costs: Optional[np.ndarray], geometry: Optional[CostmapGeometry]) -> YieldDecision:
-        """The planner's decision of the module docstring."""
         v_cmd, w_cmd = command
         if self.lanes is not None and self.learns_in_decide:
             self.lanes.update(now_s, tracks)
@@ -211,30 +157,20 @@ class SpaceTimeYield(YieldRule):
         count = behind + math.floor((end - s_robot) / self.cell_m + 1e-9) + 1
         arc = s_robot + (np.arange(count) - behind) * self.cell_m
         cells = np.stack((np.interp(arc, lengths, path[:, 0]), np.interp(arc, lengths, path[:, 1])), axis=1)
-        times = np.arange(self.steps + self.terminal_steps + 1) * self.step_s
-        future = self.predicted(people, times)  # (M, K+1+T, 2)
+        times = np.arange(self.steps + 1) * self.step_s
+        future = self.predicted(people, times)  # (M, K+1, 2)
         radii = np.array([t.radius for t in people]) + p.robot_radius_m
         dist = np.hypot(future[:, :, None, 0] - cells[None, None, :, 0],
-                        future[:, :, None, 1] - cells[None, None, :, 1]) - radii[:, None, None]  # (M, K+1+T, N)
-        gap = dist.min(axis=0)  # (K+1+T, N)
+                        future[:, :, None, 1] - cells[None, None, :, 1]) - radii[:, None, None]  # (M, K+1, N)
+        gap = dist.min(axis=0)  # (K+1, N)
         nearest = dist.argmin(axis=0)
         blocked = self._blocked_behind(cells, behind, people, costs, geometry)
-        score, first, states, history = self._search(gap[:self.steps + 1], times, behind, blocked)
-        score = np.minimum(score, self._terminal(gap[self.steps + 1:], times[self.steps + 1:]))
+        score, first, states, history = self._search(gap, times, behind, blocked)
         feasible = np.flatnonzero(score >= 0.0)
         goal = int(feasible.max()) if feasible.size else int(np.flatnonzero(score >= float(score.max()) - 1e-9).max())
         self.last_plan = cells[self._walk_back(history, goal, int(states[goal]))]
         after_first = min(max(behind + int(first[goal]), 0), count - 1)
         return int(first[goal]), float(score[goal]), int(nearest[1, after_first])
-
-    def _terminal(self, gap: np.ndarray, times: np.ndarray) -> np.ndarray:
-        """(N,) [m] the score of standing in each cell from the horizon on, over the predicted ``gap`` (T, N) [m]
-        at ``times`` (T,) [s] (scored as a standing step; the cap when T = 0)."""
-        if not len(times):
-            return np.full(gap.shape[1], self.params.score_cap_m)
-        step = gap - self.params.standing_gap_m - CONTACT_PENALTY_M * (gap < 0.0)
-        step = np.where(step < 0.0, np.minimum(step + LATER_MPS * times[:, None], -SHORT_M), step)
-        return np.asarray(np.minimum(step.min(axis=0), self.params.score_cap_m))
 
     def _search(self, gap: np.ndarray, times: np.ndarray, behind: int, blocked: np.ndarray
                 ) -> Tuple[np.ndarray, np.ndarray, np.ndarray, List[np.ndarray]]:

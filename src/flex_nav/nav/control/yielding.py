@@ -94,18 +94,13 @@ class YieldParams:
     start_margin_m: float = 0.05  # [m] extra clearance the way must have to start again after yielding
     patience_s: float = 60.0  # [s] giving way this long without a break aborts the goal (0: no limit)
     # "rules": this module's rule; "space_time": the speed along the path planned in space and time
-    # (:mod:`flex_nav.nav.control.space_time_yield`), with the nine parameters below
+    # (:mod:`flex_nav.nav.control.space_time_yield`), with the six parameters below
     planner: str = "rules"
     moving_gap_m: float = 0.4  # [m] space_time: predicted gap to every person kept while moving
     standing_gap_m: float = 0.1  # [m] space_time: predicted gap to every person kept while standing
     plan_step_s: float = 0.2  # [s] space_time: the plan's time step
     back_m: float = 0.5  # [m] space_time: how far behind the robot the plan may back up (0: never)
     score_cap_m: float = 0.3  # [m] space_time: more room than this buys nothing over progress
-    terminal_s: float = 4.0  # [s] space_time: a plan's last place must stay free to stand in this long after it
-    # [s] space_time: giving way this long without getting on along the path hands the crossing to the rules
-    # until the robot is fallback_release_m farther (0: never)
-    fallback_after_s: float = 0.0
-    fallback_release_m: float = 2.0  # [m] space_time: see fallback_after_s
     lanes: bool = True  # space_time: predict walkers along the lanes they were seen to walk (False: straight on)
 
     def __post_init__(self) -> None:
@@ -119,8 +114,7 @@ class YieldParams:
         for name in ("hurry_speed_mps", "margin_m", "comfort_margin_m", "uncertainty_mps", "stop_buffer_m",
                      "escape_turn_radps",
                      "min_gain_m", "resume_after_s", "start_margin_m", "escape_tolerance_m", "patience_s",
-                     "moving_gap_m", "standing_gap_m", "back_m", "terminal_s", "fallback_after_s",
-                     "fallback_release_m"):
+                     "moving_gap_m", "standing_gap_m", "back_m"):
             value = getattr(self, name)
             if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value) \
                     or value < 0.0:
