@@ -96,8 +96,9 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
                         help="[m] keep this distance from tracked people while moving (push_or_avoid's follower; "
                              f"default {SOCIAL_DISTANCE_M:g}; 0: off)")
     parser.add_argument("--yield-planner", choices=PLANNERS, default="rules",
-                        help="how push_or_avoid's follower gives way to walkers: 'rules' (the default) or "
-                             "'space_time' (its speed along the path planned around the walkers' learnt lanes)")
+                        help="how push_or_avoid's follower gives way to walkers: 'rules' (the default), "
+                             "'space_time' (its speed along the path planned around the walkers' learnt lanes) or "
+                             "'checked' (the rules, each decision checked by that planner)")
     parser.add_argument("--trips", type=int, default=1,
                         help="start -> goal this many times, driving back to the start between them (default 1)")
     parser.add_argument("--clear-between-trips", action="store_true",
@@ -199,9 +200,11 @@ def start(stack: contextlib.ExitStack, args: argparse.Namespace, run: RobotRun) 
     if args.yield_planner == "space_time":  # the planner times its crossings itself (issue 28, h6)
         params.update({f"/{ROBOT}/pure_pursuit_path/yielding/{key}": value
                        for key, value in SPACE_TIME_YIELDING.items()})
+    elif args.yield_planner == "checked":
+        params[f"/{ROBOT}/pure_pursuit_path/yielding/planner"] = "checked"
     if args.social_distance > 0.0:
         social: Dict[str, object] = {"enabled": True, "min_distance_m": args.social_distance}
-        if args.yield_planner == "space_time":  # its slow-down near people would break the plan's timing
+        if args.yield_planner != "rules":  # its slow-down near people would break the plan's timing
             social["slow_distance_m"] = args.social_distance + SPACE_TIME_SLOW_EXTRA_M
         params[f"/{ROBOT}/pure_pursuit_path/social_distance"] = social
     if args.lockstep:

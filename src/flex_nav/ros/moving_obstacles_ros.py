@@ -35,6 +35,7 @@ from sensor_msgs.msg import LaserScan as LaserScanMsg
 from std_msgs.msg import Bool
 
 from flex_nav.exceptions import ConfigError, choices_message
+from flex_nav.nav.control.checked_yield import CheckedYield
 from flex_nav.nav.control.social_distance import SocialDistanceRule, SocialLimit, SocialParams
 from flex_nav.nav.control.space_time_yield import SpaceTimeYield
 from flex_nav.nav.control.yielding import YieldDecision, YieldMode, YieldParams, YieldRule
@@ -80,6 +81,8 @@ def yield_rule(robot_radius_m: float, speed_mps: float, social: Optional[SocialD
         values.setdefault("moving_gap_m", social.params.min_distance_m + MOVING_GAP_EXTRA_M)
     try:
         params = YieldParams.from_mapping(values)
+        if params.planner == "checked":
+            return CheckedYield(params)
         return SpaceTimeYield(params) if params.planner == "space_time" else YieldRule(params)
     except (ConfigError, TypeError) as err:
         raise ConfigError(f"{rospy.resolve_name(private_name(YIELD_NS))}: {err}") from err
@@ -160,9 +163,9 @@ class MovingObstaclesROS:
             self._subscribers.append(rospy.Subscriber(map_topic, OccupancyGrid, self._on_map, queue_size=1))
 
     def share_lanes(self, rule: YieldRule) -> None:
-        """Learn the lanes ``rule`` predicts with (a :class:`SpaceTimeYield` with lanes) from every scan's tracks,
-        and not only while the rule decides (during goals)."""
-        if isinstance(rule, SpaceTimeYield) and rule.lanes is not None:
+        """Learn the lanes ``rule`` predicts with (a :class:`SpaceTimeYield` or :class:`CheckedYield` with lanes)
+        from every scan's tracks, and not only while the rule decides (during goals)."""
+        if isinstance(rule, (SpaceTimeYield, CheckedYield)) and rule.lanes is not None:
             self.lanes = rule.lanes
             rule.learns_in_decide = False
 

@@ -126,6 +126,10 @@ class SpaceTimeYield(YieldRule):
                                         f"yielding: backing up at {-v:.2f} m/s out of the way of {about}{unsafe}",
                                         track.track_id))
 
+    def cells_per_step(self, v: float) -> int:
+        """The move (cells per step, one of :attr:`moves`) nearest to driving at ``v`` [m/s]."""
+        return int(np.clip(round(v * self.step_s / self.cell_m), self.moves[0], self.moves[-1]))
+
     def people(self, pose: Pose2D, tracks: Sequence[Track]) -> List[Track]:
         """The tracks planned around: the moving ones in range and, with lanes, those turning at a lane's end."""
         people = self.moving(pose, tracks)
@@ -146,10 +150,13 @@ class SpaceTimeYield(YieldRule):
 
     def plan(self, pose: Pose2D, path: np.ndarray, lengths: np.ndarray, s_robot: float,  # noqa: PLR0917
              people: Sequence[Track], costs: Optional[np.ndarray] = None,
-             geometry: Optional[CostmapGeometry] = None) -> Tuple[int, float, int]:
+             geometry: Optional[CostmapGeometry] = None, *, only_first: Optional[int] = None,
+             standing_gap_m: Optional[float] = None) -> Tuple[int, float, int]:
         """(first step in cells per step, the plan's score [m], index in ``people`` of the nearest person on
         the plan) of the best plan of the module docstring from the robot at arc length ``s_robot`` [m]; the
-        plan's positions go to :attr:`last_plan`."""
+        plan's positions go to :attr:`last_plan`. ``only_first``: the best of the plans whose first step is
+        that many cells (one of :attr:`moves`); ``standing_gap_m`` [m]: kept while standing instead of the
+        parameter's."""
         p = self.params
         start = max(float(lengths[0]), s_robot - p.back_m)
         end = min(float(lengths[-1]), s_robot + p.speed_mps * p.horizon_s)
@@ -165,16 +172,19 @@ class SpaceTimeYield(YieldRule):
         gap = dist.min(axis=0)  # (K+1, N)
         nearest = dist.argmin(axis=0)
         blocked = self._blocked_behind(cells, behind, people, costs, geometry)
-        score, first, states, history = self._search(gap, times, behind, blocked)
+        score, first, states, history = self._search(gap, times, behind, blocked, only_first,
+                                                     p.standing_gap_m if standing_gap_m is None else standing_gap_m)
         feasible = np.flatnonzero(score >= 0.0)
         goal = int(feasible.max()) if feasible.size else int(np.flatnonzero(score >= float(score.max()) - 1e-9).max())
         self.last_plan = cells[self._walk_back(history, goal, int(states[goal]))]
         after_first = min(max(behind + int(first[goal]), 0), count - 1)
         return int(first[goal]), float(score[goal]), int(nearest[1, after_first])
 
-    def _search(self, gap: np.ndarray, times: np.ndarray, behind: int, blocked: np.ndarray
+    def _search(self, gap: np.ndarray, times: np.ndarray, behind: int, blocked: np.ndarray,  # noqa: PLR0917
+                only_first: Optional[int], standing_gap_m: float
                 ) -> Tuple[np.ndarray, np.ndarray, np.ndarray, List[np.ndarray]]:
-        """The dynamic programme over (step, state, cell) on the predicted ``gap`` (K+1, N) [m]: per cell the
+        """The dynamic programme over (step, state, cell) on the predicted ``gap`` (K+1, N) [m], keeping
+        ``standing_gap_m`` [m] while standing, with the first move ``only_first`` cells (None: any): per cell the
         best score [m], the first move (cells) of its plan, its final state and, per step, where each (state,
         cell) came from ((2, 2, N): state and move index)."""
         p = self.params
@@ -193,7 +203,7 @@ class SpaceTimeYield(YieldRule):
         history: List[np.ndarray] = []
         for k in range(self.steps):
             kept = np.where(standing[:, None], gap[k + 1][None, :], np.minimum(gap[k][source], gap[k + 1][None, :]))
-            need = np.where(standing, p.standing_gap_m, p.moving_gap_m)[:, None]
+            need = np.where(standing, standing_gap_m, p.moving_gap_m)[:, None]
             step = kept - need - CONTACT_PENALTY_M * (kept < 0.0)
             step = np.where(step < 0.0, np.minimum(step + LATER_MPS * times[k + 1], -SHORT_M), step)
             step = np.minimum(step, p.score_cap_m)
@@ -201,7 +211,8 @@ class SpaceTimeYield(YieldRule):
             new_first = np.zeros((2, count), dtype=np.int64)
             came = np.zeros((2, 2, count), dtype=np.int64)
             for state_from, state_to, moves in transitions:
-                candidate = np.where(allowed & moves[:, None], np.minimum(score[state_from][source], step), UNREACHED)
+                usable = moves & (self.moves == only_first) if k == 0 and only_first is not None else moves
+                candidate = np.where(allowed & usable[:, None], np.minimum(score[state_from][source], step), UNREACHED)
                 firsts = np.broadcast_to(self.moves[:, None], source.shape) if k == 0 else first[state_from][source]
                 best = (candidate + TIE_M * firsts).argmax(axis=0)  # ties: the plan that starts forward
                 value = candidate[best, columns]

@@ -62,7 +62,7 @@ LATER_WEIGHT = 0.05  # [m/s] a later first violation is worth this much clearanc
 COMMIT_BONUS_M = 0.05  # [m] the escape motion chosen on the previous tick is worth this much more
 OWN_MARKS_MARGIN_M = 0.15  # [m] costmap cells this far beyond a moving track's body are its own marks
 TRAIL_S = 0.5  # [s] a moving track's marks may lag this far behind it
-PLANNERS = ("rules", "space_time")  # YieldParams.planner
+PLANNERS = ("rules", "space_time", "checked")  # YieldParams.planner
 DRIVING_MPS = 0.05  # [m/s] a decision sending more than this forward keeps the robot driving (no resume hold)
 
 
@@ -94,7 +94,8 @@ class YieldParams:
     start_margin_m: float = 0.05  # [m] extra clearance the way must have to start again after yielding
     patience_s: float = 60.0  # [s] giving way this long without a break aborts the goal (0: no limit)
     # "rules": this module's rule; "space_time": the speed along the path planned in space and time
-    # (:mod:`flex_nav.nav.control.space_time_yield`), with the six parameters below
+    # (:mod:`flex_nav.nav.control.space_time_yield`), with the six parameters below; "checked": this rule, each
+    # decision checked by that planner (:mod:`flex_nav.nav.control.checked_yield`), with the three after them too
     planner: str = "rules"
     moving_gap_m: float = 0.4  # [m] space_time: predicted gap to every person kept while moving
     standing_gap_m: float = 0.1  # [m] space_time: predicted gap to every person kept while standing
@@ -102,10 +103,14 @@ class YieldParams:
     back_m: float = 0.5  # [m] space_time: how far behind the robot the plan may back up (0: never)
     score_cap_m: float = 0.3  # [m] space_time: more room than this buys nothing over progress
     lanes: bool = True  # space_time: predict walkers along the lanes they were seen to walk (False: straight on)
+    plan_horizon_s: float = 8.0  # [s] checked: the planner's horizon (the rule keeps horizon_s)
+    plan_range_m: float = 8.0  # [m] checked: the planner's range (the rule keeps max_range_m)
+    check_standing_gap_m: float = 0.05  # [m] checked: predicted gap to every person the check keeps while standing
 
     def __post_init__(self) -> None:
         positive = ("robot_radius_m", "speed_mps", "accel_mps2", "horizon_s", "time_step_s", "min_track_speed_mps",
-                    "max_range_m", "decel_mps2", "escape_speed_mps", "check_s", "plan_step_s", "score_cap_m")
+                    "max_range_m", "decel_mps2", "escape_speed_mps", "check_s", "plan_step_s", "score_cap_m",
+                    "plan_horizon_s", "plan_range_m")
         for name in positive:
             value = getattr(self, name)
             if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value) \
@@ -114,7 +119,7 @@ class YieldParams:
         for name in ("hurry_speed_mps", "margin_m", "comfort_margin_m", "uncertainty_mps", "stop_buffer_m",
                      "escape_turn_radps",
                      "min_gain_m", "resume_after_s", "start_margin_m", "escape_tolerance_m", "patience_s",
-                     "moving_gap_m", "standing_gap_m", "back_m"):
+                     "moving_gap_m", "standing_gap_m", "back_m", "check_standing_gap_m"):
             value = getattr(self, name)
             if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value) \
                     or value < 0.0:
@@ -126,6 +131,9 @@ class YieldParams:
         if self.plan_step_s > self.horizon_s:
             raise ConfigError(f"yield parameter plan_step_s ({self.plan_step_s!r}) must not exceed horizon_s "
                               f"({self.horizon_s!r})")
+        if self.planner == "checked" and self.plan_step_s > self.plan_horizon_s:
+            raise ConfigError(f"yield parameter plan_step_s ({self.plan_step_s!r}) must not exceed plan_horizon_s "
+                              f"({self.plan_horizon_s!r})")
         if self.time_step_s > self.horizon_s:
             raise ConfigError(f"yield parameter time_step_s ({self.time_step_s!r}) must not exceed horizon_s "
                               f"({self.horizon_s!r})")
