@@ -12,7 +12,7 @@ if [ ! -x "$PY" ]; then
 fi
 "$PY" -m pip install --quiet --disable-pip-version-check -r "$REPO/bench/requirements.txt"
 names=("$@")
-ALL=(costmap planner planner_random pure_pursuit controller_latency engine smach_compat sim localization pose_graph)
+ALL=(costmap planner planner_random pure_pursuit controller_latency engine smach_compat sim localization pose_graph yield)
 if [ "${#names[@]}" -eq 0 ]; then names=("${ALL[@]}"); fi
 status=0
 for name in "${names[@]}"; do
