@@ -6,14 +6,15 @@ processes are stopped by scenario_run itself, by PID, and the run is bounded in 
 What it checks is what the scenario runner measures from ground truth: the goal is reached, no contact with a
 person was the robot's doing (each contact classified by ``contact_cause`` from the robot's own motion), and the
 closest approach to a person while the robot moved (``min_people_clearance_moving_m``) is at least the distance
-asked for. Under lockstep a run ends the same at any rtf and load; S6 seeds 0-4 at commit 2bec104 (the yield
-rule's comfort margin) ended in 45.8-46.0 s, closest while moving 0.336-0.401 m (seed 0: 0.379 m). Before the
-comfort margin seeds 2 and 3 came within 0.29 and 0.27 m: the yield rule let the robot cross a walker's way 2 m
-ahead of them, and the rule could no longer stand in time.
+asked for. Under lockstep a run ends the same at any rtf and load; S6 seeds 0-4 with the default rules ended in
+45.7-46.3 s, closest while moving 0.383-0.389 m (2026-11-30, commit 585c7bd). Before the yield rule's comfort
+margin (commit 2bec104) S6 seeds 2 and 3 came within 0.29 and 0.27 m: the rule let the robot cross a walker's way
+2 m ahead of them, and the social distance could no longer stand in time.
 
 The same for the h6 variant (three walkers looping across the robot's way, two of them crossing it 0.6 m apart)
-with ``--yield-planner space_time``: the rules come within 0.09-0.14 m there while moving; the planner, predicting
-the walkers along the lanes it learnt, kept 0.36-0.41 m in seeds 0-4 (2026-12-07, seed 0: 0.385 m)."""
+with ``--yield-planner checked``: the rules, each decision checked by the space-time planner, which predicts the
+walkers along the lanes it learnt. The rules alone come within 0.09-0.14 m there while moving; checked, seeds 0-4
+kept 0.396-0.441 m (2026-12-08, seed 0: 0.398 m; docs/push_or_avoid.md, "S6 and h6, twelfth session")."""
 
 from __future__ import annotations
 
@@ -53,8 +54,8 @@ def scenario_result(out: object, world: str, *extra: str) -> dict:
 
 
 @pytest.fixture(scope="module")
-def h6_planner_run(tmp_path_factory: pytest.TempPathFactory) -> dict:
-    return scenario_result(tmp_path_factory.mktemp("h6_space_time"), str(H6_WORLD), "--yield-planner", "space_time")
+def h6_run(tmp_path_factory: pytest.TempPathFactory) -> dict:
+    return scenario_result(tmp_path_factory.mktemp("h6_checked"), str(H6_WORLD), "--yield-planner", "checked")
 
 
 @pytest.mark.ros
@@ -72,9 +73,9 @@ def test_s6_keeps_the_social_distance_while_moving(s6_run: dict) -> None:
 
 
 @pytest.mark.ros
-def test_h6_with_the_space_time_planner_keeps_the_social_distance_while_moving(h6_planner_run: dict) -> None:
-    tail = h6_planner_run["output"][-5000:]
-    assert h6_planner_run["success"], tail
-    assert h6_planner_run["people_contacts_robot_caused"] == 0, tail
-    closest = h6_planner_run["min_people_clearance_moving_m"]
+def test_h6_with_the_checked_rules_keeps_the_social_distance_while_moving(h6_run: dict) -> None:
+    tail = h6_run["output"][-5000:]
+    assert h6_run["success"], tail
+    assert h6_run["people_contacts_robot_caused"] == 0, tail
+    closest = h6_run["min_people_clearance_moving_m"]
     assert closest >= SOCIAL_DISTANCE_M, f"closest while moving {closest!r} m:\n{tail}"

@@ -16,10 +16,18 @@ step: it searches its plans with that first step forced (the rules' speed in who
 of them keeps ``moving_gap_m`` to every predicted person while moving and ``check_standing_gap_m`` [m] while
 standing (no one predicted to walk into the standing robot), the rules' decision goes out unchanged. When none
 does, the rules' step would lead where the robot cannot keep the distance later, and the planner's own
-decision goes out instead. The check's standing gap is smaller than the planner's ``standing_gap_m``: the rules
-in S6 stand beside one walker's way while that walker walks by 0.1 m off (a gap the planner does not plan
-with, but accepts). With 0.1 m the check vetoed those crossings and S6 was never crossed (seeds 0-3); with 0 it
-let the rules stand on a lane in h6 until the walker was within 0.03 m (seed 4: 0.19 m while moving).
+decision goes out instead, but only when the planner has a plan of its own that keeps its gaps: when nothing
+keeps them, the rules' way out is kept (overruling the rules then made some S6 runs dither for 60-100 s).
+The check's standing gap is smaller than the planner's ``standing_gap_m``: the rules in S6 stand beside one
+walker's way while that walker walks by 0.1 m off (a gap the planner does not plan with, but accepts). With
+0.1 m the check vetoed those crossings and S6 was reached in 1 of 5 runs (143.7 s); with 0 it let the rules
+stand on a lane in h6 until the walker was within 0.03 m (seed 4: 0.19 m while moving).
+
+Measured (push_or_avoid, seeds 0-4, rtf 2, lockstep, ``scenario_run --yield-planner checked``, 2026-12-08): h6
+49.0-49.2 s, 0.396-0.441 m while moving, no contact (the rules: 38.7-38.8 s, 0.087-0.135 m); S6 5 of 5 reached,
+but only seeds 0, 2 and 3 as the rules do (45.8-46.1 s, >= 0.43 m); seeds 1 and 4 took 121.6 and 105.4 s, and
+seed 4 came within 0.06 m while moving. Those two seeds do not repeat (seed 1 was also not reached, or 143.9 s),
+lockstep notwithstanding. So the rules stay the default (docs/push_or_avoid.md).
 
 The planner looks ``plan_horizon_s`` [s] ahead and plans around people within ``plan_range_m`` [m]; the rules
 keep their own ``horizon_s`` and ``max_range_m``. Both learn from the same ticks; the planner's walker lanes are
@@ -97,11 +105,10 @@ class CheckedYield(YieldRule):
         if planner.lanes is not None and planner.learns_in_decide:
             planner.lanes.update(now_s, tracks)
         people = planner.people(pose, tracks)
-        if people:
-            _first, score, _who = planner.plan(pose, path, lengths, s_robot, people, costs, geometry,
-                                               only_first=planner.cells_per_step(rules.v),
-                                               standing_gap_m=self.params.check_standing_gap_m)
-        if not people or score >= 0.0:
+        if not people or self._keeps_distance(planner, pose, path, lengths, s_robot, people, costs, geometry,
+                                              only_first=planner.cells_per_step(rules.v),
+                                              standing_gap_m=self.params.check_standing_gap_m) \
+                or not self._keeps_distance(planner, pose, path, lengths, s_robot, people, costs, geometry):
             self.last_source = "rules"
             return self._sent(rules)
         self.last_source = "planner"
@@ -114,3 +121,14 @@ class CheckedYield(YieldRule):
             planner.learns_in_decide = learns
         return self._sent(dataclasses.replace(
             decision, reason=f"{decision.reason} (the rules' step had no plan keeping the distance after it)"))
+
+    @staticmethod
+    def _keeps_distance(planner: SpaceTimeYield, pose: Pose2D, path: np.ndarray, lengths: np.ndarray,  # noqa: PLR0917
+                        s_robot: float, people: Sequence[Track], costs: Optional[np.ndarray],
+                        geometry: Optional[CostmapGeometry], *, only_first: Optional[int] = None,
+                        standing_gap_m: Optional[float] = None) -> bool:
+        """True when the planner's best plan (``only_first``, ``standing_gap_m``: see :meth:`SpaceTimeYield.plan`)
+        keeps its gaps."""
+        _first, score, _who = planner.plan(pose, path, lengths, s_robot, people, costs, geometry,
+                                           only_first=only_first, standing_gap_m=standing_gap_m)
+        return score >= 0.0
