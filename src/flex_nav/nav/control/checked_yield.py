@@ -105,30 +105,17 @@ class CheckedYield(YieldRule):
         if planner.lanes is not None and planner.learns_in_decide:
             planner.lanes.update(now_s, tracks)
         people = planner.people(pose, tracks)
-        if not people or self._keeps_distance(planner, pose, path, lengths, s_robot, people, costs, geometry,
-                                              only_first=planner.cells_per_step(rules.v),
-                                              standing_gap_m=self.params.check_standing_gap_m) \
-                or not self._keeps_distance(planner, pose, path, lengths, s_robot, people, costs, geometry):
-            self.last_source = "rules"
-            return self._sent(rules)
-        self.last_source = "planner"
-        learns = planner.learns_in_decide
-        planner.learns_in_decide = False  # learnt above, once per tick
-        try:
-            decision = planner.decide(now_s, pose, command, path=path, lengths=lengths, s_robot=s_robot,
-                                      tracks=tracks, costs=costs, geometry=geometry, speed=speed)
-        finally:
-            planner.learns_in_decide = learns
-        return self._sent(dataclasses.replace(
-            decision, reason=f"{decision.reason} (the rules' step had no plan keeping the distance after it)"))
-
-    @staticmethod
-    def _keeps_distance(planner: SpaceTimeYield, pose: Pose2D, path: np.ndarray, lengths: np.ndarray,  # noqa: PLR0917
-                        s_robot: float, people: Sequence[Track], costs: Optional[np.ndarray],
-                        geometry: Optional[CostmapGeometry], *, only_first: Optional[int] = None,
-                        standing_gap_m: Optional[float] = None) -> bool:
-        """True when the planner's best plan (``only_first``, ``standing_gap_m``: see :meth:`SpaceTimeYield.plan`)
-        keeps its gaps."""
-        _first, score, _who = planner.plan(pose, path, lengths, s_robot, people, costs, geometry,
-                                           only_first=only_first, standing_gap_m=standing_gap_m)
-        return score >= 0.0
+        if people:
+            _first, after_rules, _who = planner.plan(pose, path, lengths, s_robot, people, costs, geometry,
+                                                     only_first=planner.cells_per_step(rules.v),
+                                                     standing_gap_m=self.params.check_standing_gap_m)
+            if after_rules < 0.0:
+                first, score, who = planner.plan(pose, path, lengths, s_robot, people, costs, geometry)
+                if score >= 0.0:
+                    self.last_source = "planner"
+                    decision = planner.decision_for_plan(now_s, command, people, first, score, who)
+                    return self._sent(dataclasses.replace(
+                        decision,
+                        reason=f"{decision.reason} (the rules' step had no plan keeping the distance after it)"))
+        self.last_source = "rules"
+        return self._sent(rules)

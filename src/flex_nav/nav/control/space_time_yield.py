@@ -106,6 +106,13 @@ class SpaceTimeYield(YieldRule):
         if not people:
             return self._sent(self._free(now_s, v_cmd, w_cmd))
         first, score, who = self.plan(pose, path, lengths, s_robot, people, costs, geometry)
+        return self.decision_for_plan(now_s, command, people, first, score, who)
+
+    def decision_for_plan(self, now_s: float, command: Tuple[float, float], people: Sequence[Track],  # noqa: PLR0917
+                          first: int, score: float, who: int) -> YieldDecision:
+        """The decision (sent: remembered for the resume hold) driving the first step of a plan returned by
+        :meth:`plan` around ``people``, instead of the controller's ``command`` (v [m/s], w [rad/s])."""
+        v_cmd, w_cmd = command
         v = first * self.cell_m / self.step_s
         if score >= 0.0 and first == FORWARD_CELLS and v_cmd <= v + SAME_SPEED_MPS:
             return self._sent(self._free(now_s, v_cmd, w_cmd))
