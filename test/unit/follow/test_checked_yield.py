@@ -2,12 +2,12 @@
 
 import numpy as np
 import pytest
+from looping_walker import walker_on_lane
 
 from flex_nav.exceptions import ConfigError
 from flex_nav.nav.control.checked_yield import CheckedYield
 from flex_nav.nav.control.yielding import YieldMode, YieldParams, YieldRule
 from flex_nav.nav.path import cumulative_lengths
-from flex_nav.perception.moving_obstacles import Track
 from flex_nav.perception.walker_lanes import WalkerLanes
 
 PATH = np.array([[0.0, 0.0], [10.0, 0.0]])  # along +x
@@ -22,11 +22,7 @@ GOAL_X = 6.0  # [m] past the walker's lane
 
 def walker_at(t):
     """The walker at time t [s] (at LOW_Y going up at t = 0)."""
-    span = HIGH_Y - LOW_Y
-    phase = (SPEED * t) % (2 * span)
-    if phase <= span:
-        return Track(1, LANE_X, LOW_Y + phase, 0.0, SPEED, PERSON_R, t, 10)
-    return Track(1, LANE_X, HIGH_Y - (phase - span), 0.0, -SPEED, PERSON_R, t, 10)
+    return walker_on_lane(t, LANE_X, LOW_Y, HIGH_Y, SPEED, radius=PERSON_R)
 
 
 def learnt_lanes(until_s):

@@ -2,6 +2,7 @@
 
 import numpy as np
 import pytest
+from looping_walker import walker_on_lane
 
 from flex_nav.exceptions import ConfigError
 from flex_nav.nav.control.space_time_yield import SpaceTimeYield
@@ -20,11 +21,7 @@ LANE_X, LOW_Y, HIGH_Y, SPEED = 4.0, -3.0, 3.0, 0.7  # a walker going up and down
 
 def walker_at(t):
     """The walker at time t [s] (at LOW_Y going up at t = 0)."""
-    span = HIGH_Y - LOW_Y
-    phase = (SPEED * t) % (2 * span)
-    if phase <= span:
-        return Track(1, LANE_X, LOW_Y + phase, 0.0, SPEED, PERSON_R, t, 10)
-    return Track(1, LANE_X, HIGH_Y - (phase - span), 0.0, -SPEED, PERSON_R, t, 10)
+    return walker_on_lane(t, LANE_X, LOW_Y, HIGH_Y, SPEED, radius=PERSON_R)
 
 
 def learnt_lanes(until_s):

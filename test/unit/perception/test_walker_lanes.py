@@ -4,6 +4,7 @@ import math
 
 import numpy as np
 import pytest
+from looping_walker import walker_on_lane
 
 from flex_nav.exceptions import ConfigError
 from flex_nav.perception.moving_obstacles import Track
@@ -15,11 +16,7 @@ SPEED = 0.7  # [m/s]
 
 def walker_at(t, y_low=1.0, y_high=6.0, x=4.0, speed=SPEED, track_id=1):
     """A walker going up and down x = ``x`` between the two ys, starting at y_low at t = 0 (velocity exact)."""
-    span = y_high - y_low
-    phase = (speed * t) % (2 * span)
-    if phase <= span:
-        return Track(track_id, x, y_low + phase, 0.0, speed, 0.2, t, 10)
-    return Track(track_id, x, y_high - (phase - span), 0.0, -speed, 0.2, t, 10)
+    return walker_on_lane(t, x, y_low, y_high, speed, track_id=track_id)
 
 
 def learnt(until_s, **kwargs):
