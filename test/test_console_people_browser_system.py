@@ -6,7 +6,8 @@ tracking moving obstacles in the scan (``pure_pursuit_path/yield_to_people``, as
 it), and the console on 127.0.0.1. The robot stands at its start facing the walkers; nothing is driven. The page is the
 only observer (this process starts no ROS node): the people the controller's tracker confirms must be drawn on the
 map's canvas (its ``data-people`` list, and pixels of the people's colour where they are drawn) near the lines the
-world's scripts walk them along.
+world's scripts walk them along. Then ``rosservice call`` asks the tracker to forget them
+(``~people_tracker/forget``): it must say it forgot at least one, and people must be drawn again from the scans after.
 """
 
 from __future__ import annotations
@@ -15,11 +16,13 @@ import argparse
 import contextlib
 import json
 import math
+import re
 import time
 from pathlib import Path
 from typing import Any, Dict, List, Sequence, Tuple
 
 import pytest
+from harness import run_command_bounded
 
 from flex_nav.exceptions import NotReadyError
 from flex_nav.testing.browser import HeadlessBrowser
@@ -31,6 +34,7 @@ ROBOT = "robot1"
 RUNNER = f"/{ROBOT}/behavior_runner"
 STARTUP_S = 180.0  # [s] wall bound of the stack's start, up to the map and the robot on the page
 PEOPLE_S = 90.0  # [s] wall bound of the wait for tracked people on the page
+FORGET_TIMEOUT_S = 30.0  # [s] wall bound of `rosservice call .../people_tracker/forget`
 NEAR_WALK_M = 0.6  # [m] a person drawn this close to a walker's line counts as that walker
 pytestmark = [pytest.mark.ros]
 
@@ -122,3 +126,14 @@ def test_the_tracked_people_are_drawn_where_the_walkers_walk(tmp_path: Path) -> 
         counts = json.loads(browser.script("return document.getElementById('map').dataset.drawn"))[RUNNER]
         assert counts.get("people", [0])[0] >= 1, counts
         print(f"people drawn {seen_s:.1f} s after the robot: {people}", flush=True)
+
+        # the operator's way to make the tracker start afresh (scenario_run calls it where a world's script starts)
+        forget = run_command_bounded(
+            ["rosservice", "call", f"/{ROBOT}/pure_pursuit_path/people_tracker/forget",
+             "{before: {secs: 0, nsecs: 0}}"], env, FORGET_TIMEOUT_S)
+        assert forget.returncode == 0 and "ok: True" in forget.output, forget.output
+        forgotten = re.search(r"forgot (\d+) tracks", forget.output)
+        assert forgotten and int(forgotten.group(1)) >= 1, forget.output
+        again = wait(lambda: [p for p in drawn_people(browser) if people_coloured(p["rgb"])] or None,
+                     "tracked people drawn again after the tracker forgot them", PEOPLE_S)
+        assert any(walk_distance((p["x"], p["y"]), walks) < NEAR_WALK_M for p in again), again

@@ -72,6 +72,7 @@ WORLD_LEAD_S = 4.0  # [s] lockstep: from the world's start to the goal (a multip
 WORLD_START_S = 16.0  # [s] lockstep: the world's script starts here when the system is up by then (see start_at_grid)
 START_WALL_WAIT_S = 0.2  # [s] wall: the simulation stays held this long after the goal, so the behavior has it
 CLEAR_COSTMAPS = ("get_path_server/clear_costmap", "pure_pursuit_path/clear_costmap")  # --clear-between-trips
+PEOPLE_TRACKERS = ("pure_pursuit_path", "pure_pursuit_topic")  # controllers that may track people (~people_tracker)
 CLEAR_TIMEOUT_S = 10.0  # [s] ROS (simulated) time, per ClearCostmap goal
 CLEAR_ATTEMPTS = 2  # a goal left without a result is sent once more (the CI once lost one under load)
 
@@ -249,13 +250,36 @@ def world_start_s(not_before_s: float, sim_s: float) -> float:
     return max(grid_s, WORLD_START_S)
 
 
+def forget_people(before_s: float) -> Optional[str]:
+    """Ask every controller of the robot that tracks people (``~people_tracker/forget``) to forget its tracks and
+    lanes and take no scan stamped before ``before_s`` [s] (the reason if one refused or failed, else None)."""
+    import rosgraph  # noqa: PLC0415
+    import rospy  # noqa: PLC0415
+
+    from flex_nav.srv import ForgetTracks  # noqa: PLC0415
+
+    served = {name for name, _providers in rosgraph.Master(rospy.get_name()).getSystemState()[2]}
+    for controller in PEOPLE_TRACKERS:
+        service = f"/{ROBOT}/{controller}/people_tracker/forget"
+        if service not in served:
+            continue
+        try:
+            answer = rospy.ServiceProxy(service, ForgetTracks)(rospy.Time.from_sec(before_s))
+        except (rospy.ROSException, rospy.ServiceException) as err:
+            return f"{service} failed: {err}"
+        if not answer.ok:
+            return f"{service} refused: {answer.message}"
+    return None
+
+
 def start_at_grid(monitor: ScenarioMonitor, not_before_s: float, wall_deadline: float) -> Tuple[Optional[str], float]:
     """Lockstep: hold the simulation at :func:`world_start_s` and start the world's script there
     (``/sim/start_world``); hold it again WORLD_LEAD_S later, send the goal, let go. So the run, its walkers and its
     noise begin at the same simulated time whatever the rtf or load, and the goal comes as long after the world's
     start as it did after t = 0 when the world started with the simulation (events such as "the person leaves at
-    25 s" keep their meaning). (The reason if it failed, else None; the simulated time [s] the world's script
-    started at.)"""
+    25 s" keep their meaning). The people trackers forget what they saw before the world's start
+    (:func:`forget_people`): how many scans they took before it depends on when their node came up. (The reason
+    if it failed, else None; the simulated time [s] the world's script started at.)"""
     import rospy  # noqa: PLC0415
     from std_srvs.srv import Trigger  # noqa: PLC0415
 
@@ -281,7 +305,7 @@ def start_at_grid(monitor: ScenarioMonitor, not_before_s: float, wall_deadline: 
             print(f"scenario_run: the system was up only at {monitor.sim_s():.1f} s of simulated time: the world "
                   f"starts at {world_s:g} s, not at {WORLD_START_S:g} s (runs that start elsewhere may part)",
                   file=sys.stderr)
-        problem = held_at(world_s)
+        problem = held_at(world_s) or forget_people(world_s)
         if problem is not None:
             return problem, world_s
         try:

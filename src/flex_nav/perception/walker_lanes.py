@@ -124,6 +124,12 @@ class WalkerLanes:
         self._legs: Dict[int, Deque[Tuple[float, float, float]]] = {}
         self._lock = threading.RLock()  # one thread may learn (a tracker's scans) while another predicts
 
+    def clear(self) -> None:
+        """Forget every lane and every walker's leg."""
+        with self._lock:
+            self.lanes = []
+            self._legs.clear()
+
     def update(self, now_s: float, tracks: Sequence[Track]) -> None:
         """Learn from ``tracks`` (as the tracker gives them at ``now_s`` [s])."""
         with self._lock:

@@ -17,6 +17,8 @@ when someone listens (the operator console's map), geometry_msgs/PoseArray ``~pe
 each scan's stamp in the tracking frame, each facing its direction of motion. Unless
 ``~people_tracker/drop_boxes`` is false, a track standing on a cluster of the newest scan whose outline is a box's
 (:func:`flex_nav.perception.lidar_shape.without_boxes`) is no person: neither handed to the controller nor shown.
+Service ``~people_tracker/forget`` (flex_nav/ForgetTracks): forget every track and learnt walker lane and take no
+scan stamped before the time given (so a run of a scripted world does not depend on when the node came up).
 """
 
 from __future__ import annotations
@@ -29,7 +31,7 @@ from typing import List, Optional, Tuple
 import numpy as np
 import rospy
 import tf2_ros
-from geometry_msgs.msg import Pose, PoseArray
+from geometry_msgs.msg import Pose, PoseArray, TransformStamped
 from nav_msgs.msg import OccupancyGrid
 from sensor_msgs.msg import LaserScan as LaserScanMsg
 from std_msgs.msg import Bool
@@ -50,12 +52,15 @@ from flex_nav.ros.latest_worker import LatestWorker
 from flex_nav.ros.lockstep import LockstepParticipant
 from flex_nav.ros.params import param_bool, param_float, param_str, reject_unknown
 from flex_nav.ros.private_ns import private_name, private_namespace
+from flex_nav.srv import ForgetTracks, ForgetTracksRequest, ForgetTracksResponse
 
 TRACKER_NS = "~people_tracker/"
 YIELD_NS = "~yielding"
 TRACKER_FIELDS = tuple(f.name for f in dataclasses.fields(TrackerParams))
 TRACKER_PARAMETERS = ("scan_topic", "map_topic", "static_tolerance", "tracking_frame", "drop_boxes", *TRACKER_FIELDS)
 TF_WAIT_S = 0.1  # [s] wait for the scan's transform
+LOCKSTEP_TF_WAIT_S = 1.0  # [s] lockstep: wait for the global frame's transform at a scan's stamp (_global_at)
+STALE_GLOBAL_S = 1.0  # [s] a newest global-frame transform this much older than a scan is not waited on
 MOVING_GAP_EXTRA_M = 0.1  # [m] the space-time planner keeps the social distance plus this (the predictions' error)
 
 
@@ -64,6 +69,12 @@ def _carried(pose: Tuple[float, float, float], xs: np.ndarray, ys: np.ndarray) -
     x, y, yaw = pose
     c, s = math.cos(yaw), math.sin(yaw)
     return x + c * xs - s * ys, y + s * xs + c * ys
+
+
+def _planar_of(tf: TransformStamped) -> Tuple[float, float, float]:
+    """(x [m], y [m], yaw [rad]) of a transform."""
+    t, q = tf.transform.translation, tf.transform.rotation
+    return (t.x, t.y, yaw_of_quaternion(q.x, q.y, q.z, q.w))
 
 
 def yield_rule(robot_radius_m: float, speed_mps: float, social: Optional[SocialDistanceRule] = None) -> YieldRule:
@@ -148,6 +159,7 @@ class MovingObstaclesROS:
             raise ConfigError(f"{rospy.resolve_name(private_name(TRACKER_NS))}: {err}") from err
         self.lock = threading.Lock()
         self.tracker = MovingObstacleTracker(params)
+        self._forget_before_s = -math.inf  # [s] scans stamped before this are not taken (~people_tracker/forget)
         self._last_kind: Optional[Tuple[YieldMode, Optional[int]]] = None  # (mode, track) last logged
         self._last_social: Optional[int] = None  # the track the social distance limited the last tick for
         # the walkers' lanes a space-time yield rule predicts with (:meth:`share_lanes`), in the global frame
@@ -158,9 +170,11 @@ class MovingObstaclesROS:
         map_topic = param_str(TRACKER_NS + "map_topic", "map")
         self.scan_worker: LatestWorker[LaserScanMsg] = LatestWorker(self._on_scan, "people tracker scans")
         tracker_scans = LockstepParticipant("people_tracker/scan")
+        self.scan_worker_lockstep = tracker_scans.enabled
         self._subscribers = [self.scan_worker.subscribe(scan_topic, LaserScanMsg, tracker_scans)]
         if map_topic:
             self._subscribers.append(rospy.Subscriber(map_topic, OccupancyGrid, self._on_map, queue_size=1))
+        self.forget_service = rospy.Service(private_name(TRACKER_NS + "forget"), ForgetTracks, self._on_forget)
 
     def share_lanes(self, rule: YieldRule) -> None:
         """Learn the lanes ``rule`` predicts with (a :class:`SpaceTimeYield` or :class:`CheckedYield` with lanes)
@@ -168,6 +182,21 @@ class MovingObstaclesROS:
         if isinstance(rule, (SpaceTimeYield, CheckedYield)) and rule.lanes is not None:
             self.lanes = rule.lanes
             rule.learns_in_decide = False
+
+    def _on_forget(self, request: ForgetTracksRequest) -> ForgetTracksResponse:
+        before_s = request.before.to_sec() if not request.before.is_zero() else rospy.get_time()
+        if not math.isfinite(before_s):
+            return ForgetTracksResponse(ok=False, message=f"before {before_s!r} s: not a finite time")
+        with self.lock:
+            forgotten = len(self.tracker.tracks(before_s))
+            self.tracker = MovingObstacleTracker(self.tracker.params)  # track ids start again at 1
+            self._boxes = []
+            self._forget_before_s = before_s
+            if self.lanes is not None:
+                self.lanes.clear()
+        message = f"forgot {forgotten} tracks; scans stamped before {before_s:.3f} s are not taken"
+        rospy.loginfo(f"{self.name}: people tracker: {message}")
+        return ForgetTracksResponse(ok=True, message=message)
 
     def _on_map(self, msg: OccupancyGrid) -> None:
         if msg.header.frame_id.lstrip("/") not in ("", self.global_frame.lstrip("/")):
@@ -185,9 +214,7 @@ class MovingObstaclesROS:
     def _on_scan(self, msg: LaserScanMsg) -> None:
         try:
             laser = self._planar(self.tracking_frame, msg.header.frame_id, msg.header.stamp)
-            # only to drop the points the static map explains (within static_tolerance): the newest map -> odom
-            # will do, and waiting for the localizer's at this scan's stamp would lose every scan it is late for
-            to_global = self._planar(self.global_frame, self.tracking_frame, rospy.Time(0))
+            to_global = self._global_at(msg.header.stamp)
         except TF_ERRORS as err:
             rospy.logwarn_throttle(5.0, f"people tracker: scan ignored: no transform {self.global_frame} -> "
                                         f"{self.tracking_frame} -> {msg.header.frame_id}: {err}")
@@ -208,22 +235,42 @@ class MovingObstaclesROS:
             keep = ~mask.explained(gx, gy)
             xs, ys = np.where(keep, xs, np.nan), np.where(keep, ys, np.nan)
         boxes = box_outlines(xs, ys, (lx, ly), self.shape_params, wrap=bool(full_circle)) if self.drop_boxes else []
+        stamp_s = msg.header.stamp.to_sec()
         with self.lock:
-            self.tracker.update_scan(xs, ys, (lx, ly), msg.header.stamp.to_sec(), wrap=bool(full_circle))
+            if stamp_s < self._forget_before_s:
+                return
+            self.tracker.update_scan(xs, ys, (lx, ly), stamp_s, wrap=bool(full_circle))
             self._boxes = boxes
-            listened = self.people_publisher.get_num_connections() > 0
-            shown = self._people(msg.header.stamp.to_sec()) if listened else None
-        if shown is not None:
-            self.people_publisher.publish(people_message(shown, self.tracking_frame, msg.header.stamp))
-        if self.lanes is not None:  # learnt from every scan, also between goals (only this thread updates them)
-            self.lanes.update(msg.header.stamp.to_sec(), self.tracks())
+            people = self._people(stamp_s)
+            if self.lanes is not None:  # learnt from every scan (also between goals) as the tracker sees it then
+                self.lanes.update(stamp_s, self._carried_tracks(people, to_global))
+        if self.people_publisher.get_num_connections() > 0:
+            self.people_publisher.publish(people_message(people, self.tracking_frame, msg.header.stamp))
+
+    def _global_at(self, stamp: rospy.Time) -> Tuple[float, float, float]:
+        """The tracking frame in the global frame for a scan stamped ``stamp``: it drops the points the static map
+        explains (within static_tolerance) and carries the tracks the lanes learn from. The newest transform, or,
+        in lockstep, the one at the stamp: a localizer publishes ``map -> odom`` for a scan while this thread
+        handles the same scan, so the newest would be the one before or after it as the threads happen to run
+        (runs of one seed parted by 0.1 mm in a lane within 2 s). The wait for it is bounded, and skipped when the
+        newest is older than STALE_GLOBAL_S (a lost localizer); waiting for it on a real robot would lose every
+        scan the localizer is late for."""
+        target, source = self.global_frame.lstrip("/"), self.tracking_frame
+        if target == source:
+            return (0.0, 0.0, 0.0)
+        newest = lookup_bounded(self.tf_buffer, target, source, rospy.Time(0), 0.0)
+        age_s = (stamp - newest.header.stamp).to_sec()
+        if self.scan_worker_lockstep and not newest.header.stamp.is_zero() and age_s <= STALE_GLOBAL_S:
+            try:
+                return _planar_of(lookup_bounded(self.tf_buffer, target, source, stamp, LOCKSTEP_TF_WAIT_S))
+            except TF_ERRORS:
+                pass  # (late beyond the bound: the newest, as without lockstep)
+        return _planar_of(newest)
 
     def _planar(self, target: str, source: str, stamp: rospy.Time) -> Tuple[float, float, float]:
         if target == source.lstrip("/"):
             return (0.0, 0.0, 0.0)
-        tf = lookup_bounded(self.tf_buffer, target, source, stamp, TF_WAIT_S)
-        t, q = tf.transform.translation, tf.transform.rotation
-        return (t.x, t.y, yaw_of_quaternion(q.x, q.y, q.z, q.w))
+        return _planar_of(lookup_bounded(self.tf_buffer, target, source, stamp, TF_WAIT_S))
 
     def report(self, yielded: Optional[YieldDecision], social: Optional[SocialLimit] = None) -> None:
         """One control tick's yield decision (None: not giving way): ``~yielding`` True while giving way (every
@@ -261,9 +308,17 @@ class MovingObstaclesROS:
         if not tracks or self.tracking_frame == self.global_frame.lstrip("/"):
             return tracks
         try:
-            x, y, yaw = self._planar(self.global_frame, self.tracking_frame, rospy.Time(0))
+            to_global = self._planar(self.global_frame, self.tracking_frame, rospy.Time(0))
         except TF_ERRORS:
             return []
+        return self._carried_tracks(tracks, to_global)
+
+    @staticmethod
+    def _carried_tracks(tracks: List[Track], pose: Tuple[float, float, float]) -> List[Track]:
+        """``tracks`` carried by the planar transform ``pose`` (x [m], y [m], yaw [rad]) of their frame."""
+        x, y, yaw = pose
+        if x == 0.0 and y == 0.0 and yaw == 0.0:
+            return tracks
         c, s = math.cos(yaw), math.sin(yaw)
         return [dataclasses.replace(t, x=x + c * t.x - s * t.y, y=y + s * t.x + c * t.y,
                                     vx=c * t.vx - s * t.vy, vy=s * t.vx + c * t.vy) for t in tracks]

@@ -56,6 +56,17 @@ def test_after_a_turn_the_walker_is_predicted_to_turn_again_at_the_far_end():
     assert np.abs(straight - truth[:, 1]).max() > 3.0
 
 
+def test_clear_forgets_the_lanes_and_the_legs_so_learning_starts_afresh():
+    lanes = learnt(5.0)  # one straight leg up from y = 1.0: a lane
+    assert len(lanes.lanes) == 1
+    now = walker_at(5.0)
+    lanes.clear()
+    assert lanes.lanes == [] and lanes.lane_of(now) is None
+    lanes.update(5.1, [walker_at(5.1)])  # a remembered leg would make the lane again at once; one point does not
+    assert lanes.lanes == []
+    assert learnt(5.1).lanes  # (as it would without the clear)
+
+
 def test_a_walker_standing_at_a_lane_end_is_turning_and_walks_back_at_the_lanes_speed():
     lanes = learnt(16.0)
     standing = Track(1, 4.0, 6.0, 0.0, 0.0, 0.2, 16.0, 10)
