@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import dataclasses
 import json
 import math
 import shutil
@@ -48,8 +49,8 @@ from flex_nav.apps.nav_demo import (
     wait_until_ready,
     write_picture,
 )
-from flex_nav.exceptions import FlexNavError
-from flex_nav.nav.control.yielding import PLANNERS
+from flex_nav.exceptions import FlexNavError, choices_message
+from flex_nav.nav.control.yielding import PLANNERS, YieldParams
 from flex_nav.nav.pose_checks import yaw_of_quaternion
 from flex_nav.testing.process import ManagedProcess
 
@@ -100,6 +101,9 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
                         help="how push_or_avoid's follower gives way to walkers: 'rules' (the default), "
                              "'space_time' (its speed along the path planned around the walkers' learnt lanes) or "
                              "'checked' (the rules, each decision checked by that planner)")
+    parser.add_argument("--yield-param", action="append", default=[], metavar="KEY=VALUE",
+                        help="a parameter of push_or_avoid's follower's ~yielding/ (a YieldParams field, e.g. "
+                             "check_moving_gap_m=0.3), after --yield-planner's; repeatable")
     parser.add_argument("--trips", type=int, default=1,
                         help="start -> goal this many times, driving back to the start between them (default 1)")
     parser.add_argument("--clear-between-trips", action="store_true",
@@ -110,13 +114,24 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     args = parser.parse_args(argv)
     if args.trips < 1:
         parser.error(f"--trips must be at least 1, got {args.trips}")
-    args.behavior_params = {}
-    for item in args.behavior_param:
+    args.behavior_params = key_values(parser, "--behavior-param", args.behavior_param)
+    args.yield_params = key_values(parser, "--yield-param", args.yield_param)
+    fields = sorted(f.name for f in dataclasses.fields(YieldParams))
+    for key in args.yield_params:
+        if key not in fields:
+            parser.error(f"--yield-param: {choices_message('yield parameter', key, fields)}")
+    return args
+
+
+def key_values(parser: argparse.ArgumentParser, option: str, items: Sequence[str]) -> Dict[str, Any]:
+    """``KEY=VALUE`` items (each VALUE a YAML value) by key; a malformed item is the parser's error."""
+    values: Dict[str, Any] = {}
+    for item in items:
         key, sep, text = item.partition("=")
         if not sep or not key:
-            parser.error(f"--behavior-param takes KEY=VALUE, got {item!r}")
-        args.behavior_params[key] = yaml.safe_load(text)
-    return args
+            parser.error(f"{option} takes KEY=VALUE, got {item!r}")
+        values[key] = yaml.safe_load(text)
+    return values
 
 
 def trip_goals(goal: Tuple[float, float, float], start: Tuple[float, float, float],
@@ -203,6 +218,7 @@ def start(stack: contextlib.ExitStack, args: argparse.Namespace, run: RobotRun) 
                        for key, value in SPACE_TIME_YIELDING.items()})
     elif args.yield_planner == "checked":
         params[f"/{ROBOT}/pure_pursuit_path/yielding/planner"] = "checked"
+    params.update({f"/{ROBOT}/pure_pursuit_path/yielding/{key}": value for key, value in args.yield_params.items()})
     if args.social_distance > 0.0:
         social: Dict[str, object] = {"enabled": True, "min_distance_m": args.social_distance}
         if args.yield_planner != "rules":  # its slow-down near people would break the plan's timing

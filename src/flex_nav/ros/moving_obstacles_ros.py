@@ -90,6 +90,7 @@ def yield_rule(robot_radius_m: float, speed_mps: float, social: Optional[SocialD
     if social is not None:
         values.setdefault("comfort_margin_m", social.params.min_distance_m)
         values.setdefault("moving_gap_m", social.params.min_distance_m + MOVING_GAP_EXTRA_M)
+        values.setdefault("check_moving_gap_m", values["moving_gap_m"])
     try:
         params = YieldParams.from_mapping(values)
         if params.planner == "checked":

@@ -44,9 +44,17 @@ def test_scenario_run_reads_behavior_parameters_as_yaml_values():
     assert args.behavior_params == {"remember_heavy": True, "max_looks": 3}
 
 
+def test_scenario_run_reads_yield_parameters_by_name():
+    args = scenario_run.parse_args(["--world", "s6_people_crossing", "--behavior", "push_or_avoid", "--out", "/tmp/x",
+                                    "--yield-planner", "checked", "--yield-param", "check_moving_gap_m=0.35"])
+    assert args.yield_params == {"check_moving_gap_m": 0.35}
+
+
 @pytest.mark.parametrize("argv, needle", [
     (["--trips", "0"], "--trips must be at least 1, got 0"),
     (["--behavior-param", "remember_heavy"], "KEY=VALUE, got 'remember_heavy'"),
+    (["--yield-param", "check_gap=0.3"], "'check_gap' is not valid (valid: accel_mps2,"),
+    (["--yield-param", "0.3"], "--yield-param takes KEY=VALUE, got '0.3'"),
 ])
 def test_scenario_run_bad_arguments_name_the_value(argv, needle, capsys):
     with pytest.raises(SystemExit):
@@ -102,9 +110,11 @@ def test_the_driver_takes_world_files_and_passes_parameters_to_one_behavior(tmp_
     monkeypatch.setattr(scenarios.subprocess, "run", fake_run)
     world = str(VARIANTS / "h1_light_box_door.yaml")
     assert scenarios.main(["--scenarios", world, "--seeds", "1", "--workers", "1", "--out", str(tmp_path),
-                           "--behavior-param", "push_or_avoid:fuse_lidar=true"]) == 0
+                           "--behavior-param", "push_or_avoid:fuse_lidar=true",
+                           "--yield-param", "check_moving_gap_m=0.35"]) == 0
     by_behavior = {c[c.index("--behavior") + 1]: c for c in commands}
-    assert by_behavior["push_or_avoid"][-2:] == ["--behavior-param", "fuse_lidar=true"]
+    assert by_behavior["push_or_avoid"][-4:] == ["--behavior-param", "fuse_lidar=true",
+                                                 "--yield-param", "check_moving_gap_m=0.35"]
     assert "--behavior-param" not in by_behavior["move_base_like"]
     assert by_behavior["move_base_like"][by_behavior["move_base_like"].index("--world") + 1] == world
     assert (tmp_path / "h1_light_box_door-push_or_avoid-0" / "result.json").is_file()

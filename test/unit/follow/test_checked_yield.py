@@ -1,5 +1,7 @@
 """CheckedYield: the rules' decisions, each checked by the space-time planner."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 from looping_walker import walker_on_lane
@@ -80,6 +82,19 @@ def test_the_rules_decide_when_a_plan_keeping_the_distance_follows_their_step():
     assert (checked.v, checked.mode) == (rules.v, rules.mode)
 
 
+def test_the_check_keeps_its_own_moving_gap():
+    # the scene above, where a plan after the rules' step keeps 0.4 m while moving: none keeps 1.5 m
+    rule = CheckedYield(replace(PARAMS, check_moving_gap_m=1.5), lanes=learnt_lanes(16.5))
+    rules = decide(YieldRule(PARAMS), 16.5, 3.2)
+    after_rules = rule.planner.plan((3.2, 0.0, 0.0), PATH, LENGTHS, 3.2, [walker_at(16.5)],
+                                    only_first=rule.planner.cells_per_step(rules.v),
+                                    standing_gap_m=PARAMS.check_standing_gap_m, moving_gap_m=1.5)[1]
+    assert after_rules < 0.0
+    assert rule.planner.plan((3.2, 0.0, 0.0), PATH, LENGTHS, 3.2, [walker_at(16.5)])[1] >= 0.0  # its own keeps 0.4
+    decide(rule, 16.5, 3.2)
+    assert rule.last_source == "planner"  # (with the default check the rules decide here: the test above)
+
+
 def test_the_planner_decides_when_the_walker_comes_back_before_the_rules_step_gets_across():
     # t = 18.75 s: the walker walks away up the lane (y = 2.6), turns at its end and is back on the path about
     # 4 s later; the rules, predicting straight on, drive into the lane
@@ -106,6 +121,7 @@ def test_the_planner_and_the_rules_keep_their_own_horizons():
 
 @pytest.mark.parametrize(("values", "words"), [
     ({"check_standing_gap_m": -0.1}, ["check_standing_gap_m", ">= 0"]),
+    ({"check_moving_gap_m": float("inf")}, ["check_moving_gap_m", ">= 0"]),
     ({"plan_horizon_s": 0.0}, ["plan_horizon_s", "> 0"]),
     ({"plan_range_m": float("nan")}, ["plan_range_m"]),
     ({"planner": "checked", "plan_horizon_s": 0.1}, ["plan_step_s", "plan_horizon_s"]),

@@ -79,6 +79,8 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     parser.add_argument("--yield-planner", choices=PLANNERS, default=None,
                         help="push_or_avoid's way of giving way to walkers (scenario_run --yield-planner; default: "
                              "scenario_run's, rules)")
+    parser.add_argument("--yield-param", action="append", default=[], metavar="KEY=VALUE",
+                        help="a yield parameter for every run (scenario_run --yield-param); repeatable")
     parser.add_argument("--social-distance", type=float, default=None, metavar="M",
                         help="[m] keep this distance from tracked people while moving (scenario_run --social-distance; "
                              "default: scenario_run's, 0.3; 0: off)")
@@ -138,6 +140,8 @@ def run_one(args: argparse.Namespace, world: str, behavior: str, seed: int, out:
         command += ["--social-distance", str(args.social_distance)]
     if args.yield_planner is not None:
         command += ["--yield-planner", args.yield_planner]
+    for setting in args.yield_param:
+        command += ["--yield-param", setting]
     out.mkdir(parents=True, exist_ok=True)
     with open(out / "run.log", "w") as log:
         try:

@@ -108,7 +108,8 @@ class CheckedYield(YieldRule):
         if people:
             _first, after_rules, _who = planner.plan(pose, path, lengths, s_robot, people, costs, geometry,
                                                      only_first=planner.cells_per_step(rules.v),
-                                                     standing_gap_m=self.params.check_standing_gap_m)
+                                                     standing_gap_m=self.params.check_standing_gap_m,
+                                                     moving_gap_m=self.params.check_moving_gap_m)
             if after_rules < 0.0:
                 first, score, who = planner.plan(pose, path, lengths, s_robot, people, costs, geometry)
                 if score >= 0.0:

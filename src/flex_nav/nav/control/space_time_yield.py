@@ -158,12 +158,12 @@ class SpaceTimeYield(YieldRule):
     def plan(self, pose: Pose2D, path: np.ndarray, lengths: np.ndarray, s_robot: float,  # noqa: PLR0917
              people: Sequence[Track], costs: Optional[np.ndarray] = None,
              geometry: Optional[CostmapGeometry] = None, *, only_first: Optional[int] = None,
-             standing_gap_m: Optional[float] = None) -> Tuple[int, float, int]:
+             standing_gap_m: Optional[float] = None, moving_gap_m: Optional[float] = None) -> Tuple[int, float, int]:
         """(first step in cells per step, the plan's score [m], index in ``people`` of the nearest person on
         the plan) of the best plan of the module docstring from the robot at arc length ``s_robot`` [m]; the
         plan's positions go to :attr:`last_plan`. ``only_first``: the best of the plans whose first step is
-        that many cells (one of :attr:`moves`); ``standing_gap_m`` [m]: kept while standing instead of the
-        parameter's."""
+        that many cells (one of :attr:`moves`); ``standing_gap_m``, ``moving_gap_m`` [m]: kept while standing,
+        while moving, instead of the parameters'."""
         p = self.params
         start = max(float(lengths[0]), s_robot - p.back_m)
         end = min(float(lengths[-1]), s_robot + p.speed_mps * p.horizon_s)
@@ -180,7 +180,8 @@ class SpaceTimeYield(YieldRule):
         nearest = dist.argmin(axis=0)
         blocked = self._blocked_behind(cells, behind, people, costs, geometry)
         score, first, states, history = self._search(gap, times, behind, blocked, only_first,
-                                                     p.standing_gap_m if standing_gap_m is None else standing_gap_m)
+                                                     p.standing_gap_m if standing_gap_m is None else standing_gap_m,
+                                                     p.moving_gap_m if moving_gap_m is None else moving_gap_m)
         feasible = np.flatnonzero(score >= 0.0)
         goal = int(feasible.max()) if feasible.size else int(np.flatnonzero(score >= float(score.max()) - 1e-9).max())
         self.last_plan = cells[self._walk_back(history, goal, int(states[goal]))]
@@ -188,10 +189,11 @@ class SpaceTimeYield(YieldRule):
         return int(first[goal]), float(score[goal]), int(nearest[1, after_first])
 
     def _search(self, gap: np.ndarray, times: np.ndarray, behind: int, blocked: np.ndarray,  # noqa: PLR0917
-                only_first: Optional[int], standing_gap_m: float
+                only_first: Optional[int], standing_gap_m: float, moving_gap_m: float
                 ) -> Tuple[np.ndarray, np.ndarray, np.ndarray, List[np.ndarray]]:
         """The dynamic programme over (step, state, cell) on the predicted ``gap`` (K+1, N) [m], keeping
-        ``standing_gap_m`` [m] while standing, with the first move ``only_first`` cells (None: any): per cell the
+        ``standing_gap_m`` [m] while standing and ``moving_gap_m`` [m] while moving, with the first move
+        ``only_first`` cells (None: any): per cell the
         best score [m], the first move (cells) of its plan, its final state and, per step, where each (state,
         cell) came from ((2, 2, N): state and move index)."""
         p = self.params
@@ -210,7 +212,7 @@ class SpaceTimeYield(YieldRule):
         history: List[np.ndarray] = []
         for k in range(self.steps):
             kept = np.where(standing[:, None], gap[k + 1][None, :], np.minimum(gap[k][source], gap[k + 1][None, :]))
-            need = np.where(standing, standing_gap_m, p.moving_gap_m)[:, None]
+            need = np.where(standing, standing_gap_m, moving_gap_m)[:, None]
             step = kept - need - CONTACT_PENALTY_M * (kept < 0.0)
             step = np.where(step < 0.0, np.minimum(step + LATER_MPS * times[k + 1], -SHORT_M), step)
             step = np.minimum(step, p.score_cap_m)

@@ -95,7 +95,7 @@ class YieldParams:
     patience_s: float = 60.0  # [s] giving way this long without a break aborts the goal (0: no limit)
     # "rules": this module's rule; "space_time": the speed along the path planned in space and time
     # (:mod:`flex_nav.nav.control.space_time_yield`), with the six parameters below; "checked": this rule, each
-    # decision checked by that planner (:mod:`flex_nav.nav.control.checked_yield`), with the three after them too
+    # decision checked by that planner (:mod:`flex_nav.nav.control.checked_yield`), with the four after them too
     planner: str = "rules"
     moving_gap_m: float = 0.4  # [m] space_time: predicted gap to every person kept while moving
     standing_gap_m: float = 0.1  # [m] space_time: predicted gap to every person kept while standing
@@ -106,6 +106,7 @@ class YieldParams:
     plan_horizon_s: float = 8.0  # [s] checked: the planner's horizon (the rule keeps horizon_s)
     plan_range_m: float = 8.0  # [m] checked: the planner's range (the rule keeps max_range_m)
     check_standing_gap_m: float = 0.05  # [m] checked: predicted gap to every person the check keeps while standing
+    check_moving_gap_m: float = 0.4  # [m] checked: predicted gap to every person the check keeps while moving
 
     def __post_init__(self) -> None:
         positive = ("robot_radius_m", "speed_mps", "accel_mps2", "horizon_s", "time_step_s", "min_track_speed_mps",
@@ -119,7 +120,7 @@ class YieldParams:
         for name in ("hurry_speed_mps", "margin_m", "comfort_margin_m", "uncertainty_mps", "stop_buffer_m",
                      "escape_turn_radps",
                      "min_gain_m", "resume_after_s", "start_margin_m", "escape_tolerance_m", "patience_s",
-                     "moving_gap_m", "standing_gap_m", "back_m", "check_standing_gap_m"):
+                     "moving_gap_m", "standing_gap_m", "back_m", "check_standing_gap_m", "check_moving_gap_m"):
             value = getattr(self, name)
             if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value) \
                     or value < 0.0:
