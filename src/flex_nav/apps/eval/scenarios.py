@@ -78,7 +78,7 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
                         help="map -> odom from flex_nav's localizer (default) or the simulator's ground truth")
     parser.add_argument("--yield-planner", choices=PLANNERS, default=None,
                         help="push_or_avoid's way of giving way to walkers (scenario_run --yield-planner; default: "
-                             "scenario_run's, rules)")
+                             "scenario_run's, checked)")
     parser.add_argument("--yield-param", action="append", default=[], metavar="KEY=VALUE",
                         help="a yield parameter for every run (scenario_run --yield-param); repeatable")
     parser.add_argument("--social-distance", type=float, default=None, metavar="M",

@@ -106,7 +106,7 @@ class YieldParams:
     plan_horizon_s: float = 8.0  # [s] checked: the planner's horizon (the rule keeps horizon_s)
     plan_range_m: float = 8.0  # [m] checked: the planner's range (the rule keeps max_range_m)
     check_standing_gap_m: float = 0.05  # [m] checked: predicted gap to every person the check keeps while standing
-    check_moving_gap_m: float = 0.4  # [m] checked: predicted gap to every person the check keeps while moving
+    check_moving_gap_m: float = 0.35  # [m] checked: predicted gap to every person the check keeps while moving
 
     def __post_init__(self) -> None:
         positive = ("robot_radius_m", "speed_mps", "accel_mps2", "horizon_s", "time_step_s", "min_track_speed_mps",
