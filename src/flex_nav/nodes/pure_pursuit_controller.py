@@ -43,7 +43,8 @@ Parameters (private): ``global_frame`` ("map"), ``robot_base_frame`` ("base_foot
 ``blocked_distance`` [m] (0: off; an obstacle on the path this far ahead aborts the goal with a reason starting
 ``blocked``), ``blocked_timeout`` [s] (0.5), ``yield_to_people`` (false; true: track moving obstacles in the
 scan and give way to them, ``yielding/*`` and ``people_tracker/*``, see
-:mod:`flex_nav.ros.moving_obstacles_ros`), ``pure_pursuit/*``
+:mod:`flex_nav.ros.moving_obstacles_ros`; the service ``~people_tracker/forget`` then makes the tracker start
+afresh), ``pure_pursuit/*``
 (:class:`flex_nav.nav.control.pure_pursuit.PurePursuitParams` by name; unknown names are rejected),
 ``social_distance/enabled`` (false; true: keep ``social_distance/min_distance_m`` (0.3 m) between the footprint
 and every tracked person while moving, slowing from ``slow_distance_m``; the other fields of
