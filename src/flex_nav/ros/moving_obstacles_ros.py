@@ -174,7 +174,7 @@ class MovingObstaclesROS:
         map_topic = param_str(TRACKER_NS + "map_topic", "map")
         self.scan_worker: LatestWorker[LaserScanMsg] = LatestWorker(self._on_scan, "people tracker scans")
         tracker_scans = LockstepParticipant("people_tracker/scan")
-        self.scan_worker_lockstep = tracker_scans.enabled
+        self.in_lockstep = tracker_scans.enabled
         self._subscribers = [self.scan_worker.subscribe(scan_topic, LaserScanMsg, tracker_scans)]
         if map_topic:
             self._subscribers.append(rospy.Subscriber(map_topic, OccupancyGrid, self._on_map, queue_size=1))
@@ -264,7 +264,7 @@ class MovingObstaclesROS:
             return (0.0, 0.0, 0.0)
         newest = lookup_bounded(self.tf_buffer, target, source, rospy.Time(0), 0.0)
         age_s = (stamp - newest.header.stamp).to_sec()
-        if self.scan_worker_lockstep and not newest.header.stamp.is_zero() and age_s <= STALE_GLOBAL_S:
+        if self.in_lockstep and not newest.header.stamp.is_zero() and age_s <= STALE_GLOBAL_S:
             try:
                 return _planar_of(lookup_bounded(self.tf_buffer, target, source, stamp, LOCKSTEP_TF_WAIT_S))
             except TF_ERRORS:
