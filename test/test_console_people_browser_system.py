@@ -22,7 +22,7 @@ from pathlib import Path
 from typing import Any, Dict, List, Sequence, Tuple
 
 import pytest
-from harness import run_command_bounded
+from harness import REPO_ROOT, run_command_bounded
 
 from flex_nav.exceptions import NotReadyError
 from flex_nav.testing.browser import HeadlessBrowser
@@ -127,10 +127,12 @@ def test_the_tracked_people_are_drawn_where_the_walkers_walk(tmp_path: Path) -> 
         assert counts.get("people", [0])[0] >= 1, counts
         print(f"people drawn {seen_s:.1f} s after the robot: {people}", flush=True)
 
-        # the operator's way to make the tracker start afresh (scenario_run calls it where a world's script starts)
+        # the operator's way to make the tracker start afresh (scenario_run calls it where a world's script starts):
+        # Debian's rosservice (the system python) finds flex_nav's service types once the venv is activated
         forget = run_command_bounded(
-            ["rosservice", "call", f"/{ROBOT}/pure_pursuit_path/people_tracker/forget",
-             "{before: {secs: 0, nsecs: 0}}"], env, FORGET_TIMEOUT_S)
+            ["bash", "-c", f"source {REPO_ROOT / '.venv' / 'bin' / 'activate'} && rosservice call "
+                           f"/{ROBOT}/pure_pursuit_path/people_tracker/forget '{{before: {{secs: 0, nsecs: 0}}}}'"],
+            env, FORGET_TIMEOUT_S)
         assert forget.returncode == 0 and "ok: True" in forget.output, forget.output
         forgotten = re.search(r"forgot (\d+) tracks", forget.output)
         assert forgotten and int(forgotten.group(1)) >= 1, forget.output
