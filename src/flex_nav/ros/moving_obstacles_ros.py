@@ -240,15 +240,16 @@ class MovingObstaclesROS:
             xs, ys = np.where(keep, xs, np.nan), np.where(keep, ys, np.nan)
         boxes = box_outlines(xs, ys, (lx, ly), self.shape_params, wrap=bool(full_circle)) if self.drop_boxes else []
         stamp_s = msg.header.stamp.to_sec()
+        listened = self.people_publisher.get_num_connections() > 0
         with self.lock:
             if stamp_s < self._forget_before_s:
                 return
             self.tracker.update_scan(xs, ys, (lx, ly), stamp_s, wrap=bool(full_circle))
             self._boxes = boxes
-            people = self._people(stamp_s)
+            people = self._people(stamp_s) if listened or self.lanes is not None else []
             if self.lanes is not None:  # learnt from every scan (also between goals) as the tracker sees it then
                 self.lanes.update(stamp_s, self._carried_tracks(people, to_global))
-        if self.people_publisher.get_num_connections() > 0:
+        if listened:
             self.people_publisher.publish(people_message(people, self.tracking_frame, msg.header.stamp))
 
     def _global_at(self, stamp: rospy.Time) -> Tuple[float, float, float]:
@@ -320,9 +321,9 @@ class MovingObstaclesROS:
     @staticmethod
     def _carried_tracks(tracks: List[Track], pose: Tuple[float, float, float]) -> List[Track]:
         """``tracks`` carried by the planar transform ``pose`` (x [m], y [m], yaw [rad]) of their frame."""
-        x, y, yaw = pose
-        if x == 0.0 and y == 0.0 and yaw == 0.0:
+        if pose == (0.0, 0.0, 0.0) or not tracks:
             return tracks
-        c, s = math.cos(yaw), math.sin(yaw)
-        return [dataclasses.replace(t, x=x + c * t.x - s * t.y, y=y + s * t.x + c * t.y,
-                                    vx=c * t.vx - s * t.vy, vy=s * t.vx + c * t.vy) for t in tracks]
+        xs, ys = _carried(pose, np.array([t.x for t in tracks]), np.array([t.y for t in tracks]))
+        vxs, vys = _carried((0.0, 0.0, pose[2]), np.array([t.vx for t in tracks]), np.array([t.vy for t in tracks]))
+        return [dataclasses.replace(t, x=float(x), y=float(y), vx=float(vx), vy=float(vy))
+                for t, x, y, vx, vy in zip(tracks, xs, ys, vxs, vys)]
